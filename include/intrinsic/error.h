@@ -1,0 +1,35 @@
+// The project's single exception type. Every failure that reaches the API
+// boundary is an intrinsic::Error carrying a message that names the problem
+// and where it is (file, line, element), plus a category the command-line
+// tool maps to its exit code (see README "Exit codes").
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace intrinsic {
+
+enum class ErrorKind {
+  Usage = 1,      // bad options or arguments
+  Input = 2,      // unreadable or malformed file, or a mesh we refuse
+  Numerical = 3,  // singular system, non-finite result, residual too large
+  Output = 4,     // the result could not be written
+};
+
+class Error : public std::runtime_error {
+ public:
+  Error(ErrorKind kind, const std::string& message)
+      : std::runtime_error(message), kind_(kind) {}
+  ErrorKind kind() const { return kind_; }
+  int exit_code() const { return static_cast<int>(kind_); }
+
+ private:
+  ErrorKind kind_;
+};
+
+[[noreturn]] inline void throw_usage(const std::string& m) { throw Error(ErrorKind::Usage, m); }
+[[noreturn]] inline void throw_input(const std::string& m) { throw Error(ErrorKind::Input, m); }
+[[noreturn]] inline void throw_numerical(const std::string& m) { throw Error(ErrorKind::Numerical, m); }
+[[noreturn]] inline void throw_output(const std::string& m) { throw Error(ErrorKind::Output, m); }
+
+}  // namespace intrinsic

@@ -1,0 +1,45 @@
+// Reading and writing meshes: OBJ, OFF, PLY (ASCII and binary, either
+// endianness), each optionally gzip-compressed (detected from the bytes, not
+// the name). Writers never leave a partial file: they write a temporary file in
+// the target directory and rename it into place on success.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "intrinsic/error.h"
+#include "intrinsic/mesh.h"
+
+namespace intrinsic {
+
+struct ReadOptions {
+  // Refuse files announcing or containing more than this many vertices or
+  // faces, before allocating for them.
+  std::int64_t max_vertices = 50'000'000;
+  std::int64_t max_faces = 100'000'000;
+};
+
+// Throws Error(Input) naming file and line (or byte offset / element index in
+// binary files) on anything malformed.
+MeshData read_mesh(const std::string& path, const ReadOptions& options = {});
+// Same, from bytes already in memory (used by fuzz targets and tests); the
+// format is taken from `name`'s extension (".obj", ".off", ".ply", with an
+// optional ".gz") and gzip is also recognised from the magic bytes.
+MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name,
+                               const ReadOptions& options = {});
+
+struct WriteOptions {
+  bool binary = false;  // PLY only
+};
+
+// Writes V, F and one UV per vertex (UV may be empty: no texture coordinates).
+// Format from the extension: .obj or .ply. Throws Error(Output) on failure,
+// leaving no file behind.
+void write_mesh(const std::string& path, const MatrixX3d& V, const MatrixX3i& F,
+                const MatrixX2d& UV, const WriteOptions& options = {});
+
+// Atomically writes `contents` to `path` (temp file + rename). Shared by every
+// writer in the project (JSON reports, PNG images, meshes).
+void write_file_atomically(const std::string& path, const std::string& contents);
+
+}  // namespace intrinsic
