@@ -1,11 +1,12 @@
 // How subcommands plug into the `intrinsic` tool: each app/cmd_*.cpp defines a
-// register function that adds its CLI11 subcommand and sets `run`, which the
-// main function calls after parsing. Errors propagate as intrinsic::Error and
-// are turned into a message and exit code in main.cpp.
+// register function that adds its CLI11 subcommand and sets `run` when that
+// subcommand is chosen; main.cpp calls it after parsing. Errors propagate as
+// intrinsic::Error and become a message and exit code in main.cpp.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
 
 namespace intrinsic::app {
 
@@ -13,6 +14,13 @@ using Runner = std::function<int()>;
 
 void register_param(CLI::App& app, Runner& run);
 void register_metrics(CLI::App& app, Runner& run);
-void register_render(CLI::App& app, Runner& run);
+void register_generate(CLI::App& app, Runner& run);
+
+// Milliseconds since t0.
+double elapsed_ms(std::chrono::steady_clock::time_point t0);
+// Lower-case extension after stripping a trailing ".gz": "mesh.OBJ.gz" -> ".obj".
+std::string mesh_extension(const std::string& path);
+// Throws Error(Usage) unless `path` ends in .obj or .ply.
+void check_output_mesh_path(const std::string& path);
 
 }  // namespace intrinsic::app

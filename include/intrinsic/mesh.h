@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products, 2x2 inverses
 #include <string>
 #include <vector>
 

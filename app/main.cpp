@@ -1,0 +1,68 @@
+// The `intrinsic` command-line tool: subcommands, and the one place where
+// errors become messages and exit codes (0 ok, 1 usage, 2 input, 3 numerical,
+// 4 output; see README).
+#include <algorithm>
+#include <cctype>
+#include <iostream>
+
+#include "command.h"
+#include "intrinsic/error.h"
+
+namespace intrinsic::app {
+
+double elapsed_ms(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string mesh_extension(const std::string& path) {
+  std::string p = path;
+  std::transform(p.begin(), p.end(), p.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (p.size() > 3 && p.compare(p.size() - 3, 3, ".gz") == 0) p.resize(p.size() - 3);
+  const size_t dot = p.rfind('.');
+  const size_t slash = p.rfind('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  return p.substr(dot);
+}
+
+void check_output_mesh_path(const std::string& path) {
+  const std::string ext = mesh_extension(path);
+  if (ext != ".obj" && ext != ".ply")
+    throw_usage("output '" + path + "': unknown format '" + ext + "' (use .obj or .ply)");
+}
+
+}  // namespace intrinsic::app
+
+int main(int argc, char** argv) {
+  using namespace intrinsic;
+  CLI::App app{"intrinsic: intrinsic parameterizations of surface meshes (Desbrun, Meyer, Alliez 2002)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "intrinsic 0.1.0");
+  app::Runner run;
+  app::register_param(app, run);
+  app::register_metrics(app, run);
+  app::register_generate(app, run);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return static_cast<int>(ErrorKind::Usage);
+  }
+  try {
+    return run ? run() : static_cast<int>(ErrorKind::Usage);
+  } catch (const Error& e) {
+    std::cerr << "intrinsic: error: " << e.what() << "\n";
+    return e.exit_code();
+  } catch (const std::bad_alloc&) {
+    std::cerr << "intrinsic: error: out of memory\n";
+    return static_cast<int>(ErrorKind::Input);
+  } catch (const std::exception& e) {
+    std::cerr << "intrinsic: internal error: " << e.what() << "\n";
+    return 5;
+  }
+}

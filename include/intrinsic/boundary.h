@@ -1,0 +1,40 @@
+// Fixed boundary positions (paper section 4.1; SPEC section 3): the outer
+// loop mapped to a circle or a square, spaced by 3D arc length or uniformly,
+// or positions the user gives for any vertices (outer loop, holes'
+// "additional boundary vertices", even interior points).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "intrinsic/topology.h"
+
+namespace intrinsic {
+
+enum class BoundaryShape { Circle, Square, Given };
+enum class Spacing { ArcLength, Uniform };
+
+struct FixedVertex {
+  int vertex;
+  Eigen::Vector2d uv;
+};
+
+// Parameter t in [0, 1) of each loop vertex, by 3D arc length or uniformly.
+std::vector<double> loop_parameters(const MatrixX3d& V, const std::vector<int>& loop, Spacing spacing);
+
+// The loop on the unit circle (centre 0, radius 1), counter-clockwise, so the
+// faces keep their orientation.
+std::vector<FixedVertex> circle_boundary(const MatrixX3d& V, const std::vector<int>& loop, Spacing spacing);
+// The loop on the square [-1, 1]^2, counter-clockwise; the corners are the four
+// loop vertices whose parameter is nearest 0, 1/4, 1/2 and 3/4, and each side's
+// vertices are spaced between its corners. Needs at least 4 vertices.
+std::vector<FixedVertex> square_boundary(const MatrixX3d& V, const std::vector<int>& loop, Spacing spacing);
+
+// Reads a boundary file: lines "vertex_index u v", '#' comments, blank lines.
+// Throws Error(Input) naming file and line for malformed lines, out-of-range
+// or repeated vertices, non-finite values.
+std::vector<FixedVertex> read_boundary_file(const std::string& path, int num_vertices);
+std::vector<FixedVertex> parse_boundary_text(const std::string& text, const std::string& name, int num_vertices);
+
+}  // namespace intrinsic

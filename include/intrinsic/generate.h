@@ -1,0 +1,38 @@
+// Surfaces the project makes itself: the README's default input, the test
+// cases with known answers, and the benchmark meshes. All are irregularly
+// sampled disks (rings of jittered points around a centre, stitched by
+// angle), lifted onto a surface.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "intrinsic/mesh.h"
+
+namespace intrinsic {
+
+struct GenerateOptions {
+  int rings = 20;            // radial resolution; about 3 * rings^2 vertices
+  double jitter = 0.3;       // fraction of the local spacing points are moved by (0 = regular)
+  std::uint64_t seed = 1;
+  double cap_angle = 1.2;    // cap: polar angle of the boundary (radians)
+  double band_height = 0.6;  // band: half-height of the spherical band, |z| <= band_height
+};
+
+// A disk in the plane z = 0 (unit radius), irregular: the barycentric test case.
+MeshData generate_flat_disk(const GenerateOptions& o);
+// A cap of the unit sphere around the north pole, polar angle <= cap_angle.
+MeshData generate_sphere_cap(const GenerateOptions& o);
+// A wavy height field over the unit disk with denser sampling on one side:
+// the default curved, irregular input.
+MeshData generate_wavy_patch(const GenerateOptions& o);
+// An annulus-like band of the unit sphere (|z| <= band_height) cut open along
+// a meridian into a disk: the paper's Figure 7 case (a strip).
+MeshData generate_sphere_strip(const GenerateOptions& o);
+// Two disjoint flat disks side by side (a two-component file).
+MeshData generate_two_disks(const GenerateOptions& o);
+
+// By name: "flat", "cap", "wave", "strip", "two-disks". Throws Error(Usage).
+MeshData generate_surface(const std::string& name, const GenerateOptions& o);
+
+}  // namespace intrinsic

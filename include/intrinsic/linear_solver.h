@@ -1,0 +1,50 @@
+// One sparse linear solver behind a small interface: factor once, solve many
+// right-hand sides (u and v together). Backends: CHOLMOD supernodal Cholesky
+// and UMFPACK LU when SuiteSparse is built in, Eigen's simplicial Cholesky and
+// SparseLU otherwise, and the paper's iterative choices (conjugate gradient
+// for the symmetric conformal system, BiCGSTAB for the rest, both with a
+// diagonal preconditioner) on request.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <memory>
+#include <string>
+
+namespace intrinsic {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, int indices
+
+enum class SolverKind { Auto, Cholmod, Umfpack, EigenLLT, EigenLU, CG, BiCGSTAB };
+
+std::string solver_name(SolverKind k);
+SolverKind parse_solver(const std::string& name);  // throws Error(Usage)
+bool solver_available(SolverKind k);                // false e.g. for CHOLMOD without SuiteSparse
+
+class LinearSolver {
+ public:
+  // `symmetric` says the matrix is symmetric (Cholesky applies if it is also
+  // positive definite; Auto falls back to LU when Cholesky fails).
+  LinearSolver(SolverKind kind, bool symmetric, double iterative_tolerance = 1e-12);
+  ~LinearSolver();
+  LinearSolver(LinearSolver&&) noexcept;
+  LinearSolver& operator=(LinearSolver&&) noexcept;
+
+  // Throws Error(Numerical) when the matrix is singular (or not positive
+  // definite for an explicit Cholesky choice).
+  void factor(const SparseMatrix& A);
+  // Solves A X = B column by column with the kept factorization.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  // Solves A^T X = B (adjoint gradients); same factorization.
+  Eigen::MatrixXd solve_transposed(const Eigen::MatrixXd& B) const;
+
+  std::string name() const;       // the backend actually used
+  int factorizations() const;     // how many numeric factorizations so far
+  int iterations() const;         // last iterative solve, 0 for direct
+  const SparseMatrix& matrix() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace intrinsic

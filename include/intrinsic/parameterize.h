@@ -1,0 +1,69 @@
+// One call for the common case: a member of the intrinsic family
+// lambda*DCP + mu*DAP (or Tutte/Floater for comparison) with a fixed outer
+// boundary (paper sections 3 and 4.1). Fixed vertices are eliminated, the
+// remaining system is factored once and solved for u and v together.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "intrinsic/boundary.h"
+#include "intrinsic/linear_solver.h"
+#include "intrinsic/metrics.h"
+#include "intrinsic/topology.h"
+#include "intrinsic/weights.h"
+
+namespace intrinsic {
+
+enum class ScaleMode { Unit, Surface };
+
+// What happens to boundary loops other than the outer one (holes) when their
+// positions are not given.
+enum class HoleRule {
+  Fill,  // each hole is closed by a fan around its centroid for the solve, then removed
+  Free,  // hole vertices are free and obey the same equations with the faces they have
+};
+
+struct ParamOptions {
+  WeightOptions weights;
+  BoundaryShape boundary = BoundaryShape::Circle;
+  Spacing spacing = Spacing::ArcLength;
+  std::vector<FixedVertex> given;  // BoundaryShape::Given: must include the whole outer loop
+  ScaleMode scale = ScaleMode::Unit;  // ignored for Given positions (used exactly)
+  HoleRule holes = HoleRule::Fill;
+  SolverKind solver = SolverKind::Auto;
+  double max_residual = 1e-8;  // relative; larger fails with Error(Numerical)
+};
+
+struct StageTimings {
+  double assemble_ms = 0, factor_ms = 0, solve_ms = 0;
+};
+
+struct ParamResult {
+  MatrixX2d UV;  // #V x 2, unused vertices at (0, 0)
+  std::string solver;       // backend used
+  double residual = 0;      // max over u, v of |A x - b| / |b|
+  int free_vertices = 0;    // unknowns per coordinate
+  int fixed_vertices = 0;
+  int filled_holes = 0;
+  int factorizations = 0;
+  int iterations = 0;       // iterative solvers only
+  std::string scale;        // "unit", "surface" or "given"
+  StageTimings timings;
+};
+
+// Throws Error(Usage) for inconsistent options, Error(Input) when the mesh
+// cannot take them (missing outer-loop vertex in `given`), Error(Numerical)
+// when the solve fails or the residual is too large.
+ParamResult parameterize(const Mesh& mesh, const ParamOptions& options);
+
+// Similarity that moves UV into [0,1]^2 (centred, aspect kept), or scales it
+// so the parameter area equals the 3D area (centroid kept).
+void fit_unit_square(MatrixX2d& UV, const std::vector<char>& used);
+void scale_to_surface_area(MatrixX2d& UV, const Mesh& mesh);
+
+// Sum of signed parameter areas of the faces.
+double parameter_area(const MatrixX3i& F, const MatrixX2d& UV);
+double surface_area(const MatrixX3d& V, const MatrixX3i& F);
+
+}  // namespace intrinsic

@@ -1,0 +1,222 @@
+// Adjacency of a triangle mesh: orientation repair, half-edge twins,
+// manifold-vertex check, boundary loops and connected components.
+// Everything is built from a CSR list of outgoing half-edges per vertex, which
+// costs two linear passes and finds each twin among a handful of candidates
+// (no global sort of edges).
+#include <algorithm>
+#include <numeric>
+#include <queue>
+#include <sstream>
+
+#include "intrinsic/error.h"
+#include "mesh/topology_build.h"
+
+namespace intrinsic::detail {
+namespace {
+
+// Outgoing half-edges of each vertex, in compressed rows.
+struct OutgoingLists {
+  std::vector<int> begin;  // size n+1
+  std::vector<int> halfedges;
+};
+
+OutgoingLists outgoing_lists(const Mesh& mesh) {
+  const int n = static_cast<int>(mesh.V.rows());
+  const int m = static_cast<int>(mesh.F.rows());
+  OutgoingLists out;
+  out.begin.assign(n + 1, 0);
+  for (int f = 0; f < m; ++f)
+    for (int c = 0; c < 3; ++c) ++out.begin[mesh.F(f, c) + 1];
+  std::partial_sum(out.begin.begin(), out.begin.end(), out.begin.begin());
+  out.halfedges.resize(3 * static_cast<size_t>(m));
+  std::vector<int> fill(out.begin.begin(), out.begin.end() - 1);
+  for (int h = 0; h < 3 * m; ++h) out.halfedges[fill[mesh.source(h)]++] = h;
+  return out;
+}
+
+std::string edge_name(int a, int b) {
+  std::ostringstream s;
+  s << "edge (" << std::min(a, b) << ", " << std::max(a, b) << ")";
+  return s.str();
+}
+
+}  // namespace
+
+int orient_faces(Mesh& mesh) {
+  const int m = static_cast<int>(mesh.F.rows());
+  const OutgoingLists out = outgoing_lists(mesh);
+  // For every half-edge, the one other half-edge on the same undirected edge
+  // (either direction), or -1. More than one other means a non-manifold edge.
+  std::vector<int> mate(3 * static_cast<size_t>(m), -1);
+  for (int h = 0; h < 3 * m; ++h) {
+    const int a = mesh.source(h), b = mesh.target(h);
+    int count = 0, other = -1;
+    for (int k = out.begin[b]; k < out.begin[b + 1]; ++k) {
+      const int g = out.halfedges[k];
+      if (mesh.target(g) == a) { ++count; other = g; }
+    }
+    for (int k = out.begin[a]; k < out.begin[a + 1]; ++k) {
+      const int g = out.halfedges[k];
+      if (g != h && mesh.target(g) == b) { ++count; other = g; }
+    }
+    if (count > 1)
+      throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") + edge_name(a, b) + " has " +
+                  std::to_string(count + 1) + " faces (non-manifold edge; e.g. " +
+                  mesh.describe_face(h / 3) + ")");
+    mate[h] = other;
+  }
+
+  std::vector<signed char> flip(m, -1);  // -1 unvisited, 0 keep, 1 flip
+  int flipped_total = 0;
+  std::vector<int> component;
+  for (int seed = 0; seed < m; ++seed) {
+    if (flip[seed] >= 0) continue;
+    component.clear();
+    flip[seed] = 0;
+    component.push_back(seed);
+    for (size_t q = 0; q < component.size(); ++q) {
+      const int f = component[q];
+      for (int c = 0; c < 3; ++c) {
+        const int h = 3 * f + c, g = mate[h];
+        if (g < 0) continue;
+        const bool same_direction = mesh.source(g) == mesh.source(h);
+        const signed char want = static_cast<signed char>(flip[f] ^ (same_direction ? 1 : 0));
+        const int nb = g / 3;
+        if (flip[nb] < 0) {
+          flip[nb] = want;
+          component.push_back(nb);
+        } else if (flip[nb] != want) {
+          throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") +
+                      "the surface is not orientable (" + mesh.describe_face(f) + " and " +
+                      mesh.describe_face(nb) + " cannot agree across " +
+                      edge_name(mesh.source(h), mesh.target(h)) + ")");
+        }
+      }
+    }
+    size_t flips = 0;
+    for (int f : component) flips += flip[f];
+    const bool invert = flips * 2 > component.size();  // keep the majority as listed
+    for (int f : component) {
+      if (invert) flip[f] ^= 1;
+      if (flip[f]) {
+        std::swap(mesh.F(f, 1), mesh.F(f, 2));
+        ++flipped_total;
+      }
+    }
+  }
+  return flipped_total;
+}
+
+void build_topology(Mesh& mesh) {
+  const int n = static_cast<int>(mesh.V.rows());
+  const int m = static_cast<int>(mesh.F.rows());
+  Topology& t = mesh.topology;
+  t.num_vertices = n;
+  t.num_faces = m;
+  const OutgoingLists out = outgoing_lists(mesh);
+
+  t.twin.assign(3 * static_cast<size_t>(m), -1);
+  for (int h = 0; h < 3 * m; ++h) {
+    const int a = mesh.source(h), b = mesh.target(h);
+    for (int k = out.begin[b]; k < out.begin[b + 1]; ++k) {
+      const int g = out.halfedges[k];
+      if (mesh.target(g) == a) { t.twin[h] = g; break; }
+    }
+  }
+
+  t.is_used.assign(n, 0);
+  t.is_boundary.assign(n, 0);
+  t.vertex_out.assign(n, -1);
+  for (int v = 0; v < n; ++v) {
+    const int valence = out.begin[v + 1] - out.begin[v];
+    if (valence == 0) continue;
+    t.is_used[v] = 1;
+    int start = out.halfedges[out.begin[v]];
+    int boundary_count = 0;
+    for (int k = out.begin[v]; k < out.begin[v + 1]; ++k) {
+      const int h = out.halfedges[k];
+      if (t.twin[h] < 0) { ++boundary_count; start = h; }
+    }
+    // Rotate around v: from outgoing h, prev(h) comes into v and its twin
+    // leaves v in the neighbouring face. A manifold vertex's faces form one fan.
+    int visited = 0, h = start;
+    do {
+      ++visited;
+      const int back = t.twin[Topology::prev(h)];
+      if (back < 0) break;
+      h = back;
+    } while (h != start && visited <= valence);
+    if (boundary_count > 1 || visited != valence)
+      throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") + "vertex " + std::to_string(v) +
+                  " is non-manifold (its faces form more than one fan)");
+    t.is_boundary[v] = boundary_count > 0;
+    t.vertex_out[v] = start;
+  }
+
+  // Components by flood fill over twins.
+  t.face_component.assign(m, -1);
+  t.num_components = 0;
+  t.component_faces.clear();
+  std::vector<int> stack;
+  for (int seed = 0; seed < m; ++seed) {
+    if (t.face_component[seed] >= 0) continue;
+    const int id = t.num_components++;
+    int count = 0;
+    stack.push_back(seed);
+    t.face_component[seed] = id;
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      ++count;
+      for (int c = 0; c < 3; ++c) {
+        const int g = t.twin[3 * f + c];
+        if (g >= 0 && t.face_component[g / 3] < 0) {
+          t.face_component[g / 3] = id;
+          stack.push_back(g / 3);
+        }
+      }
+    }
+    t.component_faces.push_back(count);
+  }
+
+  // Boundary loops: from a boundary half-edge a->b, the next one is b's
+  // (unique, since b is manifold) outgoing boundary half-edge.
+  t.boundary_loops.clear();
+  t.loop_length.clear();
+  std::vector<char> seen(3 * static_cast<size_t>(m), 0);
+  std::vector<int> loop_component;
+  for (int h0 = 0; h0 < 3 * m; ++h0) {
+    if (t.twin[h0] >= 0 || seen[h0]) continue;
+    std::vector<int> loop;
+    double length = 0;
+    int h = h0;
+    do {
+      seen[h] = 1;
+      loop.push_back(mesh.source(h));
+      length += (mesh.V.row(mesh.target(h)) - mesh.V.row(mesh.source(h))).norm();
+      h = t.vertex_out[mesh.target(h)];
+    } while (h != h0 && !seen[h]);
+    t.boundary_loops.push_back(std::move(loop));
+    t.loop_length.push_back(length);
+    loop_component.push_back(t.face_component[h0 / 3]);
+  }
+  t.component_loops.assign(t.num_components, {});
+  for (size_t l = 0; l < t.boundary_loops.size(); ++l)
+    t.component_loops[loop_component[l]].push_back(static_cast<int>(l));
+  for (auto& loops : t.component_loops)
+    std::stable_sort(loops.begin(), loops.end(),
+                     [&](int a, int b) { return t.loop_length[a] > t.loop_length[b]; });
+  // Renumber loops so the global list reads component by component, outer first.
+  std::vector<std::vector<int>> loops_sorted;
+  std::vector<double> length_sorted;
+  for (auto& loops : t.component_loops)
+    for (int& l : loops) {
+      loops_sorted.push_back(std::move(t.boundary_loops[l]));
+      length_sorted.push_back(t.loop_length[l]);
+      l = static_cast<int>(loops_sorted.size()) - 1;
+    }
+  t.boundary_loops = std::move(loops_sorted);
+  t.loop_length = std::move(length_sorted);
+}
+
+}  // namespace intrinsic::detail

@@ -1,0 +1,158 @@
+// Distortion measures (SPEC section 8): per-triangle Jacobian singular values,
+// area-weighted summaries, and the paper's section 5.1 energies.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "intrinsic/metrics.h"
+
+namespace intrinsic {
+namespace {
+
+// Jacobian of the map from face f's own 2D frame to the plane.
+Eigen::Matrix2d jacobian(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, int f, double& area3d) {
+  const Eigen::Vector3d x0 = V.row(F(f, 0)), x1 = V.row(F(f, 1)), x2 = V.row(F(f, 2));
+  const Eigen::Vector3d e1 = x1 - x0, e2 = x2 - x0;
+  const double l1 = e1.norm();
+  const Eigen::Vector3d n = e1.cross(e2);
+  area3d = 0.5 * n.norm();
+  Eigen::Matrix2d P;  // columns: the edges in the face's frame
+  P << l1, e1.dot(e2) / l1, 0, n.norm() / l1;
+  Eigen::Matrix2d Q;
+  Q.col(0) = (UV.row(F(f, 1)) - UV.row(F(f, 0))).transpose();
+  Q.col(1) = (UV.row(F(f, 2)) - UV.row(F(f, 0))).transpose();
+  return Q * P.inverse();
+}
+
+// Singular values of a 2x2 matrix, s1 >= s2 >= 0, in closed form.
+void singular_values(const Eigen::Matrix2d& J, double& s1, double& s2) {
+  const double a = J(0, 0), b = J(0, 1), c = J(1, 0), d = J(1, 1);
+  const double e = 0.5 * (a + d), f = 0.5 * (a - d), g = 0.5 * (c + b), h = 0.5 * (c - b);
+  const double q = std::hypot(e, h), r = std::hypot(f, g);
+  s1 = q + r;
+  s2 = std::abs(q - r);
+}
+
+double normalisation(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
+  double a3 = 0, a2 = 0;
+  for (int f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d x0 = V.row(F(f, 0)), x1 = V.row(F(f, 1)), x2 = V.row(F(f, 2));
+    a3 += 0.5 * (x1 - x0).cross(x2 - x0).norm();
+    const Eigen::Vector2d u0 = UV.row(F(f, 0)), u1 = UV.row(F(f, 1)), u2 = UV.row(F(f, 2));
+    a2 += 0.5 * ((u1.x() - u0.x()) * (u2.y() - u0.y()) - (u1.y() - u0.y()) * (u2.x() - u0.x()));
+  }
+  a2 = std::abs(a2);
+  return a2 > 0 ? std::sqrt(a3 / a2) : 1.0;
+}
+
+Stat weighted_stat(const Eigen::VectorXd& x, const Eigen::VectorXd& w) {
+  Stat s;
+  s.min = std::numeric_limits<double>::infinity();
+  s.max = -std::numeric_limits<double>::infinity();
+  double sum = 0, wsum = 0;
+  for (int i = 0; i < x.size(); ++i) {
+    if (!std::isfinite(x[i])) continue;
+    s.min = std::min(s.min, x[i]);
+    s.max = std::max(s.max, x[i]);
+    sum += w[i] * x[i];
+    wsum += w[i];
+  }
+  if (wsum > 0) s.mean = sum / wsum;
+  if (!std::isfinite(s.min)) s.min = s.max = s.mean = 0;
+  return s;
+}
+
+}  // namespace
+
+FaceDistortion face_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
+  const int m = static_cast<int>(F.rows());
+  const double k = normalisation(V, F, UV);
+  const double inf = std::numeric_limits<double>::infinity();
+  FaceDistortion d;
+  d.angle.resize(m);
+  d.area.resize(m);
+  d.stretch_l2.resize(m);
+  d.stretch_linf.resize(m);
+  d.area_3d.resize(m);
+  d.flipped.assign(m, false);
+  for (int f = 0; f < m; ++f) {
+    double area3d = 0;
+    const Eigen::Matrix2d J = k * jacobian(V, F, UV, f, area3d);
+    d.area_3d[f] = area3d;
+    double s1 = 0, s2 = 0;
+    singular_values(J, s1, s2);
+    d.flipped[f] = !(J.determinant() > 0);
+    d.area[f] = s1 * s2;
+    d.stretch_l2[f] = s2 > 0 ? std::sqrt(0.5 * (1 / (s1 * s1) + 1 / (s2 * s2))) : inf;
+    d.stretch_linf[f] = s2 > 0 ? 1 / s2 : inf;
+    d.angle[f] = s2 > 0 ? s1 / s2 : inf;
+  }
+  return d;
+}
+
+Eigen::MatrixX2i unique_edges(const MatrixX3i& F) {
+  std::vector<std::uint64_t> keys;
+  keys.reserve(3 * F.rows());
+  for (int f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const std::uint64_t i = static_cast<std::uint32_t>(F(f, c)), j = static_cast<std::uint32_t>(F(f, (c + 1) % 3));
+      keys.push_back(std::min(i, j) << 32 | std::max(i, j));
+    }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  Eigen::MatrixX2i E(keys.size(), 2);
+  for (size_t k = 0; k < keys.size(); ++k) {
+    E(k, 0) = static_cast<int>(keys[k] >> 32);
+    E(k, 1) = static_cast<int>(keys[k] & 0xffffffffu);
+  }
+  return E;
+}
+
+double edge_length_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
+  const Eigen::MatrixX2i E = unique_edges(F);
+  double e = 0;
+  for (int k = 0; k < E.rows(); ++k) {
+    const int i = E(k, 0), j = E(k, 1);
+    const double r = (UV.row(i) - UV.row(j)).squaredNorm() / (V.row(i) - V.row(j)).squaredNorm() - 1;
+    e += r * r;
+  }
+  return e;
+}
+
+double area_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
+  double e = 0;
+  for (int f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d x0 = V.row(F(f, 0)), x1 = V.row(F(f, 1)), x2 = V.row(F(f, 2));
+    const Eigen::Vector2d u0 = UV.row(F(f, 0)), u1 = UV.row(F(f, 1)), u2 = UV.row(F(f, 2));
+    const double a3 = 0.5 * (x1 - x0).cross(x2 - x0).norm();
+    const double a2 = 0.5 * ((u1.x() - u0.x()) * (u2.y() - u0.y()) - (u1.y() - u0.y()) * (u2.x() - u0.x()));
+    e += (a2 / a3 - 1) * (a2 / a3 - 1);
+  }
+  return e;
+}
+
+DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
+  const FaceDistortion d = face_distortion(V, F, UV);
+  DistortionSummary s;
+  s.scale_factor = normalisation(V, F, UV);
+  for (int f = 0; f < F.rows(); ++f) {
+    s.flipped_triangles += d.flipped[f];
+    s.collapsed_triangles += std::isfinite(d.angle[f]) ? 0 : 1;
+  }
+  s.angle_distortion = weighted_stat(d.angle, d.area_3d);
+  s.area_distortion = weighted_stat(d.area, d.area_3d);
+  s.stretch_l2 = weighted_stat(d.stretch_l2, d.area_3d);
+  s.stretch_linf = weighted_stat(d.stretch_linf, d.area_3d);
+  const MatrixX2d UVn = s.scale_factor * UV;
+  const Eigen::MatrixX2i E = unique_edges(F);
+  Eigen::VectorXd r(E.rows());
+  for (int k = 0; k < E.rows(); ++k)
+    r[k] = (UVn.row(E(k, 0)) - UVn.row(E(k, 1))).squaredNorm() / (V.row(E(k, 0)) - V.row(E(k, 1))).squaredNorm();
+  s.edge_length_distortion = weighted_stat(r, Eigen::VectorXd::Ones(r.size()));
+  s.edge_length_energy = edge_length_energy(V, F, UVn);
+  s.area_energy = area_energy(V, F, UVn);
+  return s;
+}
+
+}  // namespace intrinsic

@@ -1,0 +1,221 @@
+// Backends of LinearSolver. CHOLMOD is told to use AMD alone: its default
+// analysis also tries METIS, which on meshes costs more than the
+// factorization it saves.
+#include "intrinsic/linear_solver.h"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <variant>
+
+#include "intrinsic/error.h"
+
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+#include <Eigen/CholmodSupport>
+#include <Eigen/UmfPackSupport>
+#endif
+
+namespace intrinsic {
+
+std::string solver_name(SolverKind k) {
+  switch (k) {
+    case SolverKind::Auto: return "auto";
+    case SolverKind::Cholmod: return "cholmod";
+    case SolverKind::Umfpack: return "umfpack";
+    case SolverKind::EigenLLT: return "eigen-llt";
+    case SolverKind::EigenLU: return "eigen-lu";
+    case SolverKind::CG: return "cg";
+    case SolverKind::BiCGSTAB: return "bicgstab";
+  }
+  return "?";
+}
+
+SolverKind parse_solver(const std::string& name) {
+  for (SolverKind k : {SolverKind::Auto, SolverKind::Cholmod, SolverKind::Umfpack, SolverKind::EigenLLT,
+                       SolverKind::EigenLU, SolverKind::CG, SolverKind::BiCGSTAB})
+    if (solver_name(k) == name) {
+      if (!solver_available(k))
+        throw_usage("solver '" + name + "' is not available in this build (SuiteSparse was not found)");
+      return k;
+    }
+  throw_usage("unknown solver '" + name + "' (use auto, cholmod, umfpack, eigen-llt, eigen-lu, cg or bicgstab)");
+}
+
+bool solver_available(SolverKind k) {
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+  (void)k;
+  return true;
+#else
+  return k != SolverKind::Cholmod && k != SolverKind::Umfpack;
+#endif
+}
+
+namespace {
+
+using EigenLLT = Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
+using EigenLU = Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>>;
+using CG = Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>>;
+using BiCG = Eigen::BiCGSTAB<SparseMatrix, Eigen::DiagonalPreconditioner<double>>;
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+using Cholmod = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
+using Umfpack = Eigen::UmfPackLU<SparseMatrix>;
+#endif
+
+}  // namespace
+
+struct LinearSolver::Impl {
+  SolverKind requested;
+  bool symmetric;
+  double tolerance;
+  SparseMatrix A;
+  std::string used;
+  int factorizations = 0;
+  mutable int iterations = 0;
+  mutable std::unique_ptr<LinearSolver> transposed;  // lazily, for adjoint solves
+  std::unique_ptr<EigenLLT> llt;
+  std::unique_ptr<EigenLU> lu;
+  std::unique_ptr<CG> cg;
+  std::unique_ptr<BiCG> bicg;
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+  std::unique_ptr<Cholmod> cholmod;
+  std::unique_ptr<Umfpack> umfpack;
+#endif
+
+  bool try_cholesky() {
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+    if (requested != SolverKind::EigenLLT) {
+      cholmod = std::make_unique<Cholmod>();
+      cholmod->cholmod().nmethods = 1;
+      cholmod->cholmod().method[0].ordering = CHOLMOD_AMD;
+      cholmod->cholmod().postorder = 1;
+      cholmod->compute(A);
+      if (cholmod->info() == Eigen::Success) { used = "cholmod"; return true; }
+      cholmod.reset();
+      return false;
+    }
+#endif
+    llt = std::make_unique<EigenLLT>();
+    llt->compute(A);
+    if (llt->info() == Eigen::Success) { used = "eigen-llt"; return true; }
+    llt.reset();
+    return false;
+  }
+
+  bool try_lu() {
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+    if (requested != SolverKind::EigenLU) {
+      umfpack = std::make_unique<Umfpack>();
+      umfpack->compute(A);
+      if (umfpack->info() == Eigen::Success) { used = "umfpack"; return true; }
+      umfpack.reset();
+      return false;
+    }
+#endif
+    lu = std::make_unique<EigenLU>();
+    lu->compute(A);
+    if (lu->info() == Eigen::Success) { used = "eigen-lu"; return true; }
+    lu.reset();
+    return false;
+  }
+};
+
+LinearSolver::LinearSolver(SolverKind kind, bool symmetric, double tolerance)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->requested = kind;
+  impl_->symmetric = symmetric;
+  impl_->tolerance = tolerance;
+}
+LinearSolver::~LinearSolver() = default;
+LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
+LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
+
+void LinearSolver::factor(const SparseMatrix& A) {
+  Impl& s = *impl_;
+  s.A = A;
+  s.A.makeCompressed();
+  s.transposed.reset();
+  s.llt.reset(); s.lu.reset(); s.cg.reset(); s.bicg.reset();
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+  s.cholmod.reset(); s.umfpack.reset();
+#endif
+  ++s.factorizations;
+  const std::string n = std::to_string(A.rows());
+  switch (s.requested) {
+    case SolverKind::Auto:
+      if (s.symmetric && s.try_cholesky()) return;
+      if (s.try_lu()) return;
+      throw_numerical("the " + n + "x" + n + " system is singular (sparse LU failed)");
+    case SolverKind::Cholmod:
+    case SolverKind::EigenLLT:
+      if (!s.symmetric)
+        throw_usage("solver '" + solver_name(s.requested) + "' needs a symmetric system; this method's is not (use umfpack, eigen-lu or bicgstab)");
+      if (s.try_cholesky()) return;
+      throw_numerical("Cholesky factorization failed: the " + n + "x" + n +
+                      " system is not positive definite (negative cotangent weights from obtuse angles can cause this; try --solver auto)");
+    case SolverKind::Umfpack:
+    case SolverKind::EigenLU:
+      if (s.try_lu()) return;
+      throw_numerical("the " + n + "x" + n + " system is singular (sparse LU failed)");
+    case SolverKind::CG:
+      if (!s.symmetric)
+        throw_usage("conjugate gradient needs a symmetric system; this method's is not (use bicgstab)");
+      s.cg = std::make_unique<CG>();
+      s.cg->setTolerance(s.tolerance);
+      s.cg->setMaxIterations(std::max<int>(1000, 10 * static_cast<int>(A.rows())));
+      s.cg->compute(s.A);
+      s.used = "cg";
+      return;
+    case SolverKind::BiCGSTAB:
+      s.bicg = std::make_unique<BiCG>();
+      s.bicg->setTolerance(s.tolerance);
+      s.bicg->setMaxIterations(std::max<int>(1000, 10 * static_cast<int>(A.rows())));
+      s.bicg->compute(s.A);
+      s.used = "bicgstab";
+      return;
+  }
+}
+
+Eigen::MatrixXd LinearSolver::solve(const Eigen::MatrixXd& B) const {
+  const Impl& s = *impl_;
+  Eigen::MatrixXd X(B.rows(), B.cols());
+  s.iterations = 0;
+  if (s.llt) X = s.llt->solve(B);
+  else if (s.lu) X = s.lu->solve(B);
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+  else if (s.cholmod) X = s.cholmod->solve(B);
+  else if (s.umfpack) X = s.umfpack->solve(B);
+#endif
+  else if (s.cg || s.bicg) {
+    for (int c = 0; c < B.cols(); ++c) {
+      if (s.cg) {
+        X.col(c) = s.cg->solve(B.col(c));
+        s.iterations = std::max<int>(s.iterations, static_cast<int>(s.cg->iterations()));
+      } else {
+        X.col(c) = s.bicg->solve(B.col(c));
+        s.iterations = std::max<int>(s.iterations, static_cast<int>(s.bicg->iterations()));
+      }
+    }
+  } else {
+    throw_numerical("internal: solve called before factor");
+  }
+  return X;
+}
+
+Eigen::MatrixXd LinearSolver::solve_transposed(const Eigen::MatrixXd& B) const {
+  const Impl& s = *impl_;
+  if (s.symmetric) return solve(B);
+  if (s.lu) return s.lu->transpose().solve(B);
+  // Other backends: factor the transpose on first use and keep it.
+  if (!s.transposed) {
+    s.transposed = std::make_unique<LinearSolver>(s.requested, false, s.tolerance);
+    s.transposed->factor(SparseMatrix(s.A.transpose()));
+  }
+  return s.transposed->solve(B);
+}
+
+std::string LinearSolver::name() const { return impl_->used; }
+int LinearSolver::factorizations() const { return impl_->factorizations; }
+int LinearSolver::iterations() const { return impl_->iterations; }
+const SparseMatrix& LinearSolver::matrix() const { return impl_->A; }
+
+}  // namespace intrinsic

@@ -1,0 +1,73 @@
+// Distortion measures against linear maps whose singular values are known.
+#include <gtest/gtest.h>
+
+#include "intrinsic/metrics.h"
+#include "test_support.h"
+
+namespace intrinsic {
+namespace {
+
+Mesh flat_mesh() {
+  GenerateOptions g;
+  g.rings = 8;
+  g.jitter = 0.5;
+  return make_mesh(generate_flat_disk(g));
+}
+
+TEST(Metrics, IdentityAndSimilarityHaveNoDistortion) {
+  const Mesh mesh = flat_mesh();
+  for (double scale : {1.0, 0.01, 37.0}) {
+    const MatrixX2d UV = scale * mesh.V.leftCols(2);
+    const DistortionSummary s = summarize_distortion(mesh.V, mesh.F, UV);
+    EXPECT_EQ(s.flipped_triangles, 0);
+    EXPECT_NEAR(s.angle_distortion.max, 1.0, 1e-9);
+    EXPECT_NEAR(s.area_distortion.min, 1.0, 1e-9);
+    EXPECT_NEAR(s.area_distortion.max, 1.0, 1e-9);
+    EXPECT_NEAR(s.stretch_l2.mean, 1.0, 1e-9);
+    EXPECT_NEAR(s.stretch_linf.max, 1.0, 1e-9);
+    EXPECT_NEAR(s.edge_length_distortion.max, 1.0, 1e-9);
+    EXPECT_NEAR(s.edge_length_energy, 0.0, 1e-15 * mesh.F.rows() + 1e-12);
+    EXPECT_NEAR(s.area_energy, 0.0, 1e-12);
+    EXPECT_NEAR(s.scale_factor, 1 / scale, 1e-9 / scale);
+  }
+}
+
+TEST(Metrics, AnisotropicStretchHasKnownSingularValues) {
+  const Mesh mesh = flat_mesh();
+  MatrixX2d UV = mesh.V.leftCols(2);
+  UV.col(0) *= 4.0;  // J = diag(4, 1); normalised to diag(2, 0.5)
+  const FaceDistortion d = face_distortion(mesh.V, mesh.F, UV);
+  for (int f = 0; f < mesh.F.rows(); ++f) {
+    EXPECT_NEAR(d.angle[f], 4.0, 1e-9);
+    EXPECT_NEAR(d.area[f], 1.0, 1e-9);
+    EXPECT_NEAR(d.stretch_linf[f], 2.0, 1e-9);  // 1 / s2
+    EXPECT_NEAR(d.stretch_l2[f], std::sqrt(0.5 * (0.25 + 4.0)), 1e-9);
+    EXPECT_FALSE(d.flipped[f]);
+  }
+}
+
+TEST(Metrics, MirrorFlipsEveryTriangle) {
+  const Mesh mesh = flat_mesh();
+  MatrixX2d UV = mesh.V.leftCols(2);
+  UV.col(1) *= -1;
+  EXPECT_EQ(summarize_distortion(mesh.V, mesh.F, UV).flipped_triangles, mesh.F.rows());
+  UV = mesh.V.leftCols(2);
+  std::swap(UV(mesh.F(0, 0), 0), UV(mesh.F(0, 1), 0));
+  std::swap(UV(mesh.F(0, 0), 1), UV(mesh.F(0, 1), 1));
+  EXPECT_GE(summarize_distortion(mesh.V, mesh.F, UV).flipped_triangles, 1);
+}
+
+TEST(Metrics, EnergiesMatchDefinitionsByHand) {
+  MatrixX3d V(3, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  MatrixX3i F(1, 3);
+  F << 0, 1, 2;
+  MatrixX2d UV(3, 2);
+  UV << 0, 0, 2, 0, 0, 1;  // squared length ratios: 4/1, 5/2, 1/1
+  EXPECT_NEAR(edge_length_energy(V, F, UV), 9.0 + 2.25 + 0.0, 1e-14);
+  EXPECT_NEAR(area_energy(V, F, UV), 1.0, 1e-14);  // area ratio 2
+  EXPECT_EQ(unique_edges(F).rows(), 3);
+}
+
+}  // namespace
+}  // namespace intrinsic
