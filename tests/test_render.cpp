@@ -384,3 +384,16 @@ TEST(Render, ComposePanelsLaysOutGrid) {
   EXPECT_GT(variance(out), 0);
   EXPECT_THROW(compose_panels({}, {}, 1), Error);
 }
+
+TEST(Render, TickValuesAreRoundAndIncludeEnds) {
+  const auto t = render::tick_values(1, 2.5, false);
+  ASSERT_GE(t.size(), 3u);
+  EXPECT_EQ(t.front(), 1);
+  EXPECT_EQ(t.back(), 2.5);
+  for (std::size_t i = 1; i + 1 < t.size(); ++i) EXPECT_NEAR(std::fmod(t[i], 0.5), 0, 1e-12) << t[i];
+  const auto g = render::tick_values(0.01, 1000, true);
+  EXPECT_EQ(g.front(), 0.01);
+  EXPECT_EQ(g.back(), 1000);
+  EXPECT_GE(g.size(), 4u);
+  EXPECT_EQ(render::tick_values(2, 2, false).size(), 1u);
+}

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "render/colormap.h"
 #include "render/text.h"
@@ -16,7 +17,7 @@ constexpr Rgb kInk = {20, 20, 20};
 
 FaceValuesLayout face_values_layout(int width, int height, bool has_title) {
   FaceValuesLayout L;
-  const int s = std::max(1, std::min(width, height) / 400);
+  const int s = std::max(1, static_cast<int>(std::lround(std::min(width, height) / 300.0)));
   L.text_scale = s;
   const int pad = 6 * s;
   const int title_h = has_title ? line_height(s) + 2 * pad : pad;
@@ -46,6 +47,26 @@ std::string format_tick(double v) {
   return buf;
 }
 
+std::vector<double> tick_values(double lo, double hi, bool log_scale) {
+  std::vector<double> ticks = {lo};
+  if (!(hi > lo)) return ticks;
+  auto nice_step = [](double raw) {
+    const double mag = std::pow(10.0, std::floor(std::log10(raw))), n = raw / mag;
+    return (n < 1.5 ? 1 : n < 3 ? 2 : n < 7 ? 5 : 10) * mag;
+  };
+  if (log_scale && hi / lo >= 10) {
+    // Powers of ten, thinned to at most about five.
+    const double e0 = std::ceil(std::log10(lo)), e1 = std::floor(std::log10(hi));
+    const double every = std::max(1.0, std::ceil((e1 - e0 + 1) / 5));
+    for (double e = e0; e <= e1; e += every) ticks.push_back(std::pow(10.0, e));
+  } else {
+    const double step = nice_step((hi - lo) / 4);
+    for (double k = std::ceil(lo / step); k * step <= hi; ++k) ticks.push_back(k * step);
+  }
+  ticks.push_back(hi);
+  return ticks;
+}
+
 void draw_colour_bar(Image& img, Rect bar, double lo, double hi, bool log_scale, int s) {
   const int h = bar.height();
   if (h <= 0 || bar.width() <= 0) return;
@@ -54,14 +75,21 @@ void draw_colour_bar(Image& img, Rect bar, double lo, double hi, bool log_scale,
     const double t = h > 1 ? static_cast<double>(bar.y1 - 1 - y) / (h - 1) : 0.0;
     fill_rect(img, {bar.x0, y, bar.x1, y + 1}, colormap(t));
   }
-  constexpr int kTicks = 5;
-  for (int k = 0; k < kTicks; ++k) {
-    const double t = static_cast<double>(k) / (kTicks - 1);
-    const double v = log_scale ? lo * std::pow(hi / lo, t) : lo + t * (hi - lo);
-    const int y = bar.y1 - 1 - static_cast<int>(std::lround(t * (h - 1)));
+  const std::vector<double> ticks = tick_values(lo, hi, log_scale);
+  auto row_of = [&](double v) {
+    return bar.y1 - 1 - static_cast<int>(std::lround(normalise_value(v, lo, hi, log_scale) * (h - 1)));
+  };
+  // The end labels (exact lo and hi) always show; an interior tick is
+  // dropped when its label would touch either of them.
+  const int y_lo = row_of(lo), y_hi = row_of(hi), gap = line_height(s);
+  for (std::size_t k = 0; k < ticks.size(); ++k) {
+    const bool end = k == 0 || k + 1 == ticks.size();
+    const int y = row_of(ticks[k]);
+    if (!end && (std::abs(y - y_lo) < gap || std::abs(y - y_hi) < gap)) continue;
+    if (k + 1 == ticks.size() && ticks.size() > 1 && y == y_lo) continue;  // lo == hi
     fill_rect(img, {bar.x1 + 1, y - s / 2, bar.x1 + 1 + 4 * s, y - s / 2 + s}, kInk);
     // Digits are about 7 font units tall; centre them on the tick.
-    draw_text(img, bar.x1 + 7 * s, y - (7 * s) / 2, format_tick(v), s, kInk);
+    draw_text(img, bar.x1 + 7 * s, y - (7 * s) / 2, format_tick(ticks[k]), s, kInk);
   }
 }
 

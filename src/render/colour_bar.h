@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "render/image.h"
 
@@ -24,6 +25,10 @@ double normalise_value(double v, double lo, double hi, bool log_scale);
 // Bottom row of `bar` is colormap(0) (lo), top row colormap(1) (hi); a frame
 // is drawn just outside it and five tick labels to its right.
 void draw_colour_bar(Image& img, Rect bar, double lo, double hi, bool log_scale, int text_scale);
+
+// Label values: lo and hi first and last, "nice" round values (1, 2, 5 x
+// 10^k steps, or powers of ten on a wide log scale) in between.
+std::vector<double> tick_values(double lo, double hi, bool log_scale);
 
 // Short, fixed-width-ish number for tick labels ("0.25", "1.5e+03").
 std::string format_tick(double v);

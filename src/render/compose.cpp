@@ -1,6 +1,7 @@
 // Grid of panels with captions, for side-by-side comparisons. Cells are
 // sized to the largest panel so differently sized inputs still line up.
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "intrinsic/error.h"
@@ -23,7 +24,7 @@ Image compose_panels(const std::vector<Image>& panels, const std::vector<std::st
     cell_w = std::max(cell_w, p.width);
     cell_h = std::max(cell_h, p.height);
   }
-  const int s = std::max(1, std::min(cell_w, cell_h) / 400);
+  const int s = std::max(1, static_cast<int>(std::lround(std::min(cell_w, cell_h) / 300.0)));
   const int pad = 6 * s;
   int caption_h = 0;
   for (const std::string& c : captions) caption_h = std::max(caption_h, text_height(c, s));
