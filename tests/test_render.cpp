@@ -80,7 +80,7 @@ TEST(Render, CheckerSquaresAlternateOnFrontView) {
     const Image img = render_checker(V, F, UV, o);
     ASSERT_EQ(img.width, 256);
     // Same camera at pixel resolution tells where a point lands.
-    const auto cam = render::make_camera(V, F, render::view_direction_from_angles(0, 90), o.width, o.height);
+    const auto cam = render::make_camera(V, F, render::view_from_angles(0, 90), o.width, o.height);
     int checked = 0;
     for (int j = 0; j < 4; ++j)
       for (int i = 0; i < 4; ++i) {
@@ -172,7 +172,7 @@ TEST(Render, FaceValuesOnSurfaceFacingCameraAreUnshaded) {
   const RenderOptions o = small(300);
   const Image img = render_face_values(V, F, UV, values, fv, o);
   const auto L = render::face_values_layout(o.width, o.height, false);
-  const auto cam = render::make_camera(V, F, render::auto_view_direction(V, F), L.plot.width(), L.plot.height());
+  const auto cam = render::make_camera(V, F, render::auto_view(V, F), L.plot.width(), L.plot.height());
   auto pixel_of = [&](Eigen::Index f) {
     const Eigen::Vector3d c = (V.row(F(f, 0)) + V.row(F(f, 1)) + V.row(F(f, 2))).transpose() / 3;
     const auto p = cam.project(c);

@@ -11,13 +11,13 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMargin = 0.92;  // fraction of the smaller image side the sphere spans
 }  // namespace
 
-Eigen::Vector3d view_direction_from_angles(double azimuth_deg, double elevation_deg) {
+ViewDirection view_from_angles(double azimuth_deg, double elevation_deg) {
   const double az = azimuth_deg * kPi / 180, el = elevation_deg * kPi / 180;
   const Eigen::Vector3d eye(std::cos(el) * std::sin(az), -std::cos(el) * std::cos(az), std::sin(el));
-  return -eye;
+  return {-eye, Eigen::Vector3d(std::cos(az), std::sin(az), 0)};
 }
 
-Eigen::Vector3d auto_view_direction(const MatrixX3d& V, const MatrixX3i& F) {
+ViewDirection auto_view(const MatrixX3d& V, const MatrixX3i& F) {
   // Only the direction matters, so work in units of the largest coordinate:
   // cross products of huge (or tiny) coordinates then neither overflow nor
   // underflow.
@@ -39,17 +39,16 @@ Eigen::Vector3d auto_view_direction(const MatrixX3d& V, const MatrixX3i& F) {
   // Cancelling normals (a closed or strongly curved surface) say nothing
   // about a good side, so fall back to a conventional three-quarter view.
   if (!(total > 0) || !(sum.norm() > 1e-3 * total) || !sum.allFinite())
-    return view_direction_from_angles(-30, 25);
-  return -sum.normalized();
+    return view_from_angles(-30, 25);
+  const Eigen::Vector3d f = -sum.normalized();
+  const Eigen::Vector3d up = std::abs(f.z()) > 0.9 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
+  return {f, f.cross(up).normalized()};
 }
 
-Camera make_camera(const MatrixX3d& V, const MatrixX3i& F, const Eigen::Vector3d& forward, int width,
-                   int height) {
+Camera make_camera(const MatrixX3d& V, const MatrixX3i& F, const ViewDirection& view, int width, int height) {
   Camera cam;
-  cam.forward = forward.normalized();
-  Eigen::Vector3d r = cam.forward.cross(Eigen::Vector3d::UnitZ());
-  if (r.norm() < 1e-6) r = cam.forward.cross(Eigen::Vector3d::UnitY());  // looking straight up/down
-  cam.right = r.normalized();
+  cam.forward = view.forward.normalized();
+  cam.right = (view.right - view.right.dot(cam.forward) * cam.forward).normalized();
   cam.up = cam.right.cross(cam.forward);
 
   // Bounding box of the vertices the faces use; its half-diagonal is a

@@ -26,13 +26,17 @@ struct Camera {
 
 // Camera on the side the area-weighted mean normal points to, looking back
 // along it; when the normals cancel (closed surfaces) a fixed oblique view.
-Eigen::Vector3d auto_view_direction(const MatrixX3d& V, const MatrixX3i& F);
+struct ViewDirection {
+  Eigen::Vector3d forward;  // where the camera looks
+  Eigen::Vector3d right;    // screen x axis, perpendicular to forward
+};
 
-// forward = direction the camera looks in. World z is kept "up" where possible.
-Camera make_camera(const MatrixX3d& V, const MatrixX3i& F, const Eigen::Vector3d& forward, int width,
-                   int height);
+// World z is "up" unless the view is close to vertical; there z says nothing
+// about the roll, so world y is "up" instead to keep the picture steady.
+ViewDirection auto_view(const MatrixX3d& V, const MatrixX3i& F);
+// Azimuth rotates about z; the roll follows the azimuth even straight down.
+ViewDirection view_from_angles(double azimuth_deg, double elevation_deg);
 
-// Camera position for azimuth/elevation in degrees; see intrinsic/render.h.
-Eigen::Vector3d view_direction_from_angles(double azimuth_deg, double elevation_deg);
+Camera make_camera(const MatrixX3d& V, const MatrixX3i& F, const ViewDirection& view, int width, int height);
 
 }  // namespace intrinsic::render

@@ -8,7 +8,6 @@
 
 #include "render/camera.h"
 #include "render/colormap.h"
-#include "render/mesh_checks.h"
 #include "render/rasterizer.h"
 
 namespace intrinsic::render {
@@ -54,8 +53,7 @@ Rgb checker_colour(double u, double v, int squares) {
 Image draw_surface(const MatrixX3d& V, const MatrixX3i& F, const SurfacePaint& paint, const RenderOptions& o,
                    int width, int height) {
   const int ss = o.supersample;
-  const Eigen::Vector3d dir = o.auto_view ? auto_view_direction(V, F)
-                                          : view_direction_from_angles(o.azimuth_deg, o.elevation_deg);
+  const ViewDirection dir = o.auto_view ? auto_view(V, F) : view_from_angles(o.azimuth_deg, o.elevation_deg);
   const Camera cam = make_camera(V, F, dir, width * ss, height * ss);
 
   const Eigen::Index nv = V.rows();
