@@ -37,13 +37,15 @@ std::string gunzip(const std::string& bytes, const std::string& name, std::uint6
   // The trailer's ISIZE (size mod 4 GiB) of the last member is a good first
   // guess for the output size; it is only a hint, so it is capped and the
   // buffer still grows if the data says otherwise.
-  std::uint64_t guess = bytes.size() * 4;
+  // Damaged data can claim any ISIZE, so the guess is also bounded by deflate's
+  // best ratio (about 1032:1) and by 1 GiB.
+  std::uint64_t guess = std::uint64_t(bytes.size()) * 4;
   if (bytes.size() >= 18) {
     const auto* t = reinterpret_cast<const unsigned char*>(bytes.data() + bytes.size() - 4);
     std::uint64_t isize = t[0] | (t[1] << 8) | (t[2] << 16) | (std::uint64_t(t[3]) << 24);
-    if (isize >= bytes.size()) guess = isize;
+    if (isize >= bytes.size()) guess = std::min<std::uint64_t>(isize, std::uint64_t(bytes.size()) * 1032);
   }
-  guess = std::min<std::uint64_t>(guess + 64, max_bytes + 1);
+  guess = std::min<std::uint64_t>({guess + 64, max_bytes + 1, std::uint64_t(1) << 30});
 
   std::string out;
   out.resize(static_cast<std::size_t>(guess));

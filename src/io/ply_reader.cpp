@@ -362,13 +362,6 @@ MeshData read_ply(const char* data, std::size_t size, const std::string& name, c
     }
     if (lay.indices < 0) s.fail_at(f.line, "the face element has no 'vertex_indices' list");
   }
-  if (lay.vertex->count > vertex_limit(opt))
-    s.fail_at(lay.vertex->line, "header announces " + std::to_string(lay.vertex->count) +
-                                    " vertices, more than the limit of " + std::to_string(vertex_limit(opt)));
-  if (lay.face->count > face_limit(opt))
-    s.fail_at(lay.face->line, "header announces " + std::to_string(lay.face->count) +
-                                  " faces, more than the limit of " + std::to_string(face_limit(opt)));
-
   // Refuse counts the remaining bytes cannot hold, before allocating: every
   // element needs at least its fixed-size properties and list lengths
   // (binary), or a digit and a separator per property (ASCII).
@@ -389,6 +382,13 @@ MeshData read_ply(const char* data, std::size_t size, const std::string& name, c
     }
     needed += static_cast<std::uint64_t>(e.count) * min_size;
   }
+
+  if (lay.vertex->count > vertex_limit(opt))
+    s.fail_at(lay.vertex->line, "header announces " + std::to_string(lay.vertex->count) +
+                                    " vertices, more than the limit of " + std::to_string(vertex_limit(opt)));
+  if (lay.face->count > face_limit(opt))
+    s.fail_at(lay.face->line, "header announces " + std::to_string(lay.face->count) +
+                                  " faces, more than the limit of " + std::to_string(face_limit(opt)));
 
   MeshBuilder b;
   if (format == Format::Ascii) {
