@@ -829,3 +829,9 @@ TEST(IoSharedMeshes, CountsMatchTheReadme) {
     }
   }
 }
+
+TEST(IoObj, ByteOrderMarkIsSkipped) {
+  MeshData m = read_text("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "bom.obj");
+  EXPECT_EQ(m.V.rows(), 3);
+  EXPECT_EQ(m.face_line, (std::vector<int>{4}));
+}

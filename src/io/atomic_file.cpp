@@ -5,12 +5,35 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
 #include "intrinsic/io.h"
 
 namespace intrinsic {
+
+namespace {
+
+// umask(2) can only be read by setting it, which would race with files other
+// threads create meanwhile; Linux reports it in /proc instead.
+mode_t process_umask() {
+  mode_t mask = 022;
+  if (FILE* f = std::fopen("/proc/self/status", "r")) {
+    char line[256];
+    while (std::fgets(line, sizeof line, f)) {
+      unsigned m;
+      if (std::sscanf(line, "Umask: %o", &m) == 1) {
+        mask = static_cast<mode_t>(m);
+        break;
+      }
+    }
+    std::fclose(f);
+  }
+  return mask;
+}
+
+}  // namespace
 
 void write_file_atomically(const std::string& path, const std::string& contents) {
   if (path.empty()) throw_output("cannot write a file with an empty name");
@@ -46,9 +69,7 @@ void write_file_atomically(const std::string& path, const std::string& contents)
   }
   // mkstemp creates the file private (0600); results are ordinary files, so
   // give them the permissions a plain open(..., 0666) would under the umask.
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  if (::fchmod(fd, 0666 & ~mask) != 0) fail(errno);
+  if (::fchmod(fd, 0666 & ~process_umask()) != 0) fail(errno);
   if (::close(fd) != 0) {
     const int err = errno;
     ::unlink(tmp.c_str());

@@ -56,8 +56,16 @@ MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name
     inflated = io::gunzip(bytes, name, inflate_cap(options));
     data = &inflated;
   }
-  if (ext == ".obj") return io::read_obj(data->data(), data->size(), name, options);
-  if (ext == ".off") return io::read_off(data->data(), data->size(), name, options);
+  const char* begin = data->data();
+  std::size_t size = data->size();
+  // Editors on Windows may prepend a UTF-8 byte order mark; left in place it
+  // would hide the first statement of the file.
+  if (ext != ".ply" && size >= 3 && std::memcmp(begin, "\xEF\xBB\xBF", 3) == 0) {
+    begin += 3;
+    size -= 3;
+  }
+  if (ext == ".obj") return io::read_obj(begin, size, name, options);
+  if (ext == ".off") return io::read_off(begin, size, name, options);
   return io::read_ply(data->data(), data->size(), name, options);
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -45,7 +46,7 @@ class TextScanner {
     const void* nl = p_ < end_ ? std::memchr(p_, '\n', static_cast<std::size_t>(end_ - p_)) : nullptr;
     if (nl) {
       p_ = static_cast<const char*>(nl) + 1;
-      ++line_;
+      bump_line();
     } else {
       p_ = end_;
     }
@@ -59,7 +60,7 @@ class TextScanner {
         ++p_;
       } else if (c == '\n') {
         ++p_;
-        ++line_;
+        bump_line();
       } else if (c == '#') {
         next_line();
       } else {
@@ -134,6 +135,11 @@ class TextScanner {
   }
 
  private:
+  // Saturates: a file of more than 2^31 lines is absurd but must not overflow.
+  void bump_line() {
+    if (line_ < INT_MAX) ++line_;
+  }
+
   const char* p_;
   const char* end_;
   std::string name_;
