@@ -6,6 +6,7 @@
 #include "command.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
+#include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
 #include "report.h"
 
@@ -21,6 +22,8 @@ struct ParamArgs {
   bool binary = false, quiet = false;
   std::int64_t max_vertices = 50'000'000;
   double max_residual = 1e-8;
+  std::string optimize_lambda;            // "", "edge" or "area"
+  std::vector<double> lambda_range{0, 1};
 };
 
 ParamOptions to_options(const ParamArgs& a, int num_vertices) {
@@ -80,6 +83,13 @@ void register_param(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--max-residual", a->max_residual, "Fail (exit 3) if the relative residual exceeds this")
       ->capture_default_str();
+  cmd->add_option("--optimize-lambda", a->optimize_lambda,
+                  "Blend lambda*conformal + (1-lambda)*authalic with the lambda minimising edge or area distortion")
+      ->check(CLI::IsMember({"edge", "area"}));
+  cmd->add_option("--lambda-range", a->lambda_range, "Interval searched by --optimize-lambda, as LO,HI")
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
   cmd->add_flag("--binary", a->binary, "Binary PLY output");
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();
@@ -98,7 +108,33 @@ void register_param(CLI::App& app, Runner& run) {
       const Mesh mesh = make_mesh(data);
       const double t_validate = elapsed_ms(t1);
       const ParamOptions options = to_options(*a, static_cast<int>(mesh.V.rows()));
-      const ParamResult r = parameterize(mesh, options);
+      ParamResult r;
+      nlohmann::json optimal;
+      if (!a->optimize_lambda.empty()) {
+        if (a->method != "conformal" || a->lambda_set || a->mu_set)
+          throw_usage("--optimize-lambda chooses the blend itself; do not give --method, --lambda or --mu");
+        OptimalLambdaOptions lo;
+        lo.base = options;
+        lo.energy = parse_lambda_energy(a->optimize_lambda);
+        lo.lo = a->lambda_range.at(0);
+        lo.hi = a->lambda_range.at(1);
+        const OptimalLambdaResult best = optimal_lambda(mesh, lo);
+        r = best.map;
+        optimal = {{"energy", a->optimize_lambda},
+                   {"lambda", best.lambda},
+                   {"range", {lo.lo, lo.hi}},
+                   {"energy_at_lambda", best.energy},
+                   {"energy_at_0_authalic", best.energy_at_0},
+                   {"energy_at_1_conformal", best.energy_at_1},
+                   {"polynomial", best.coefficients},
+                   {"boundary_scale", best.boundary_scale},
+                   {"note", "map = lambda*conformal + (1-lambda)*authalic with a common fixed boundary; energies "
+                            "evaluated with the boundary scaled so that parameter area = 3D area"},
+                   {"timings_ms", {{"conformal", best.conformal_ms}, {"authalic", best.authalic_ms},
+                                   {"polynomial", best.polynomial_ms}}}};
+      } else {
+        r = parameterize(mesh, options);
+      }
       const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, r.UV);
 
       const auto t2 = std::chrono::steady_clock::now();
@@ -109,10 +145,13 @@ void register_param(CLI::App& app, Runner& run) {
 
       nlohmann::json report = mesh_json(mesh);
       report["output"] = a->output;
-      report["method"] = a->method;
-      report["lambda"] = options.weights.method == Method::Mixed ? options.weights.lambda
+      report["method"] = a->optimize_lambda.empty() ? a->method : "optimal-lambda";
+      if (!optimal.is_null()) report["optimal_lambda"] = optimal;
+      report["lambda"] = !optimal.is_null() ? optimal["lambda"].get<double>()
+                         : options.weights.method == Method::Mixed ? options.weights.lambda
                          : options.weights.method == Method::Conformal ? 1.0 : 0.0;
-      report["mu"] = options.weights.method == Method::Mixed ? options.weights.mu
+      report["mu"] = !optimal.is_null() ? 1 - optimal["lambda"].get<double>()
+                     : options.weights.method == Method::Mixed ? options.weights.mu
                      : options.weights.method == Method::Authalic ? 1.0 : 0.0;
       report["boundary"] = boundary_label(*a);
       report["spacing"] = a->spacing;
@@ -141,7 +180,8 @@ void register_param(CLI::App& app, Runner& run) {
         }
       }
       if (!a->quiet)
-        std::cout << a->output << ": " << mesh.V.rows() << " vertices, " << a->method << ", "
+        std::cout << a->output << ": " << mesh.V.rows() << " vertices, " << report["method"].get<std::string>()
+                  << (optimal.is_null() ? "" : " lambda=" + std::to_string(optimal["lambda"].get<double>())) << ", "
                   << boundary_label(*a) << ", " << d.flipped_triangles << " flipped, angle distortion mean "
                   << d.angle_distortion.mean << ", " << static_cast<long>(elapsed_ms(t0)) << " ms\n";
       return 0;
