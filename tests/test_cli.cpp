@@ -146,6 +146,25 @@ TEST(Cli, OptimizeLambda) {
   EXPECT_EQ(bad.code, 1);
 }
 
+TEST(Cli, OptimizeBoundary) {
+  TempDir dir;
+  ASSERT_EQ(run_cli("generate strip --rings 10 -o " + (dir / "strip.obj"), dir).code, 0);
+  const auto r = run_cli("param " + (dir / "strip.obj") + " -o " + (dir / "out.obj") +
+                             " --optimize-boundary dirichlet --iterations 50 --report " + (dir / "r.json"),
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("boundary optimization: iteration 1,"), std::string::npos);  // progress lines
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
+  const auto& b = j["boundary_optimization"];
+  EXPECT_LT(b["energy_final"].get<double>(), b["energy_initial"].get<double>());
+  EXPECT_LE(b["iterations"].get<int>(), 50);
+  EXPECT_EQ(j["flipped_triangles"], 0);
+  const auto quiet = run_cli("param " + (dir / "strip.obj") + " -o " + (dir / "out.obj") +
+                                 " --optimize-boundary edge --gradient responses -q", dir);
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_TRUE(quiet.err.empty());
+}
+
 TEST(Cli, HelpAndUsage) {
   TempDir dir;
   for (const char* cmd : {"--help", "param --help", "metrics --help", "generate --help"}) {
