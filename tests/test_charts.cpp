@@ -2,7 +2,11 @@
 // without overlap at a common scale, per-chart figures reported.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
 #include "intrinsic/charts.h"
+#include "intrinsic/io.h"
 #include "intrinsic/error.h"
 #include "intrinsic/metrics.h"
 #include "test_support.h"
@@ -125,6 +129,35 @@ TEST(Charts, ClosedComponentIsRefusedAndLargestIsFound) {
   EXPECT_EQ(kept.topology.num_components, 1);
   EXPECT_EQ(kept.V.rows(), mesh.V.rows());  // numbering unchanged
   EXPECT_EQ(kept.F.rows(), m);
+}
+
+TEST(Charts, CliRunsChartsOrKeepsTheLargest) {
+  test::TempDir dir;
+  ASSERT_EQ(test::run_cli("generate two-disks --rings 6 -o " + (dir / "two.obj"), dir).code, 0);
+  auto r = test::run_cli("param " + (dir / "two.obj") + " -o " + (dir / "out.obj") + " --report " + (dir / "r.json"), dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 charts"), std::string::npos) << r.out;
+  nlohmann::json report = nlohmann::json::parse(test::slurp(dir / "r.json"));
+  ASSERT_EQ(report["charts"].size(), 2u);
+  EXPECT_EQ(report["flipped_triangles"], 0);
+  for (const auto& c : report["charts"]) {
+    EXPECT_EQ(c["flipped_triangles"], 0);
+    EXPECT_GT(c["faces"].get<int>(), 0);
+    EXPECT_GE(c["angle_distortion_mean"].get<double>(), 1.0);
+  }
+  const auto& a = report["charts"][0]["uv_box"], &b = report["charts"][1]["uv_box"];
+  EXPECT_TRUE(a["max"][0] < b["min"][0] || b["max"][0] < a["min"][0] || a["max"][1] < b["min"][1] ||
+              b["max"][1] < a["min"][1]);
+  r = test::run_cli("param " + (dir / "two.obj") + " -o " + (dir / "one.obj") + " --largest-component --report " +
+                        (dir / "r1.json"),
+                    dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  report = nlohmann::json::parse(test::slurp(dir / "r1.json"));
+  EXPECT_EQ(report["components"], 1);
+  EXPECT_FALSE(report.contains("charts"));
+  const MeshData one = read_mesh(dir / "one.obj"), two = read_mesh(dir / "two.obj");
+  EXPECT_EQ(one.V.rows(), two.V.rows());  // numbering unchanged
+  EXPECT_LT(one.F.rows(), two.F.rows());
 }
 
 }  // namespace

@@ -7,6 +7,9 @@
 #include <Eigen/SparseCholesky>
 #include <complex>
 
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
 #include "core/natural_map.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
@@ -263,13 +266,20 @@ TEST(Natural, OrientationPreservedOnSmoothIrregularCap) {
 
 TEST(Natural, DefaultPinsAndScale) {
   const Mesh mesh = wavy(10);
-  const auto [a, b] = farthest_boundary_pair(mesh);
+  const auto [a, b] = default_pin_pair(mesh);
+  ASSERT_EQ(mesh.topology.boundary_loops.size(), 1u);
   double best = 0;
-  for (const auto& loop : mesh.topology.boundary_loops)
-    for (int i : loop)
-      for (const auto& loop2 : mesh.topology.boundary_loops)
-        for (int j : loop2) best = std::max(best, (mesh.V.row(i) - mesh.V.row(j)).norm());
+  for (int i : mesh.topology.boundary_loops[0])
+    for (int j : mesh.topology.boundary_loops[0]) best = std::max(best, (mesh.V.row(i) - mesh.V.row(j)).norm());
   EXPECT_EQ((mesh.V.row(a) - mesh.V.row(b)).norm(), best);
+  // The pruned search is exact on scattered points too (brute force agrees).
+  std::vector<int> all(mesh.V.rows());
+  for (int v = 0; v < mesh.V.rows(); ++v) all[v] = v;
+  const auto [c, d] = farthest_pair(mesh.V, all);
+  double all_best = 0;
+  for (int i : all)
+    for (int j : all) all_best = std::max(all_best, (mesh.V.row(i) - mesh.V.row(j)).norm());
+  EXPECT_EQ((mesh.V.row(c) - mesh.V.row(d)).norm(), all_best);
   ParamOptions o = natural();
   o.scale = ScaleMode::Surface;
   const ParamResult surface = parameterize(mesh, o);
@@ -363,6 +373,70 @@ TEST(Natural, RefusesBadOptions) {
   ParamOptions circle_with_pins;
   circle_with_pins.pins = {{0, Eigen::Vector2d(0, 0)}, {3, Eigen::Vector2d(1, 0)}};
   EXPECT_EQ(kind(circle_with_pins), 1);
+}
+
+// Every hole rule and the natural boundary on the shared meshes with holes:
+// a finite map, and the flip counts measured when the rules were compared
+// (docs/holes.md) as a regression table. The natural boundary has no flip on
+// fairing-cross.off.
+TEST(Natural, HoleRulesOnHoledSharedMeshes) {
+  struct Row {
+    const char* mesh;
+    int fill, free, natural_holes, mixed_natural_holes, natural_boundary;  // flipped triangles
+  };
+  const Row rows[] = {{"stanford-bunny.obj", 0, 4, 12, 6, 3},
+                      {"beetle.off", 0, 162, 24, 12, 0},
+                      {"fairing-cross.off", 0, 0, 0, 0, 0},
+                      {"inverted-triangles.obj", 0, 0, 551, 57, 0},
+                      {"animal.obj", 0, 0, 0, 0, 0}};
+  for (const Row& row : rows) {
+    SCOPED_TRACE(row.mesh);
+    const Mesh mesh = make_mesh(read_mesh(test::shared_mesh(row.mesh)));
+    ASSERT_GT(mesh.topology.boundary_loops.size(), 1u);
+    auto flips = [&](ParamOptions o) {
+      const ParamResult r = parameterize(mesh, o);
+      EXPECT_TRUE(r.UV.allFinite());
+      EXPECT_LT(r.residual, 1e-8);
+      return summarize_distortion(mesh.V, mesh.F, r.UV).flipped_triangles;
+    };
+    ParamOptions o;
+    o.holes = HoleRule::Fill;
+    EXPECT_EQ(flips(o), row.fill);
+    o.holes = HoleRule::Free;
+    EXPECT_EQ(flips(o), row.free);
+    o.holes = HoleRule::Natural;
+    EXPECT_EQ(flips(o), row.natural_holes);
+    ParamOptions mixed = o;
+    mixed.weights.method = Method::Mixed;
+    mixed.weights.lambda = mixed.weights.mu = 0.5;
+    EXPECT_EQ(flips(mixed), row.mixed_natural_holes);
+    EXPECT_EQ(flips(natural()), row.natural_boundary);
+  }
+}
+
+TEST(Natural, CliNaturalWithDefaultAndGivenPins) {
+  test::TempDir dir;
+  ASSERT_EQ(test::run_cli("generate wave --rings 8 -o " + (dir / "in.obj"), dir).code, 0);
+  auto r = test::run_cli("param " + (dir / "in.obj") + " -o " + (dir / "out.obj") + " --boundary natural --report " +
+                             (dir / "r.json"),
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json report = nlohmann::json::parse(test::slurp(dir / "r.json"));
+  EXPECT_EQ(report["boundary"], "natural");
+  EXPECT_EQ(report["scale"], "unit");
+  EXPECT_EQ(report["flipped_triangles"], 0);
+  EXPECT_EQ(report["pins"].size(), 2u);
+  EXPECT_LT(report["angle_distortion"]["mean"].get<double>(), 1.1);
+  r = test::run_cli("param " + (dir / "in.obj") + " -o " + (dir / "pinned.obj") +
+                        " --boundary natural --pin 3:0.25,-1 --pin 40:2,0.5 --report " + (dir / "r2.json"),
+                    dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const MeshData out = read_mesh(dir / "pinned.obj");
+  EXPECT_EQ(out.TC(3, 0), 0.25);  // one vt per vertex, in vertex order
+  EXPECT_EQ(out.TC(3, 1), -1.0);
+  EXPECT_EQ(out.TC(40, 0), 2.0);
+  EXPECT_EQ(out.TC(40, 1), 0.5);
+  EXPECT_EQ(nlohmann::json::parse(test::slurp(dir / "r2.json"))["scale"], "given");
 }
 
 }  // namespace

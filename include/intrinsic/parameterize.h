@@ -40,8 +40,9 @@ struct ParamOptions {
   ScaleMode scale = ScaleMode::Unit;  // ignored for Given positions (used exactly)
   HoleRule holes = HoleRule::Fill;
   // BoundaryShape::Natural only: vertices kept exactly at the given positions
-  // (at least two, any used vertices). Empty: the two boundary vertices
-  // farthest apart in 3D at (0, 0) and (d, 0), d their 3D distance, then
+  // (at least two, any used vertices). Empty: the two vertices of the outer
+  // loop farthest apart in 3D (on a disk: of the boundary) at (0, 0) and
+  // (d, 0), d their 3D distance, then
   // `scale` applies (Unit: fit to [0,1]^2 by a similarity; Surface: as is).
   std::vector<FixedVertex> pins;
   SolverKind solver = SolverKind::Auto;

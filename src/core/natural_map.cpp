@@ -81,18 +81,23 @@ SparseMatrix assemble_natural_system(const Mesh& mesh) {
   return Q;
 }
 
-std::pair<int, int> farthest_boundary_pair(const Mesh& mesh) {
-  std::vector<int> b;
-  for (const std::vector<int>& loop : mesh.topology.boundary_loops) b.insert(b.end(), loop.begin(), loop.end());
-  if (b.size() < 2) throw_input("the mesh has fewer than two boundary vertices: nothing to pin by default");
+std::pair<int, int> default_pin_pair(const Mesh& mesh) {
+  const Topology& t = mesh.topology;
+  if (t.component_loops.empty() || t.component_loops[0].empty())
+    throw_input("the surface is closed (no boundary): nothing to pin by default");
+  return farthest_pair(mesh.V, t.boundary_loops[t.component_loops[0][0]]);
+}
+
+std::pair<int, int> farthest_pair(const MatrixX3d& V, std::vector<int> b) {
+  if (b.size() < 2) throw_input("fewer than two boundary vertices: nothing to pin by default");
   std::sort(b.begin(), b.end());
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (int v : b) c += mesh.V.row(v).transpose();
+  for (int v : b) c += V.row(v).transpose();
   c /= static_cast<double>(b.size());
   // Visit vertices by decreasing distance to the centroid: once r_i + r_j
   // cannot beat the best pair, no later j (nor, for j = i+1, later i) can.
   std::vector<double> r(b.size());
-  for (size_t k = 0; k < b.size(); ++k) r[k] = (mesh.V.row(b[k]).transpose() - c).norm();
+  for (size_t k = 0; k < b.size(); ++k) r[k] = (V.row(b[k]).transpose() - c).norm();
   std::vector<int> order(b.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return r[x] > r[y]; });
@@ -101,11 +106,11 @@ std::pair<int, int> farthest_boundary_pair(const Mesh& mesh) {
   for (size_t i = 0; i + 1 < order.size(); ++i) {
     const int p = order[i];
     if (r[p] + r[order[i + 1]] < std::sqrt(std::max(best, 0.0)) * (1 - 1e-12)) break;
-    const Eigen::Vector3d xp = mesh.V.row(b[p]);
+    const Eigen::Vector3d xp = V.row(b[p]);
     for (size_t j = i + 1; j < order.size(); ++j) {
       const int q = order[j];
       if (r[p] + r[q] < std::sqrt(std::max(best, 0.0)) * (1 - 1e-12)) break;
-      const double d2 = (mesh.V.row(b[q]).transpose() - xp).squaredNorm();
+      const double d2 = (V.row(b[q]).transpose() - xp).squaredNorm();
       const std::pair<int, int> cand{std::min(b[p], b[q]), std::max(b[p], b[q])};
       if (d2 > best || (d2 == best && cand < pair)) {  // ties: smallest indices, whatever the visiting order
         best = d2;
@@ -178,7 +183,7 @@ ParamResult natural_map(const Mesh& mesh, const ParamOptions& o) {
   const auto t_assemble = std::chrono::steady_clock::now();
   std::vector<FixedVertex> pins = o.pins;
   if (pins.empty()) {
-    const auto [a, b] = farthest_boundary_pair(mesh);
+    const auto [a, b] = default_pin_pair(mesh);
     const double d = (mesh.V.row(a) - mesh.V.row(b)).norm();
     pins = {{a, Eigen::Vector2d(0, 0)}, {b, Eigen::Vector2d(d, 0)}};
   } else {

@@ -36,12 +36,19 @@ SparseMatrix block_diagonal2(const SparseMatrix& K);
 // Blocked ordering.
 SparseMatrix assemble_natural_system(const Mesh& mesh);
 
-// The two boundary vertices (all loops) farthest apart in 3D, smaller index
-// first. Exact: all pairs, pruned by a bounding-sphere bound (|x_i - x_j| <=
-// r_i + r_j around the centroid), so typical loops cost far fewer than m^2/2
-// distance evaluations; the worst case stays O(m^2). Throws Error(Input) when
-// the mesh has fewer than two boundary vertices.
-std::pair<int, int> farthest_boundary_pair(const Mesh& mesh);
+// The two vertices of the list farthest apart in 3D, smaller index first.
+// Exact: all pairs, pruned by a bounding-sphere bound (|x_i - x_j| <= r_i +
+// r_j around the centroid), so typical loops cost far fewer than m^2/2
+// distance evaluations; the worst case stays O(m^2). Ties go to the smallest
+// index pair. Throws Error(Input) for fewer than two vertices.
+std::pair<int, int> farthest_pair(const MatrixX3d& V, std::vector<int> vertices);
+
+// The default pins of the natural map: the farthest pair of the outer loop
+// (the longest in 3D). On a disk these are the two boundary vertices farthest
+// apart. With holes the outer loop is used, not all loops: pins on two
+// different loops folded fairing-cross.off (6 flipped triangles, 0 with
+// outer-loop pins) and stanford-bunny.obj (11 vs 3); see docs/holes.md.
+std::pair<int, int> default_pin_pair(const Mesh& mesh);
 
 // Result of eliminating fixed vertices from a 2n x 2n system Q U = 0.
 struct PinnedSolution {
