@@ -108,7 +108,7 @@ void register_param(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--pin", a->pins,
                   "Natural boundary: keep vertex V exactly at (U,V); repeatable, at least two, any vertex, "
-                  "no rescaling. Default: the two boundary vertices farthest apart in 3D, at their 3D distance")
+                  "no rescaling. Default: the two outer-loop vertices farthest apart in 3D, at their 3D distance")
       ->type_name("V:U,V")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
