@@ -110,7 +110,7 @@ void register_param(CLI::App& app, Runner& run) {
                   "Natural boundary: keep vertex V exactly at (U,V); repeatable, at least two, any vertex, "
                   "no rescaling. Default: the two outer-loop vertices farthest apart in 3D, at their 3D distance")
       ->type_name("V:U,V")
-      ->expected(1)
+      ->allow_extra_args(false)  // one value per --pin, so "--pin 1:0,0 in.obj" leaves the input alone
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--spacing", a->spacing, "Boundary spacing: arclength | uniform")
       ->check(CLI::IsMember({"arclength", "uniform"}))

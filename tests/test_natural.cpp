@@ -427,8 +427,9 @@ TEST(Natural, CliNaturalWithDefaultAndGivenPins) {
   EXPECT_EQ(report["flipped_triangles"], 0);
   EXPECT_EQ(report["pins"].size(), 2u);
   EXPECT_LT(report["angle_distortion"]["mean"].get<double>(), 1.1);
-  r = test::run_cli("param " + (dir / "in.obj") + " -o " + (dir / "pinned.obj") +
-                        " --boundary natural --pin 3:0.25,-1 --pin 40:2,0.5 --report " + (dir / "r2.json"),
+  // Pins before the positional input: each --pin takes exactly one value.
+  r = test::run_cli("param --boundary natural --pin 3:0.25,-1 --pin 40:2,0.5 " + (dir / "in.obj") + " -o " +
+                        (dir / "pinned.obj") + " --report " + (dir / "r2.json"),
                     dir);
   ASSERT_EQ(r.code, 0) << r.err;
   const MeshData out = read_mesh(dir / "pinned.obj");
