@@ -120,6 +120,8 @@ double minimize_quartic(const Quartic& c, double lo, double hi) {
 OptimalLambdaResult optimal_lambda(const Mesh& mesh, const OptimalLambdaOptions& o) {
   if (!(o.lo <= o.hi) || !std::isfinite(o.lo) || !std::isfinite(o.hi))
     throw_usage("the lambda range must be finite with lo <= hi");
+  if (o.base.boundary == BoundaryShape::Natural)
+    throw_usage("--optimize-lambda blends two maps with a common fixed boundary (circle, square or a file), not natural");
   OptimalLambdaResult result;
   // Both maps share one fixed boundary: the positions are computed once and
   // passed as given, so neither solve rescales its result.
