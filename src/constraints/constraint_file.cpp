@@ -115,8 +115,9 @@ Constraints parse_constraints_json(const std::string& text, const std::string& n
   json root;
   try {
     root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // nlohmann's message carries the line and column of the error.
+  } catch (const json::exception& e) {
+    // nlohmann's message carries the line and column of a syntax error, or
+    // the offending literal for a number that overflows a double.
     throw_input(name + ": malformed JSON: " + e.what());
   }
   return Parser{name}.parse(root);
