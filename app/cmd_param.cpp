@@ -20,6 +20,7 @@ struct ParamArgs {
   std::string boundary = "circle", spacing = "arclength", scale = "unit", holes = "fill", solver = "auto";
   bool binary = false, quiet = false;
   std::int64_t max_vertices = 50'000'000;
+  double max_residual = 1e-8;
 };
 
 ParamOptions to_options(const ParamArgs& a, int num_vertices) {
@@ -43,6 +44,7 @@ ParamOptions to_options(const ParamArgs& a, int num_vertices) {
   o.scale = a.scale == "surface" ? ScaleMode::Surface : ScaleMode::Unit;
   o.holes = a.holes == "free" ? HoleRule::Free : HoleRule::Fill;
   o.solver = parse_solver(a.solver);
+  o.max_residual = a.max_residual;
   return o;
 }
 
@@ -75,6 +77,8 @@ void register_param(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"fill", "free"}))
       ->capture_default_str();
   cmd->add_option("--solver", a->solver, "auto | cholmod | umfpack | eigen-llt | eigen-lu | cg | bicgstab")
+      ->capture_default_str();
+  cmd->add_option("--max-residual", a->max_residual, "Fail (exit 3) if the relative residual exceeds this")
       ->capture_default_str();
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
   cmd->add_flag("--binary", a->binary, "Binary PLY output");

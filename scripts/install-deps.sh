@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages the project builds with (see README,
+# "Dependencies"). Run as root (or with sudo available).
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+PACKAGES=(
+  build-essential cmake pkg-config
+  libeigen3-dev            # matrices and sparse assembly
+  libsuitesparse-dev       # CHOLMOD (Cholesky), UMFPACK (LU)
+  libopenblas-dev          # fast BLAS for CHOLMOD's supernodal factorization
+  libmetis-dev             # graph partitioning (linked by SuiteSparse)
+  libcli11-dev             # command line
+  nlohmann-json3-dev       # JSON reports and constraint files
+  libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
+  libstb-dev               # stb_easy_font for picture labels
+  libgtest-dev libbenchmark-dev
+)
+export DEBIAN_FRONTEND=noninteractive
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

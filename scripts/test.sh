@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the dependencies, builds everything, and runs the whole test suite:
+# the Release build, then the same tests under AddressSanitizer + UBSan.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+JOBS=${JOBS:-$(nproc)}
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j"$JOBS"
+(cd build && ctest --output-on-failure -j"$JOBS")
+if [ "${INTRINSIC_SKIP_SANITIZERS:-0}" != 1 ]; then
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DINTRINSIC_SANITIZE=ON -DINTRINSIC_BUILD_BENCH=OFF
+  cmake --build build-asan -j"$JOBS"
+  # The large shared mesh is exercised by the Release run; under the
+  # sanitizers it would take most of the CI budget.
+  (cd build-asan && INTRINSIC_SANITIZER_RUN=1 ctest --output-on-failure -j"$JOBS" -E 'Large')
+fi

@@ -1,0 +1,103 @@
+// Entry points for reading: load the file in one read, undo gzip if the bytes
+// say so, and hand the buffer to the reader chosen by the file extension.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include "intrinsic/io.h"
+#include "io/gzip.h"
+#include "io/mesh_builder.h"
+
+namespace intrinsic {
+
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::string extension_of(const std::string& name) {
+  const std::size_t slash = name.find_last_of('/');
+  const std::size_t dot = name.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  return lower(name.substr(dot));
+}
+
+// Large enough for any mesh the options admit (a text vertex or face line
+// rarely exceeds ~100 bytes), small enough that a bomb cannot take the machine.
+std::uint64_t inflate_cap(const ReadOptions& opt) {
+  const std::uint64_t cap = 8ull << 30;
+  const std::uint64_t derived = static_cast<std::uint64_t>(std::max<std::int64_t>(opt.max_vertices, 0)) * 128 +
+                                static_cast<std::uint64_t>(std::max<std::int64_t>(opt.max_faces, 0)) * 128 +
+                                (1ull << 20);
+  return std::min(cap, derived);
+}
+
+}  // namespace
+
+MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+  std::string ext = extension_of(name);
+  std::string inner = name;
+  if (ext == ".gz") {
+    inner = name.substr(0, name.size() - 3);
+    ext = extension_of(inner);
+  }
+  if (ext != ".obj" && ext != ".off" && ext != ".ply") {
+    throw_usage("unknown input format '" + ext + "' for " + name + " (use .obj, .off or .ply, optionally .gz)");
+  }
+  std::string inflated;
+  const std::string* data = &bytes;
+  if (io::is_gzip(bytes)) {
+    inflated = io::gunzip(bytes, name, inflate_cap(options));
+    data = &inflated;
+  }
+  const char* begin = data->data();
+  std::size_t size = data->size();
+  // Editors on Windows may prepend a UTF-8 byte order mark; left in place it
+  // would hide the first statement of the file.
+  if (ext != ".ply" && size >= 3 && std::memcmp(begin, "\xEF\xBB\xBF", 3) == 0) {
+    begin += 3;
+    size -= 3;
+  }
+  if (ext == ".obj") return io::read_obj(begin, size, name, options);
+  if (ext == ".off") return io::read_off(begin, size, name, options);
+  return io::read_ply(data->data(), data->size(), name, options);
+}
+
+MeshData read_mesh(const std::string& path, const ReadOptions& options) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw_input("cannot open " + path + ": " + std::strerror(errno));
+  std::string bytes;
+  try {
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) throw_input("cannot read " + path + ": " + std::strerror(errno));
+    if (S_ISDIR(st.st_mode)) throw_input("cannot read " + path + ": it is a directory");
+    // One read of the announced size; pipes and growing files fall back to
+    // reading in chunks until EOF.
+    std::size_t have = 0;
+    bytes.resize(S_ISREG(st.st_mode) ? static_cast<std::size_t>(st.st_size) + 1 : (1u << 20));
+    while (true) {
+      if (have == bytes.size()) bytes.resize(bytes.size() * 2);
+      const ssize_t n = ::read(fd, &bytes[have], bytes.size() - have);
+      if (n < 0) {
+        if (errno == EINTR) continue;
+        throw_input("cannot read " + path + ": " + std::strerror(errno));
+      }
+      if (n == 0) break;
+      have += static_cast<std::size_t>(n);
+    }
+    bytes.resize(have);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  ::close(fd);
+  return read_mesh_from_memory(bytes, path, options);
+}
+
+}  // namespace intrinsic
