@@ -6,14 +6,14 @@
 #include "command.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
-#include "intrinsic/parameterize.h"
+#include "intrinsic/parameterizer.h"
 #include "report.h"
 
 namespace intrinsic::app {
 namespace {
 
 struct ParamArgs {
-  std::string input, output, report;
+  std::string input, output, report, constraints;
   std::string method = "conformal";
   double lambda = 1, mu = 0;
   bool lambda_set = false, mu_set = false;
@@ -25,15 +25,7 @@ struct ParamArgs {
 
 ParamOptions to_options(const ParamArgs& a, int num_vertices) {
   ParamOptions o;
-  o.weights.method = parse_method(a.method);
-  if ((a.lambda_set || a.mu_set) && o.weights.method != Method::Mixed)
-    throw_usage("--lambda and --mu apply to --method mixed only");
-  if (o.weights.method == Method::Mixed) {
-    if (!a.lambda_set && !a.mu_set) throw_usage("--method mixed needs --lambda and/or --mu");
-    o.weights.lambda = a.lambda_set ? a.lambda : 0.0;
-    o.weights.mu = a.mu_set ? a.mu : 0.0;
-    if (o.weights.lambda == 0 && o.weights.mu == 0) throw_usage("--lambda and --mu cannot both be zero");
-  }
+  o.weights = weight_options(a.method, a.lambda_set, a.lambda, a.mu_set, a.mu);
   if (a.boundary == "circle") o.boundary = BoundaryShape::Circle;
   else if (a.boundary == "square") o.boundary = BoundaryShape::Square;
   else {
@@ -53,6 +45,19 @@ std::string boundary_label(const ParamArgs& a) {
 }
 
 }  // namespace
+
+WeightOptions weight_options(const std::string& method, bool lambda_set, double lambda, bool mu_set, double mu) {
+  WeightOptions w;
+  w.method = parse_method(method);
+  if ((lambda_set || mu_set) && w.method != Method::Mixed) throw_usage("--lambda and --mu apply to --method mixed only");
+  if (w.method == Method::Mixed) {
+    if (!lambda_set && !mu_set) throw_usage("--method mixed needs --lambda and/or --mu");
+    w.lambda = lambda_set ? lambda : 0.0;
+    w.mu = mu_set ? mu : 0.0;
+    if (w.lambda == 0 && w.mu == 0) throw_usage("--lambda and --mu cannot both be zero");
+  }
+  return w;
+}
 
 void register_param(CLI::App& app, Runner& run) {
   auto a = std::make_shared<ParamArgs>();
@@ -80,6 +85,8 @@ void register_param(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--max-residual", a->max_residual, "Fail (exit 3) if the relative residual exceeds this")
       ->capture_default_str();
+  cmd->add_option("--constraints", a->constraints,
+                  "JSON file of point and line constraints; targets are in output coordinates (see README)");
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
   cmd->add_flag("--binary", a->binary, "Binary PLY output");
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();
@@ -98,7 +105,13 @@ void register_param(CLI::App& app, Runner& run) {
       const Mesh mesh = make_mesh(data);
       const double t_validate = elapsed_ms(t1);
       const ParamOptions options = to_options(*a, static_cast<int>(mesh.V.rows()));
-      const ParamResult r = parameterize(mesh, options);
+      Parameterizer parameterizer(mesh, options);
+      if (!a->constraints.empty()) {
+        Constraints c = read_constraints_file(a->constraints);
+        match_face_corners(c, data.F, mesh);
+        parameterizer.set_constraints(c);
+      }
+      const ParamResult r = parameterizer.solve();
       const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, r.UV);
 
       const auto t2 = std::chrono::steady_clock::now();
@@ -124,6 +137,10 @@ void register_param(CLI::App& app, Runner& run) {
       report["free_vertices"] = r.free_vertices;
       report["fixed_vertices"] = r.fixed_vertices;
       if (r.iterations > 0) report["iterations"] = r.iterations;
+      if (!a->constraints.empty()) {
+        report["constraints_file"] = a->constraints;
+        report["constraints"] = constraints_json(r.constraints);
+      }
       add_distortion(report, d);
       report["timings_ms"] = {{"read", t_read},
                               {"validate", t_validate},
