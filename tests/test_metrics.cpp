@@ -40,10 +40,33 @@ TEST(Metrics, AnisotropicStretchHasKnownSingularValues) {
   for (int f = 0; f < mesh.F.rows(); ++f) {
     EXPECT_NEAR(d.angle[f], 4.0, 1e-9);
     EXPECT_NEAR(d.area[f], 1.0, 1e-9);
+  }
+  for (int f = 0; f < mesh.F.rows(); ++f) {
     EXPECT_NEAR(d.stretch_linf[f], 2.0, 1e-9);  // 1 / s2
     EXPECT_NEAR(d.stretch_l2[f], std::sqrt(0.5 * (0.25 + 4.0)), 1e-9);
     EXPECT_FALSE(d.flipped[f]);
   }
+}
+
+TEST(Metrics, AreaDistortionIsSymmetricInGrowthAndShrinkage) {
+  // Two separate unit right triangles; the first is doubled in size (area x4)
+  // in the plane, the second kept. Normalising total area (5 -> 2) gives area
+  // ratios 1.6 and 0.4, reported as 1.6 and 2.5.
+  MatrixX3d V(6, 3);
+  V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 0, 0, 6, 0, 0, 5, 1, 0;
+  MatrixX3i F(2, 3);
+  F << 0, 1, 2, 3, 4, 5;
+  MatrixX2d UV = V.leftCols(2);
+  UV.topRows(3) *= 2.0;
+  const FaceDistortion d = face_distortion(V, F, UV);
+  EXPECT_NEAR(d.area[0], 1.6, 1e-12);
+  EXPECT_NEAR(d.area[1], 2.5, 1e-12);
+  EXPECT_NEAR(d.angle[0], 1.0, 1e-12);
+  const DistortionSummary s = summarize_distortion(V, F, UV);
+  EXPECT_NEAR(s.area_distortion.min, 1.6, 1e-12);
+  EXPECT_NEAR(s.area_distortion.max, 2.5, 1e-12);
+  EXPECT_NEAR(s.area_distortion.mean, 0.5 * (1.6 + 2.5), 1e-12);
+  EXPECT_NEAR(s.area_energy, 0.6 * 0.6 + 0.6 * 0.6, 1e-12);
 }
 
 TEST(Metrics, MirrorFlipsEveryTriangle) {

@@ -105,6 +105,7 @@ void run_mesh(const std::string& name, std::ostream* update) {
 TEST(SharedMeshes, EveryMeshEveryMethodMatchesRegressionTable) {
   const bool update = std::getenv("INTRINSIC_UPDATE_REGRESSION") != nullptr;
   std::ostringstream rows;
+  rows.precision(12);
   if (update)
     rows << "# mesh\tmethod\tflipped\tangle_mean\tarea_mean  (circle boundary, arc-length spacing, default holes rule)\n";
   for (const char* name : kSmallMeshes) {

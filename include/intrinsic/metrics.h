@@ -17,7 +17,9 @@ struct FaceDistortion {
   // Singular values are of |J| (a flipped triangle still gets finite figures
   // and is counted in `flipped`); a triangle collapsed in the plane gets +inf.
   Eigen::VectorXd angle;         // s1 / s2 (1 = conformal)
-  Eigen::VectorXd area;          // s1 * s2 after normalisation (1 = area-preserving)
+  // max(s1*s2, 1/(s1*s2)) after normalisation (1 = area-preserving; 2 = the
+  // triangle doubled or halved its area).
+  Eigen::VectorXd area;
   // Sander et al. 2001 measure the map from the texture to the surface, whose
   // singular values are 1/s2 >= 1/s1:
   Eigen::VectorXd stretch_l2;    // sqrt((1/s1^2 + 1/s2^2) / 2)

@@ -83,7 +83,10 @@ FaceDistortion face_distortion(const MatrixX3d& V, const MatrixX3i& F, const Mat
     double s1 = 0, s2 = 0;
     singular_values(J, s1, s2);
     d.flipped[f] = !(J.determinant() > 0);
-    d.area[f] = s1 * s2;
+    // Symmetric in growth and shrinkage: the area-weighted mean of s1*s2
+    // itself is 1 by construction once total areas are normalised.
+    const double ratio = s1 * s2;
+    d.area[f] = ratio > 0 ? std::max(ratio, 1 / ratio) : inf;
     d.stretch_l2[f] = s2 > 0 ? std::sqrt(0.5 * (1 / (s1 * s1) + 1 / (s2 * s2))) : inf;
     d.stretch_linf[f] = s2 > 0 ? 1 / s2 : inf;
     d.angle[f] = s2 > 0 ? s1 / s2 : inf;
