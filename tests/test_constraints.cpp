@@ -5,8 +5,12 @@
 
 #include <random>
 
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/error.h"
+#include "intrinsic/io.h"
 #include "intrinsic/parameterizer.h"
 #include "test_support.h"
 
@@ -263,6 +267,41 @@ TEST(Constraints, FaceCornersFollowReorientation) {
   Constraints c{{{SurfacePoint::in_face(5, Eigen::Vector3d(0.1, 0.2, 0.7)), Eigen::Vector2d(0.5, 0.5), ""}}, {}};
   match_face_corners(c, file_faces, mesh);
   EXPECT_EQ(c.points[0].point.bary, Eigen::Vector3d(0.1, 0.7, 0.2));
+}
+
+TEST(Constraints, CliReportsResidualsAndRefusesBadFiles) {
+  test::TempDir dir;
+  GenerateOptions g;
+  g.rings = 10;
+  const MeshData data = generate_wavy_patch(g);
+  write_mesh(dir / "in.obj", data.V, data.F, MatrixX2d());
+  test::write_text(dir / "c.json", R"({"points": [{"face": 30, "bary": [0.2, 0.3, 0.5], "uv": [0.42, 0.47]},
+      {"vertex": 5, "uv": [0.55, 0.5]}],
+    "lines": [{"path": [{"face": 100, "bary": [0.3, 0.3, 0.4]}, {"face": 250, "bary": [0.3, 0.3, 0.4]}],
+               "to": [[0.3, 0.3], [0.6, 0.7]]}]})");
+  for (const char* scale : {"unit", "surface"}) {
+    const auto r = test::run_cli("param " + (dir / "in.obj") + " -q -o " + (dir / "out.obj") + " --constraints " +
+                                     (dir / "c.json") + " --scale " + scale + " --report " + (dir / "r.json"),
+                                 dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json report = nlohmann::json::parse(test::slurp(dir / "r.json"));
+    ASSERT_TRUE(report.contains("constraints"));
+    ASSERT_GT(report["constraints"].size(), 4u);
+    EXPECT_EQ(report["constraints"][0]["label"], "points[0]");
+    for (const auto& c : report["constraints"]) EXPECT_LT(c["residual"].get<double>(), 1e-10) << c.dump();
+    // The written UVs meet the targets: constraint targets are output coordinates.
+    const MeshData out = read_mesh(dir / "out.obj");
+    const Eigen::Vector2d x = 0.2 * out.TC.row(out.FTC(30, 0)) + 0.3 * out.TC.row(out.FTC(30, 1)) +
+                              0.5 * out.TC.row(out.FTC(30, 2));
+    EXPECT_LT((x - Eigen::Vector2d(0.42, 0.47)).norm(), 1e-10) << scale;
+  }
+  test::write_text(dir / "bad.json", R"({"points": [{"vertex": 5, "uv": [0.5, 0.5], "weight": 2}]})");
+  const auto bad = test::run_cli("param " + (dir / "in.obj") + " -o " + (dir / "x.obj") + " --constraints " +
+                                     (dir / "bad.json"),
+                                 dir);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("bad.json: points[0]: unknown key 'weight'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.obj"));
 }
 
 }  // namespace

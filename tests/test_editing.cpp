@@ -5,8 +5,12 @@
 
 #include <random>
 
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
 #include "intrinsic/boundary_editor.h"
 #include "intrinsic/error.h"
+#include "intrinsic/io.h"
 #include "test_support.h"
 
 namespace intrinsic {
@@ -175,6 +179,76 @@ TEST(Editing, OnlyFixedVerticesMove) {
     EXPECT_EQ(e.kind(), ErrorKind::Input);
     EXPECT_NE(std::string(e.what()).find("vertex " + std::to_string(interior) + " is not a fixed"), std::string::npos);
   }
+}
+
+std::string boundary_text(const std::vector<FixedVertex>& b) {
+  std::string s;
+  char line[128];
+  for (const FixedVertex& fv : b) {
+    std::snprintf(line, sizeof line, "%d %.17g %.17g\n", fv.vertex, fv.uv.x(), fv.uv.y());
+    s += line;
+  }
+  return s;
+}
+
+// `intrinsic edit` with two moves equals `intrinsic param` with each moved
+// boundary (each move applies to the base, not to the previous move).
+TEST(Editing, CliMatchesFreshParam) {
+  test::TempDir dir;
+  GenerateOptions g;
+  g.rings = 10;
+  const MeshData data = generate_wavy_patch(g);
+  write_mesh(dir / "in.obj", data.V, data.F, MatrixX2d());
+  const Mesh mesh = make_mesh(data);
+  std::vector<FixedVertex> base = circle_boundary(mesh.V, mesh.topology.boundary_loops[0], Spacing::ArcLength);
+  test::write_text(dir / "base.txt", boundary_text(base));
+  std::mt19937 rng(2);
+  const std::vector<FixedVertex> m1 = random_move(base, 3, rng), m2 = random_move(base, 5, rng);
+  test::write_text(dir / "m1.txt", boundary_text(m1));
+  test::write_text(dir / "m2.txt", boundary_text(m2));
+  for (const char* basis : {"full", "lazy"}) {
+    const auto r = test::run_cli("edit " + (dir / "in.obj") + " --boundary " + (dir / "base.txt") + " -o " +
+                                     (dir / "out.obj") + " --move " + (dir / "m1.txt") + " --move " +
+                                     (dir / "m2.txt") + " --method authalic --basis " + basis + " --report " +
+                                     (dir / "r.json"),
+                                 dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("update"), std::string::npos) << r.out;
+    const nlohmann::json report = nlohmann::json::parse(test::slurp(dir / "r.json"));
+    ASSERT_EQ(report["updates"].size(), 2u);
+    EXPECT_EQ(report["updates"][0]["moved"], 3);
+    EXPECT_EQ(report["updates"][1]["moved"], 5 + 3 - 0) << "move 2 also puts move 1's vertices back";
+    EXPECT_TRUE(report["timings_ms"].contains("precompute"));
+    EXPECT_TRUE(report["updates"][0].contains("update_ms"));
+    EXPECT_EQ(report["factorizations"], 1);
+    int k = 0;
+    for (const std::vector<FixedVertex>* m : {&m1, &m2}) {
+      std::vector<FixedVertex> moved = base;
+      for (FixedVertex& fv : moved)
+        for (const FixedVertex& q : *m)
+          if (q.vertex == fv.vertex) fv.uv = q.uv;
+      const std::string name = "b" + std::to_string(++k) + ".txt";
+      test::write_text(dir / name, boundary_text(moved));
+      const auto p = test::run_cli("param " + (dir / "in.obj") + " --method authalic --boundary " + (dir / name) +
+                                       " -q -o " + (dir / "fresh.obj"),
+                                   dir);
+      ASSERT_EQ(p.code, 0) << p.err;
+      const MeshData edited = read_mesh(dir / ("out_" + std::to_string(k) + ".obj"));
+      const MeshData fresh = read_mesh(dir / "fresh.obj");
+      ASSERT_TRUE(edited.has_uv() && fresh.has_uv());
+      EXPECT_LT((edited.TC - fresh.TC).cwiseAbs().maxCoeff(), 1e-10) << basis << " move " << k;
+    }
+  }
+  // A move of a vertex outside the base boundary is refused, leaving nothing.
+  int interior = 0;
+  while (mesh.topology.is_boundary[interior]) ++interior;
+  test::write_text(dir / "bad.txt", std::to_string(interior) + " 0.5 0.5\n");
+  const auto bad = test::run_cli("edit " + (dir / "in.obj") + " --boundary " + (dir / "base.txt") + " -o " +
+                                     (dir / "x.obj") + " --move " + (dir / "bad.txt"),
+                                 dir);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("is not in the base boundary"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.obj"));
 }
 
 }  // namespace

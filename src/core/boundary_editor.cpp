@@ -2,6 +2,7 @@
 // section 4.2); see boundary_editor.h for the choices.
 #include "intrinsic/boundary_editor.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -92,15 +93,29 @@ const MatrixX2d& BoundaryEditor::move(const std::vector<FixedVertex>& positions)
   last_ = EditStats{};
   last_.moved = static_cast<int>(deltas.size());
 
-  auto superpose = [&](const Eigen::VectorXd& b, const Eigen::Vector2d& d) {
-    uv_.col(0) += d.x() * b;
-    uv_.col(1) += d.y() * b;
+  // UV += sum_p b_p d_p^T, in row blocks that stay in cache while every
+  // moved vertex's response streams through once (memory-bound otherwise).
+  auto superpose = [&](const std::vector<const double*>& responses) {
+    constexpr Eigen::Index kBlock = 2048;
+    const Eigen::Index n = uv_.rows();
+    for (Eigen::Index r0 = 0; r0 < n; r0 += kBlock) {
+      const Eigen::Index len = std::min(kBlock, n - r0);
+      auto u = uv_.col(0).segment(r0, len);
+      auto v = uv_.col(1).segment(r0, len);
+      for (size_t k = 0; k < deltas.size(); ++k) {
+        const Eigen::Map<const Eigen::VectorXd> b(responses[k] + r0, len);
+        u += deltas[k].second.x() * b;
+        v += deltas[k].second.y() * b;
+      }
+    }
   };
+  std::vector<const double*> responses;
   if (last_.moved > options_.resolve_above) {
     resolve();
     last_.resolved = true;
   } else if (options_.basis == BasisMode::Full) {
-    for (const auto& [j, d] : deltas) superpose(basis_.col(j), d);
+    for (const auto& [j, d] : deltas) responses.push_back(basis_.col(j).data());
+    superpose(responses);
   } else {
     std::vector<int> missing;
     for (const auto& [j, d] : deltas)
@@ -116,7 +131,8 @@ const MatrixX2d& BoundaryEditor::move(const std::vector<FixedVertex>& positions)
         for (size_t k = 0; k < missing.size(); ++k) lazy_[missing[k]] = B.col(static_cast<int>(k));
         last_.new_responses = static_cast<int>(missing.size());
       }
-      for (const auto& [j, d] : deltas) superpose(lazy_.at(j), d);
+      for (const auto& [j, d] : deltas) responses.push_back(lazy_.at(j).data());
+      superpose(responses);
     }
   }
   // The moved vertices themselves sit exactly where they were put.
