@@ -23,7 +23,7 @@
 // Coordinates: the boundary is placed in output coordinates before any
 // constraint is applied, and nothing is rescaled after a solve. Circle and
 // square with ScaleMode::Unit go directly onto [0, 1]^2; ScaleMode::Surface
-// scales the boundary (about the unconstrained map's centroid) so that the
+// scales the boundary (about the origin, as scale_to_surface_area) so that the
 // unconstrained map has the surface's area. Constraint targets are therefore
 // in the same coordinates as the output UVs, and the result with constraints
 // is not rescaled (its area may differ from the surface's).

@@ -13,35 +13,19 @@
 namespace intrinsic {
 namespace {
 
-// Positions of the fixed vertices: the outer loop on the chosen shape, or the
-// user's positions (which must cover the outer loop).
+// boundary_positions(), plus what it leaves to the solve: a vertex given
+// twice, or a non-finite position.
 std::vector<FixedVertex> fixed_positions(const Mesh& mesh, const ParamOptions& o) {
-  const Topology& t = mesh.topology;
-  const std::vector<int>& outer = t.boundary_loops.at(t.component_loops.at(0).at(0));
-  switch (o.boundary) {
-    case BoundaryShape::Circle: return circle_boundary(mesh.V, outer, o.spacing);
-    case BoundaryShape::Square: return square_boundary(mesh.V, outer, o.spacing);
-    case BoundaryShape::Given: break;
-  }
-  std::vector<char> given(mesh.V.rows(), 0);
-  for (const FixedVertex& fv : o.given) {
-    if (fv.vertex < 0 || fv.vertex >= mesh.V.rows())
-      throw_input("boundary position for vertex " + std::to_string(fv.vertex) + ", which does not exist");
-    if (!t.is_used[fv.vertex])
-      throw_input("boundary position for vertex " + std::to_string(fv.vertex) + ", which no face uses");
-    if (given[fv.vertex]) throw_input("two boundary positions for vertex " + std::to_string(fv.vertex));
-    if (!fv.uv.allFinite()) throw_input("non-finite boundary position for vertex " + std::to_string(fv.vertex));
-    given[fv.vertex] = 1;
-  }
-  int missing = 0, first_missing = -1;
-  for (int v : outer)
-    if (!given[v]) {
-      if (missing++ == 0) first_missing = v;
+  if (o.boundary == BoundaryShape::Given) {
+    std::vector<char> seen(mesh.V.rows(), 0);
+    for (const FixedVertex& fv : o.given) {
+      if (fv.vertex < 0 || fv.vertex >= mesh.V.rows()) continue;  // boundary_positions names it
+      if (seen[fv.vertex]) throw_input("two boundary positions for vertex " + std::to_string(fv.vertex));
+      if (!fv.uv.allFinite()) throw_input("non-finite boundary position for vertex " + std::to_string(fv.vertex));
+      seen[fv.vertex] = 1;
     }
-  if (missing > 0)
-    throw_input("the boundary positions miss " + std::to_string(missing) + " of the " +
-                std::to_string(outer.size()) + " outer-loop vertices, e.g. vertex " + std::to_string(first_missing));
-  return o.given;
+  }
+  return boundary_positions(mesh, o);
 }
 
 }  // namespace
@@ -79,16 +63,12 @@ Parameterizer::Parameterizer(const Mesh& mesh, const ParamOptions& o) : impl_(st
     s.scale = "unit";
   } else {
     s.scale = "surface";
+    // About the origin, as scale_to_surface_area does, so that maps sharing
+    // a fixed boundary still share it.
     const MatrixX2d UV = s.full_uv(s.X, s.UB);
     const double a_param = std::abs(parameter_area(mesh.F, UV));
-    const double a_surface = surface_area(mesh.V, mesh.F);
-    Eigen::RowVector2d centroid = Eigen::RowVector2d::Zero();
-    int count = 0;
-    for (int v = 0; v < UV.rows(); ++v)
-      if (t.is_used[v]) { centroid += UV.row(v); ++count; }
-    centroid /= std::max(count, 1);
-    scale = a_param > 0 ? std::sqrt(a_surface / a_param) : 1.0;
-    offset = (1 - scale) * centroid;
+    scale = a_param > 0 ? std::sqrt(surface_area(mesh.V, mesh.F) / a_param) : 1.0;
+    offset.setZero();
   }
   s.UB = (scale * s.UB).rowwise() + offset;
   s.X = (scale * s.X).rowwise() + offset;
