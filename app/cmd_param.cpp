@@ -15,14 +15,14 @@
 #include "intrinsic/io.h"
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/optimal_lambda.h"
-#include "intrinsic/parameterize.h"
+#include "intrinsic/parameterizer.h"
 #include "report.h"
 
 namespace intrinsic::app {
 namespace {
 
 struct ParamArgs {
-  std::string input, output, report;
+  std::string input, output, report, constraints;
   std::string method = "conformal";
   double lambda = 1, mu = 0;
   bool lambda_set = false, mu_set = false;
@@ -65,15 +65,7 @@ FixedVertex parse_pin(const std::string& text) {
 
 ParamOptions to_options(const ParamArgs& a, int num_vertices) {
   ParamOptions o;
-  o.weights.method = parse_method(a.method);
-  if ((a.lambda_set || a.mu_set) && o.weights.method != Method::Mixed)
-    throw_usage("--lambda and --mu apply to --method mixed only");
-  if (o.weights.method == Method::Mixed) {
-    if (!a.lambda_set && !a.mu_set) throw_usage("--method mixed needs --lambda and/or --mu");
-    o.weights.lambda = a.lambda_set ? a.lambda : 0.0;
-    o.weights.mu = a.mu_set ? a.mu : 0.0;
-    if (o.weights.lambda == 0 && o.weights.mu == 0) throw_usage("--lambda and --mu cannot both be zero");
-  }
+  o.weights = weight_options(a.method, a.lambda_set, a.lambda, a.mu_set, a.mu);
   if (a.boundary == "circle") o.boundary = BoundaryShape::Circle;
   else if (a.boundary == "square") o.boundary = BoundaryShape::Square;
   else if (a.boundary == "natural") o.boundary = BoundaryShape::Natural;
@@ -98,6 +90,19 @@ std::string boundary_label(const ParamArgs& a) {
 }
 
 }  // namespace
+
+WeightOptions weight_options(const std::string& method, bool lambda_set, double lambda, bool mu_set, double mu) {
+  WeightOptions w;
+  w.method = parse_method(method);
+  if ((lambda_set || mu_set) && w.method != Method::Mixed) throw_usage("--lambda and --mu apply to --method mixed only");
+  if (w.method == Method::Mixed) {
+    if (!lambda_set && !mu_set) throw_usage("--method mixed needs --lambda and/or --mu");
+    w.lambda = lambda_set ? lambda : 0.0;
+    w.mu = mu_set ? mu : 0.0;
+    if (w.lambda == 0 && w.mu == 0) throw_usage("--lambda and --mu cannot both be zero");
+  }
+  return w;
+}
 
 void register_param(CLI::App& app, Runner& run) {
   auto a = std::make_shared<ParamArgs>();
@@ -139,6 +144,8 @@ void register_param(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--max-residual", a->max_residual, "Fail (exit 3) if the relative residual exceeds this")
       ->capture_default_str();
+  cmd->add_option("--constraints", a->constraints,
+                  "JSON file of point and line constraints; targets are in output coordinates (see README)");
   cmd->add_option("--optimize-lambda", a->optimize_lambda,
                   "Blend lambda*conformal + (1-lambda)*authalic with the lambda minimising edge or area distortion")
       ->check(CLI::IsMember({"edge", "area"}));
@@ -193,10 +200,13 @@ void register_param(CLI::App& app, Runner& run) {
       const ParamOptions options = to_options(*a, static_cast<int>(mesh.V.rows()));
       ParamResult r;
       nlohmann::json optimal;
+      if (!a->constraints.empty() && (!a->optimize_lambda.empty() || !a->optimize_boundary.empty()))
+        throw_usage("--constraints cannot be combined with --optimize-lambda or --optimize-boundary");
       ChartsResult charts;
       const bool several = mesh.topology.num_components > 1;
-      if (several && (!a->optimize_lambda.empty() || !a->optimize_boundary.empty()))
-        throw_usage("--optimize-lambda and --optimize-boundary take a single component; use --largest-component");
+      if (several && (!a->optimize_lambda.empty() || !a->optimize_boundary.empty() || !a->constraints.empty()))
+        throw_usage("--optimize-lambda, --optimize-boundary and --constraints take a single component; "
+                    "use --largest-component");
       if (several) {
         charts = parameterize_charts(mesh, options);
         r.UV = charts.UV;
@@ -269,6 +279,15 @@ void register_param(CLI::App& app, Runner& run) {
                    {"flipped_initial", best.flipped_initial},
                    {"flipped_final", best.flipped_final},
                    {"timings_ms", {{"setup", best.setup_ms}, {"optimize", best.optimize_ms}}}};
+      } else if (!a->constraints.empty()) {
+        if (options.boundary == BoundaryShape::Natural || options.holes == HoleRule::Natural)
+          throw_usage("--constraints work with fixed boundaries (circle, square, file) and fill/free holes; "
+                      "the natural boundary does not take constraints yet");
+        Parameterizer parameterizer(mesh, options);
+        Constraints c = read_constraints_file(a->constraints);
+        match_face_corners(c, data.F, mesh);
+        parameterizer.set_constraints(c);
+        r = parameterizer.solve();
       } else {
         r = parameterize(mesh, options);
       }
@@ -322,6 +341,10 @@ void register_param(CLI::App& app, Runner& run) {
       report["free_vertices"] = r.free_vertices;
       report["fixed_vertices"] = r.fixed_vertices;
       if (r.iterations > 0) report["iterations"] = r.iterations;
+      if (!a->constraints.empty()) {
+        report["constraints_file"] = a->constraints;
+        report["constraints"] = constraints_json(r.constraints);
+      }
       add_distortion(report, d);
       report["timings_ms"] = {{"read", t_read},
                               {"validate", t_validate},

@@ -8,6 +8,8 @@
 #include <functional>
 #include <string>
 
+#include "intrinsic/weights.h"
+
 namespace intrinsic::app {
 
 using Runner = std::function<int()>;
@@ -15,6 +17,11 @@ using Runner = std::function<int()>;
 void register_param(CLI::App& app, Runner& run);
 void register_metrics(CLI::App& app, Runner& run);
 void register_generate(CLI::App& app, Runner& run);
+void register_edit(CLI::App& app, Runner& run);
+
+// --method, --lambda, --mu as weight options; throws Error(Usage) for
+// inconsistent combinations (shared by param and edit).
+WeightOptions weight_options(const std::string& method, bool lambda_set, double lambda, bool mu_set, double mu);
 
 // Milliseconds since t0.
 double elapsed_ms(std::chrono::steady_clock::time_point t0);

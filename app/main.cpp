@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   app::register_param(app, run);
   app::register_metrics(app, run);
   app::register_generate(app, run);
+  app::register_edit(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

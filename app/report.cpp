@@ -37,6 +37,16 @@ void add_distortion(nlohmann::json& r, const DistortionSummary& d) {
       {"note", "UVs scaled so that total parameter area equals total 3D area before computing distortion"}};
 }
 
+nlohmann::json constraints_json(const std::vector<ConstraintResidual>& residuals) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const ConstraintResidual& r : residuals)
+    out.push_back({{"label", r.label},
+                   {"target", {r.target.x(), r.target.y()}},
+                   {"uv", {r.value.x(), r.value.y()}},
+                   {"residual", r.residual}});
+  return out;
+}
+
 void write_report(const std::string& path, const nlohmann::json& report) {
   write_file_atomically(path, report.dump(2) + "\n");
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "intrinsic/boundary.h"
+#include "intrinsic/constraints.h"
 #include "intrinsic/linear_solver.h"
 #include "intrinsic/metrics.h"
 #include "intrinsic/topology.h"
@@ -56,7 +57,7 @@ struct StageTimings {
 struct ParamResult {
   MatrixX2d UV;  // #V x 2, unused vertices at (0, 0)
   std::string solver;       // backend used
-  double residual = 0;      // max over u, v of |A x - b| / |b|
+  double residual = 0;      // max over u, v of |A x - b| / |b|; with constraints |A x + C^T l - b| / |b|
   int free_vertices = 0;    // unknowns per coordinate
   int fixed_vertices = 0;
   int filled_holes = 0;
@@ -65,6 +66,7 @@ struct ParamResult {
   std::string scale;        // "unit", "surface" or "given"
   std::string holes;        // the hole rule applied: "fill", "free", "natural", "none" (no holes)
   std::vector<FixedVertex> pins;  // natural map: the pins used, at their solved positions before scaling
+  std::vector<ConstraintResidual> constraints;  // one per resolved constraint row (Parameterizer only)
   StageTimings timings;
 };
 

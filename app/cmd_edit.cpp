@@ -1,0 +1,189 @@
+// `intrinsic edit`: realtime boundary manipulation from the command line
+// (paper section 4.2): factor and build the impulse responses once for a base
+// boundary, then apply each move file through them, timing each update.
+// Every move is applied to the base boundary (not to the previous move), so
+// output i equals `intrinsic param --boundary BASE+MOVE_i`.
+#include <filesystem>
+#include <iostream>
+
+#include "command.h"
+#include "intrinsic/boundary_editor.h"
+#include "intrinsic/error.h"
+#include "intrinsic/io.h"
+#include "report.h"
+
+namespace intrinsic::app {
+namespace {
+
+struct EditArgs {
+  std::string input, output, boundary, report, constraints;
+  std::vector<std::string> moves;
+  std::string method = "conformal", basis = "lazy", holes = "fill", solver = "auto";
+  double lambda = 1, mu = 0;
+  bool lambda_set = false, mu_set = false;
+  double memory_budget_gib = 2.0;
+  int resolve_above = 64;
+  bool binary = false, quiet = false;
+  std::int64_t max_vertices = 50'000'000;
+};
+
+// OUT for one move; OUT with _1, _2, ... before the extension for several.
+std::string numbered(const std::string& path, size_t i, size_t count) {
+  if (count == 1) return path;
+  const size_t slash = path.rfind('/');
+  size_t dot = path.rfind('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) dot = path.size();
+  return path.substr(0, dot) + "_" + std::to_string(i + 1) + path.substr(dot);
+}
+
+}  // namespace
+
+void register_edit(CLI::App& app, Runner& run) {
+  auto a = std::make_shared<EditArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "edit", "Move boundary vertices of a fixed-boundary map through precomputed impulse responses");
+  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
+  cmd->add_option("--boundary", a->boundary, "Base boundary FILE with lines 'vertex u v'")->required();
+  cmd->add_option("-o,--output", a->output, "Output mesh (.obj or .ply); numbered _1, _2, ... for several moves")
+      ->required();
+  cmd->add_option("--move", a->moves, "Move file(s), lines 'vertex u v' (new positions of base boundary vertices)")
+      ->required();
+  cmd->add_option("--basis", a->basis, "full: every response precomputed (paper) | lazy: on first move")
+      ->check(CLI::IsMember({"full", "lazy"}))
+      ->capture_default_str();
+  cmd->add_option("--memory-budget", a->memory_budget_gib, "GiB the responses may take")->capture_default_str();
+  cmd->add_option("--resolve-above", a->resolve_above,
+                  "Re-solve with the kept factorization when more vertices than this move at once")
+      ->capture_default_str();
+  cmd->add_option("--method", a->method, "conformal | authalic | mixed | tutte | floater")
+      ->check(CLI::IsMember({"conformal", "authalic", "mixed", "tutte", "floater"}))
+      ->capture_default_str();
+  cmd->add_option_function<double>("--lambda", [a](double v) { a->lambda = v; a->lambda_set = true; },
+                                   "Weight of the conformal energy (mixed)");
+  cmd->add_option_function<double>("--mu", [a](double v) { a->mu = v; a->mu_set = true; },
+                                   "Weight of the authalic energy (mixed)");
+  cmd->add_option("--holes", a->holes, "Holes without given positions: fill | free")
+      ->check(CLI::IsMember({"fill", "free"}))
+      ->capture_default_str();
+  cmd->add_option("--constraints", a->constraints, "JSON file of point and line constraints, kept during the moves");
+  cmd->add_option("--solver", a->solver, "auto | cholmod | umfpack | eigen-llt | eigen-lu")->capture_default_str();
+  cmd->add_option("--report", a->report, "Write the JSON report (precompute and update times) to this file");
+  cmd->add_flag("--binary", a->binary, "Binary PLY output");
+  cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();
+  cmd->add_flag("-q,--quiet", a->quiet, "Print nothing on success");
+  cmd->callback([&run, a] {
+    run = [a] {
+      const auto t0 = std::chrono::steady_clock::now();
+      std::vector<std::string> outputs;
+      for (size_t i = 0; i < a->moves.size(); ++i) {
+        outputs.push_back(numbered(a->output, i, a->moves.size()));
+        check_output_mesh_path(outputs.back());
+      }
+      if (!(a->memory_budget_gib > 0)) throw_usage("--memory-budget must be positive");
+      ParamOptions options;
+      options.weights = weight_options(a->method, a->lambda_set, a->lambda, a->mu_set, a->mu);
+      options.holes = a->holes == "free" ? HoleRule::Free : HoleRule::Fill;
+      options.solver = parse_solver(a->solver);
+      ReadOptions ro;
+      ro.max_vertices = a->max_vertices;
+      const MeshData data = read_mesh(a->input, ro);
+      const Mesh mesh = make_mesh(data);
+      const int n = static_cast<int>(mesh.V.rows());
+      options.boundary = BoundaryShape::Given;
+      options.given = read_boundary_file(a->boundary, n);
+      std::vector<std::vector<FixedVertex>> moves;
+      for (const std::string& m : a->moves) moves.push_back(read_boundary_file(m, n));
+      const double t_read = elapsed_ms(t0);
+
+      const auto t1 = std::chrono::steady_clock::now();
+      Parameterizer parameterizer(mesh, options);
+      if (!a->constraints.empty()) {
+        Constraints c = read_constraints_file(a->constraints);
+        match_face_corners(c, data.F, mesh);
+        parameterizer.set_constraints(c);
+      }
+      const double t_factor = elapsed_ms(t1);
+      EditOptions eo;
+      eo.basis = a->basis == "full" ? BasisMode::Full : BasisMode::Lazy;
+      eo.memory_budget = static_cast<std::size_t>(a->memory_budget_gib * double(1 << 30));
+      eo.resolve_above = a->resolve_above;
+      BoundaryEditor editor(parameterizer, eo);
+      if (!a->quiet)
+        std::cout << a->input << ": " << n << " vertices, " << options.given.size() << " fixed, factor "
+                  << t_factor << " ms, precompute (" << a->basis << " basis, " << editor.responses()
+                  << " responses, " << editor.basis_bytes() / (1 << 20) << " MiB) " << editor.precompute_ms()
+                  << " ms\n";
+
+      // Each move starts from the base: vertices moved last time go back.
+      const std::vector<FixedVertex> base = editor.boundary();
+      std::vector<int> base_index(n, -1);
+      for (size_t k = 0; k < base.size(); ++k) base_index[base[k].vertex] = static_cast<int>(k);
+      std::vector<FixedVertex> previous;
+      nlohmann::json updates = nlohmann::json::array();
+      std::vector<std::string> written;
+      try {
+        for (size_t i = 0; i < moves.size(); ++i) {
+          std::vector<FixedVertex> positions;
+          std::vector<char> listed(n, 0);
+          for (const FixedVertex& fv : moves[i]) {
+            if (base_index[fv.vertex] < 0)
+              throw_input(a->moves[i] + ": vertex " + std::to_string(fv.vertex) +
+                          " is not in the base boundary " + a->boundary + ", so it cannot be moved");
+            positions.push_back(fv);
+            listed[fv.vertex] = 1;
+          }
+          for (const FixedVertex& fv : previous)
+            if (!listed[fv.vertex]) positions.push_back(base[base_index[fv.vertex]]);
+          const MatrixX2d& uv = editor.move(positions);
+          const EditStats stats = editor.last_update();
+          previous = moves[i];
+          const auto t_write = std::chrono::steady_clock::now();
+          WriteOptions wo;
+          wo.binary = a->binary;
+          write_mesh(outputs[i], mesh.V, mesh.F, uv, wo);
+          written.push_back(outputs[i]);
+          const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, uv);
+          updates.push_back({{"move", a->moves[i]},
+                             {"output", outputs[i]},
+                             {"moved", stats.moved},
+                             {"update_ms", stats.ms},
+                             {"new_responses", stats.new_responses},
+                             {"resolved", stats.resolved},
+                             {"flipped_triangles", d.flipped_triangles},
+                             {"write_ms", elapsed_ms(t_write)}});
+          if (!a->quiet)
+            std::cout << outputs[i] << ": " << stats.moved << " moved, update " << stats.ms << " ms"
+                      << (stats.resolved ? " (re-solved)" : "")
+                      << (stats.new_responses ? ", " + std::to_string(stats.new_responses) + " new responses" : "")
+                      << ", " << d.flipped_triangles << " flipped\n";
+        }
+        if (!a->report.empty()) {
+          nlohmann::json report = mesh_json(mesh);
+          report["command"] = "edit";
+          report["method"] = a->method;
+          report["lambda"] = options.weights.lambda;
+          report["mu"] = options.weights.mu;
+          report["boundary"] = a->boundary;
+          report["fixed_vertices"] = options.given.size();
+          report["basis"] = a->basis;
+          report["responses"] = editor.responses();
+          report["basis_bytes"] = editor.basis_bytes();
+          report["factorizations"] = parameterizer.factorizations();
+          if (!a->constraints.empty()) report["constraints"] = constraints_json(parameterizer.residuals(editor.uv()));
+          report["updates"] = updates;
+          report["timings_ms"] = {{"read", t_read},
+                                  {"factor", t_factor},
+                                  {"precompute", editor.precompute_ms()},
+                                  {"total", elapsed_ms(t0)}};
+          write_report(a->report, report);
+        }
+      } catch (...) {
+        for (const std::string& w : written) std::filesystem::remove(w);  // no partial set of outputs
+        throw;
+      }
+      return 0;
+    };
+  });
+}
+
+}  // namespace intrinsic::app

@@ -1,0 +1,93 @@
+// The fixed-boundary member of the intrinsic family as an object that keeps
+// its factorization (paper sections 4.1 and 4.2; SPEC sections 2, 4, 5): for
+// constraints, boundary editing and optimization loops. parameterize() is a
+// thin wrapper over it.
+//
+// What is kept and what each call costs:
+//   construction           assemble K, eliminate the fixed vertices, factor
+//                          K_II (the one sparse factorization), solve.
+//   solve()                cached when nothing changed; else one 2-column solve.
+//   solve_with_boundary()  same set of fixed vertices: new right-hand side only
+//                          (-K_IB U_B), no refactorization. A different set
+//                          changes K_II: re-partition and refactor.
+//   set_constraints()      no sparse refactorization: the constraints enter by
+//                          block elimination of the augmented (Lagrange)
+//                          system, which costs one solve per constraint row
+//                          and a small dense m x m factorization (counted in
+//                          constraint_setups()). Changing only the targets
+//                          (set_constraint_targets) is a new right-hand side.
+//   clear_constraints()    free.
+// Counters: factorizations() counts sparse numeric factorizations over the
+// object's life.
+//
+// Coordinates: the boundary is placed in output coordinates before any
+// constraint is applied, and nothing is rescaled after a solve. Circle and
+// square with ScaleMode::Unit go directly onto [0, 1]^2; ScaleMode::Surface
+// scales the boundary (about the origin, as scale_to_surface_area) so that the
+// unconstrained map has the surface's area. Constraint targets are therefore
+// in the same coordinates as the output UVs, and the result with constraints
+// is not rescaled (its area may differ from the surface's).
+//
+// The natural boundary (SPEC section 3; a 2n x 2n system coupling u and v)
+// will plug in at the same place: constraints are rows over unknowns handed
+// to detail::SaddleSolve (src/core/saddle_solve.h) together with a solve
+// callback of the factored system. Here the unknowns are the free vertices,
+// u and v are two right-hand-side columns of one matrix, and a constraint's
+// terms on fixed vertices move to its target. For the natural system the
+// unknowns are (u_0..u_n, v_0..v_n), each constraint gives a u row and a v
+// row (C = blockdiag(C, C)) and one column is solved; the resolution of
+// points and lines (resolve_constraints) is shared unchanged.
+#pragma once
+
+#include <memory>
+
+#include "intrinsic/constraints.h"
+#include "intrinsic/parameterize.h"
+
+namespace intrinsic {
+
+class BoundaryEditor;
+
+class Parameterizer {
+ public:
+  // Keeps a reference to `mesh`, which must outlive the object. Throws as
+  // parameterize() does.
+  Parameterizer(const Mesh& mesh, const ParamOptions& options);
+  ~Parameterizer();
+  Parameterizer(Parameterizer&&) noexcept;
+  Parameterizer& operator=(Parameterizer&&) noexcept;
+
+  // The map for the current boundary and constraints. Throws Error(Numerical)
+  // when the residual exceeds options.max_residual.
+  ParamResult solve();
+  // New positions (output coordinates) for every fixed vertex; see above for
+  // when this refactors. Throws Error(Input) when a constraint's fixed-only
+  // row disagrees with the new positions.
+  ParamResult solve_with_boundary(const std::vector<FixedVertex>& fixed);
+
+  // Resolves and adds constraints (replacing earlier ones). Throws
+  // Error(Input): see resolve_constraints(), plus rows only on fixed vertices
+  // that disagree with the boundary, and linearly dependent rows.
+  void set_constraints(const Constraints& constraints);
+  void set_constraints(std::vector<LinearConstraint> rows);
+  // New targets for the same rows (in the order of constraints()).
+  void set_constraint_targets(const std::vector<Eigen::Vector2d>& targets);
+  void clear_constraints();
+  const std::vector<LinearConstraint>& constraints() const;
+  std::vector<ConstraintResidual> residuals(const MatrixX2d& UV) const;
+
+  // Current fixed vertices and positions, in output coordinates.
+  const std::vector<FixedVertex>& boundary() const;
+  const Mesh& mesh() const;
+  const ParamOptions& options() const;
+  int free_vertices() const;
+  int factorizations() const;
+  int constraint_setups() const;
+
+ private:
+  friend class BoundaryEditor;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace intrinsic
