@@ -15,6 +15,8 @@ using Runner = std::function<int()>;
 void register_param(CLI::App& app, Runner& run);
 void register_metrics(CLI::App& app, Runner& run);
 void register_generate(CLI::App& app, Runner& run);
+void register_render(CLI::App& app, Runner& run);
+void register_compare(CLI::App& app, Runner& run);
 
 // Milliseconds since t0.
 double elapsed_ms(std::chrono::steady_clock::time_point t0);
