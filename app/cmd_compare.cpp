@@ -86,7 +86,7 @@ void register_compare(CLI::App& app, Runner& run) {
       ->check(CLI::IsMember({"circle", "square"}))
       ->capture_default_str();
   cmd->add_option("--size", a->size, "Size of each panel in pixels, W,H")->capture_default_str();
-  cmd->add_option("--columns", a->columns, "Panels per row (default: all in one row up to 3, else two rows)")
+  cmd->add_option("--columns", a->columns, "Panels per row (default: one row of up to 5, else two rows)")
       ->check(CLI::Range(1, 64));
   cmd->add_option("--view", a->view, "3D view: auto | top | front | AZIMUTH,ELEVATION")->capture_default_str();
   cmd->add_option("--squares", a->squares, "Checker squares across the UV square")
@@ -122,8 +122,9 @@ void register_compare(CLI::App& app, Runner& run) {
         const double ms = elapsed_ms(t1);
         const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, r.UV);
         panels.push_back(render_checker(mesh.V, mesh.F, r.UV, ro));
-        captions.push_back(names[i] + "\nflipped " + std::to_string(d.flipped_triangles) + "\nangle mean " +
-                           fixed(d.angle_distortion.mean, 3) + ", max " + fixed(d.angle_distortion.max, 2) +
+        // Short lines, so the text can be large in a narrow panel.
+        captions.push_back(names[i] + "\n" + std::to_string(d.flipped_triangles) + " flipped\nangle mean " +
+                           fixed(d.angle_distortion.mean, 3) + "\nangle max " + fixed(d.angle_distortion.max, 2) +
                            "\narea mean " + fixed(d.area_distortion.mean, 3) + "\n" + fixed(ms, 0) + " ms");
         nlohmann::json j = {{"method", names[i]}, {"solver", r.solver}, {"time_ms", ms}};
         add_distortion(j, d);
@@ -131,7 +132,7 @@ void register_compare(CLI::App& app, Runner& run) {
       }
       crop_common_background(panels);
       const int n = static_cast<int>(panels.size());
-      const int columns = a->columns > 0 ? a->columns : n <= 3 ? n : (n + 1) / 2;
+      const int columns = a->columns > 0 ? a->columns : n <= 5 ? n : (n + 1) / 2;
       const std::string png = encode_png(compose_panels(panels, captions, columns));
       std::vector<std::pair<std::string, std::string>> files = {{a->output, png}};
       if (!a->report.empty()) {

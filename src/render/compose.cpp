@@ -33,7 +33,7 @@ Image compose_panels(const std::vector<Image>& panels, const std::vector<std::st
       widest = std::max(widest, text_width(c.substr(start, end - start), 1));
       start = end + 1;
     }
-  int s = std::max(1, static_cast<int>(std::lround(cell_w / 200.0)));
+  int s = std::max(1, static_cast<int>(std::lround(cell_w / 150.0)));
   while (s > 1 && widest * s > cell_w) --s;
   const int pad = 6 * s;
   int caption_h = 0;
