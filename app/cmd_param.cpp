@@ -1,11 +1,16 @@
 // `intrinsic param`: read, validate, parameterize, write the mesh with UVs
 // and the distortion report.
+#include <unistd.h>
+
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "command.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
+#include "intrinsic/boundary_optimization.h"
+#include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
 #include "pictures.h"
 #include "report.h"
@@ -23,6 +28,12 @@ struct ParamArgs {
   bool binary = false, quiet = false;
   std::int64_t max_vertices = 50'000'000;
   double max_residual = 1e-8;
+  std::string optimize_lambda;            // "", "edge" or "area"
+  std::vector<double> lambda_range{0, 1};
+  std::string optimize_boundary;  // "", "edge", "area", "dirichlet"
+  int iterations = 200;
+  double tolerance = 1e-6;
+  std::string gradient = "adjoint", descent = "lbfgs";
 };
 
 ParamOptions to_options(const ParamArgs& a, int num_vertices) {
@@ -82,6 +93,28 @@ void register_param(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--max-residual", a->max_residual, "Fail (exit 3) if the relative residual exceeds this")
       ->capture_default_str();
+  cmd->add_option("--optimize-lambda", a->optimize_lambda,
+                  "Blend lambda*conformal + (1-lambda)*authalic with the lambda minimising edge or area distortion")
+      ->check(CLI::IsMember({"edge", "area"}));
+  cmd->add_option("--lambda-range", a->lambda_range, "Interval searched by --optimize-lambda, as LO,HI")
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
+  cmd->add_option("--optimize-boundary", a->optimize_boundary,
+                  "Move the boundary to minimise edge, area or (symmetric) dirichlet distortion")
+      ->check(CLI::IsMember({"edge", "area", "dirichlet"}));
+  cmd->add_option("--iterations", a->iterations, "Boundary optimization: iteration limit")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--tolerance", a->tolerance, "Boundary optimization: stop below this relative decrease")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--gradient", a->gradient, "Boundary optimization gradient: adjoint | responses")
+      ->check(CLI::IsMember({"adjoint", "responses"}))
+      ->capture_default_str();
+  cmd->add_option("--descent", a->descent, "Boundary optimization descent: lbfgs | gradient")
+      ->check(CLI::IsMember({"lbfgs", "gradient"}))
+      ->capture_default_str();
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
   cmd->add_flag("--binary", a->binary, "Binary PLY output");
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();
@@ -119,7 +152,76 @@ void register_param(CLI::App& app, Runner& run) {
       const Mesh mesh = make_mesh(data);
       const double t_validate = elapsed_ms(t1);
       const ParamOptions options = to_options(*a, static_cast<int>(mesh.V.rows()));
-      const ParamResult r = parameterize(mesh, options);
+      ParamResult r;
+      nlohmann::json optimal;
+      if (!a->optimize_lambda.empty()) {
+        if (!a->optimize_boundary.empty())
+          throw_usage("--optimize-lambda and --optimize-boundary cannot be combined");
+        if (a->method != "conformal" || a->lambda_set || a->mu_set)
+          throw_usage("--optimize-lambda chooses the blend itself; do not give --method, --lambda or --mu");
+        OptimalLambdaOptions lo;
+        lo.base = options;
+        lo.energy = parse_lambda_energy(a->optimize_lambda);
+        lo.lo = a->lambda_range.at(0);
+        lo.hi = a->lambda_range.at(1);
+        const OptimalLambdaResult best = optimal_lambda(mesh, lo);
+        r = best.map;
+        optimal = {{"energy", a->optimize_lambda},
+                   {"lambda", best.lambda},
+                   {"range", {lo.lo, lo.hi}},
+                   {"energy_at_lambda", best.energy},
+                   {"energy_at_0_authalic", best.energy_at_0},
+                   {"energy_at_1_conformal", best.energy_at_1},
+                   {"polynomial", best.coefficients},
+                   {"boundary_scale", best.boundary_scale},
+                   {"note", "map = lambda*conformal + (1-lambda)*authalic with a common fixed boundary; energies "
+                            "evaluated with the boundary scaled so that parameter area = 3D area"},
+                   {"timings_ms", {{"conformal", best.conformal_ms}, {"authalic", best.authalic_ms},
+                                   {"polynomial", best.polynomial_ms}}}};
+      } else if (!a->optimize_boundary.empty()) {
+        BoundaryOptimizationOptions bo;
+        bo.base = options;
+        bo.energy = parse_boundary_energy(a->optimize_boundary);
+        bo.route = parse_gradient_route(a->gradient);
+        bo.descent = parse_descent(a->descent);
+        bo.max_iterations = a->iterations;
+        bo.tolerance = a->tolerance;
+        const bool tty = isatty(fileno(stderr));
+        if (!a->quiet)
+          bo.progress = [tty](int it, double e) {
+            std::cerr << (tty ? "\r" : "") << "boundary optimization: iteration " << it << ", energy " << e
+                      << (tty ? "   " : "\n") << std::flush;
+          };
+        const BoundaryOptimizationResult best = optimize_boundary(mesh, bo);
+        if (!a->quiet && tty && best.iterations > 0) std::cerr << "\n";
+        r.UV = best.UV;
+        r.solver = solver_name(options.solver);
+        r.factorizations = best.factorizations;
+        r.timings.solve_ms = best.optimize_ms;
+        r.timings.factor_ms = best.setup_ms;
+        if (options.scale == ScaleMode::Unit) {
+          fit_unit_square(r.UV, mesh.topology.is_used);
+          r.scale = "unit";
+        } else {
+          r.scale = "surface";
+        }
+        optimal = {{"boundary_energy", a->optimize_boundary},
+                   {"gradient", a->gradient},
+                   {"descent", a->descent},
+                   {"iterations", best.iterations},
+                   {"stop_reason", best.stop_reason},
+                   {"energy_initial", best.energy_history.front()},
+                   {"energy_final", best.energy_history.back()},
+                   {"energy_history", best.energy_history},
+                   {"solves", best.solves},
+                   {"response_solves", best.response_solves},
+                   {"factorizations", best.factorizations},
+                   {"flipped_initial", best.flipped_initial},
+                   {"flipped_final", best.flipped_final},
+                   {"timings_ms", {{"setup", best.setup_ms}, {"optimize", best.optimize_ms}}}};
+      } else {
+        r = parameterize(mesh, options);
+      }
       const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, r.UV);
 
       // Pictures are made before anything is written, so a failure leaves no file.
@@ -142,10 +244,14 @@ void register_param(CLI::App& app, Runner& run) {
 
       nlohmann::json report = mesh_json(mesh);
       report["output"] = a->output;
-      report["method"] = a->method;
-      report["lambda"] = options.weights.method == Method::Mixed ? options.weights.lambda
+      report["method"] = a->optimize_lambda.empty() ? a->method : "optimal-lambda";
+      if (!a->optimize_lambda.empty()) report["optimal_lambda"] = optimal;
+      if (!a->optimize_boundary.empty()) report["boundary_optimization"] = optimal;
+      report["lambda"] = !a->optimize_lambda.empty() ? optimal["lambda"].get<double>()
+                         : options.weights.method == Method::Mixed ? options.weights.lambda
                          : options.weights.method == Method::Conformal ? 1.0 : 0.0;
-      report["mu"] = options.weights.method == Method::Mixed ? options.weights.mu
+      report["mu"] = !a->optimize_lambda.empty() ? 1 - optimal["lambda"].get<double>()
+                     : options.weights.method == Method::Mixed ? options.weights.mu
                      : options.weights.method == Method::Authalic ? 1.0 : 0.0;
       report["boundary"] = boundary_label(*a);
       report["spacing"] = a->spacing;
@@ -169,7 +275,8 @@ void register_param(CLI::App& app, Runner& run) {
       if (!a->report.empty()) files.insert(files.begin(), {a->report, report.dump(2) + "\n"});
       write_all(files, {a->output});  // on failure the mesh goes too: no partial set of outputs
       if (!a->quiet)
-        std::cout << a->output << ": " << mesh.V.rows() << " vertices, " << a->method << ", "
+        std::cout << a->output << ": " << mesh.V.rows() << " vertices, " << report["method"].get<std::string>()
+                  << (a->optimize_lambda.empty() ? "" : " lambda=" + std::to_string(optimal["lambda"].get<double>())) << ", "
                   << boundary_label(*a) << ", " << d.flipped_triangles << " flipped, angle distortion mean "
                   << d.angle_distortion.mean << ", " << static_cast<long>(elapsed_ms(t0)) << " ms\n";
       return 0;

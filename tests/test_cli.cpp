@@ -125,6 +125,46 @@ TEST(Cli, BoundaryFileMustListOuterLoop) {
   EXPECT_EQ(nlohmann::json::parse(test::slurp(dir / "r.json"))["scale"], "given");
 }
 
+TEST(Cli, OptimizeLambda) {
+  TempDir dir;
+  ASSERT_EQ(run_cli("generate cap --rings 10 -o " + (dir / "cap.obj"), dir).code, 0);
+  for (const char* energy : {"edge", "area"}) {
+    const auto r = run_cli("param " + (dir / "cap.obj") + " -o " + (dir / "out.obj") + " --optimize-lambda " + energy +
+                               " --lambda-range -0.5,1.5 --report " + (dir / "r.json"),
+                           dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
+    const auto& o = j["optimal_lambda"];
+    EXPECT_GE(o["lambda"].get<double>(), -0.5);
+    EXPECT_LE(o["lambda"].get<double>(), 1.5);
+    EXPECT_LE(o["energy_at_lambda"].get<double>(), o["energy_at_0_authalic"].get<double>());
+    EXPECT_LE(o["energy_at_lambda"].get<double>(), o["energy_at_1_conformal"].get<double>());
+    EXPECT_EQ(j["method"], "optimal-lambda");
+  }
+  const auto bad = run_cli("param " + (dir / "cap.obj") + " -o " + (dir / "out2.obj") +
+                               " --optimize-lambda edge --method authalic", dir);
+  EXPECT_EQ(bad.code, 1);
+}
+
+TEST(Cli, OptimizeBoundary) {
+  TempDir dir;
+  ASSERT_EQ(run_cli("generate strip --rings 10 -o " + (dir / "strip.obj"), dir).code, 0);
+  const auto r = run_cli("param " + (dir / "strip.obj") + " -o " + (dir / "out.obj") +
+                             " --optimize-boundary dirichlet --iterations 50 --report " + (dir / "r.json"),
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("boundary optimization: iteration 1,"), std::string::npos);  // progress lines
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
+  const auto& b = j["boundary_optimization"];
+  EXPECT_LT(b["energy_final"].get<double>(), b["energy_initial"].get<double>());
+  EXPECT_LE(b["iterations"].get<int>(), 50);
+  EXPECT_EQ(j["flipped_triangles"], 0);
+  const auto quiet = run_cli("param " + (dir / "strip.obj") + " -o " + (dir / "out.obj") +
+                                 " --optimize-boundary edge --gradient responses -q", dir);
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_TRUE(quiet.err.empty());
+}
+
 TEST(Cli, HelpAndUsage) {
   TempDir dir;
   for (const char* cmd : {"--help", "param --help", "metrics --help", "generate --help"}) {

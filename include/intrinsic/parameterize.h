@@ -57,8 +57,13 @@ struct ParamResult {
 // when the solve fails or the residual is too large.
 ParamResult parameterize(const Mesh& mesh, const ParamOptions& options);
 
-// Similarity that moves UV into [0,1]^2 (centred, aspect kept), or scales it
-// so the parameter area equals the 3D area (centroid kept).
+// Positions of the fixed vertices before any scaling: the outer loop on the
+// circle or square of [-1, 1]^2, or the given positions (checked to cover the
+// outer loop; Error(Input) names a missing vertex).
+std::vector<FixedVertex> boundary_positions(const Mesh& mesh, const ParamOptions& options);
+
+// Similarity that moves UV into [0,1]^2 (centred, aspect kept), or scaling
+// about the origin so the parameter area equals the 3D area.
 void fit_unit_square(MatrixX2d& UV, const std::vector<char>& used);
 void scale_to_surface_area(MatrixX2d& UV, const Mesh& mesh);
 

@@ -16,9 +16,9 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Positions of the fixed vertices: the outer loop on the chosen shape, or the
-// user's positions (which must cover the outer loop).
-std::vector<FixedVertex> fixed_positions(const Mesh& mesh, const ParamOptions& o) {
+}  // namespace
+
+std::vector<FixedVertex> boundary_positions(const Mesh& mesh, const ParamOptions& o) {
   const Topology& t = mesh.topology;
   const std::vector<int>& outer = t.boundary_loops.at(t.component_loops.at(0).at(0));
   switch (o.boundary) {
@@ -44,8 +44,6 @@ std::vector<FixedVertex> fixed_positions(const Mesh& mesh, const ParamOptions& o
                 std::to_string(outer.size()) + " outer-loop vertices, e.g. vertex " + std::to_string(first_missing));
   return o.given;
 }
-
-}  // namespace
 
 double parameter_area(const MatrixX3i& F, const MatrixX2d& UV) {
   double area = 0;
@@ -83,14 +81,8 @@ void scale_to_surface_area(MatrixX2d& UV, const Mesh& mesh) {
   const double a_param = std::abs(parameter_area(mesh.F, UV));
   const double a_surface = surface_area(mesh.V, mesh.F);
   if (!(a_param > 0)) return;
-  const double s = std::sqrt(a_surface / a_param);
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  int count = 0;
-  for (int v = 0; v < UV.rows(); ++v)
-    if (mesh.topology.is_used[v]) { centroid += UV.row(v).transpose(); ++count; }
-  centroid /= std::max(count, 1);
-  for (int v = 0; v < UV.rows(); ++v)
-    if (mesh.topology.is_used[v]) UV.row(v) = (centroid + s * (UV.row(v).transpose() - centroid)).transpose();
+  // About the origin, so that maps sharing a fixed boundary still share it.
+  UV *= std::sqrt(a_surface / a_param);
 }
 
 ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
@@ -106,7 +98,7 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
   ParamResult result;
   const auto t_assemble = std::chrono::steady_clock::now();
   const int n = static_cast<int>(mesh.V.rows());
-  const std::vector<FixedVertex> fixed = fixed_positions(mesh, o);
+  const std::vector<FixedVertex> fixed = boundary_positions(mesh, o);
 
   // Working copy of the surface, extended by one vertex per filled hole.
   MatrixX3d V = mesh.V;
