@@ -6,6 +6,7 @@
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
 #include "report.h"
+#include "uv_mesh.h"
 
 namespace intrinsic::app {
 
@@ -21,26 +22,11 @@ void register_metrics(CLI::App& app, Runner& run) {
     run = [args] {
       const auto t0 = std::chrono::steady_clock::now();
       const MeshData data = read_mesh(args->input);
-      if (!data.has_uv()) throw_input(args->input + ": the mesh has no texture coordinates (OBJ vt or PLY u, v)");
-      // Distortion is per face, so the UV of a corner is what matters; a
-      // vertex may carry several UVs (seams), so faces are re-indexed by
-      // texture coordinate with positions copied per TC.
-      MatrixX3d V(data.TC.rows(), 3);
-      V.setZero();
-      std::vector<char> seen(data.TC.rows(), 0);
-      for (int f = 0; f < data.F.rows(); ++f)
-        for (int c = 0; c < 3; ++c) {
-          const int t = data.FTC(f, c);
-          if (t < 0 || t >= data.TC.rows()) throw_input(args->input + ": texture index out of range in face " + std::to_string(f));
-          if (seen[t] && V.row(t) != data.V.row(data.F(f, c)))
-            throw_input(args->input + ": texture coordinate " + std::to_string(t) +
-                        " is shared by corners at different positions");
-          V.row(t) = data.V.row(data.F(f, c));
-          seen[t] = 1;
-        }
+      // Distortion is per face, so the UV of a corner is what matters.
+      const UvMesh uv = split_by_texcoord(data);
       MeshData by_tc;
-      by_tc.V = V;
-      by_tc.F = data.FTC;
+      by_tc.V = uv.V;
+      by_tc.F = uv.F;
       by_tc.path = data.path;
       ValidateOptions vo;
       vo.allow_several_components = true;
@@ -50,7 +36,7 @@ void register_metrics(CLI::App& app, Runner& run) {
       const Mesh mesh = make_mesh(by_tc, vo);
       nlohmann::json report = mesh_json(mesh);
       report["vertices"] = data.V.rows();
-      const DistortionSummary d = summarize_distortion(V, data.FTC, data.TC);
+      const DistortionSummary d = summarize_distortion(uv.V, uv.F, uv.UV);
       add_distortion(report, d);
       report["timings_ms"] = {{"total", elapsed_ms(t0)}};
       if (args->report.empty()) std::cout << report.dump(2) << "\n";

@@ -16,6 +16,8 @@
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterizer.h"
+#include "intrinsic/parameterize.h"
+#include "pictures.h"
 #include "report.h"
 
 namespace intrinsic::app {
@@ -23,6 +25,7 @@ namespace {
 
 struct ParamArgs {
   std::string input, output, report, constraints;
+  std::string render, render_all, render_size = "1024,1024", view = "auto";
   std::string method = "conformal";
   double lambda = 1, mu = 0;
   bool lambda_set = false, mu_set = false;
@@ -174,6 +177,13 @@ void register_param(CLI::App& app, Runner& run) {
                 "Keep only the component with the most faces (vertex numbering unchanged); "
                 "otherwise every component becomes its own chart");
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();
+  cmd->add_option("--render", a->render, "Also write the checker picture of the result (.png)");
+  cmd->add_option("--render-all", a->render_all,
+                  "Also write PREFIX_checker.png, PREFIX_layout.png, PREFIX_angle.png, PREFIX_area.png, "
+                  "PREFIX_stretch.png");
+  cmd->add_option("--render-size", a->render_size, "Size of those pictures in pixels, W,H")->capture_default_str();
+  cmd->add_option("--view", a->view, "3D view of the pictures: auto | top | front | AZIMUTH,ELEVATION")
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", a->quiet, "Print nothing on success");
   cmd->callback([&run, a] {
     run = [a] {
@@ -182,6 +192,18 @@ void register_param(CLI::App& app, Runner& run) {
       parse_method(a->method);
       parse_solver(a->solver);
       for (const std::string& p : a->pins) parse_pin(p);  // syntax first: a usage error whatever the file
+      // Picture requests: (mode, path), checked before any work is done.
+      std::vector<std::pair<PictureMode, std::string>> pictures;
+      if (!a->render.empty()) {
+        check_png_path(a->render, "--render");
+        pictures.emplace_back(PictureMode::Checker, a->render);
+      }
+      if (!a->render_all.empty())
+        for (PictureMode m : kAllPictureModes) pictures.emplace_back(m, a->render_all + "_" + mode_name(m) + ".png");
+      PictureSettings ps;
+      parse_size(a->render_size, "--render-size", ps.render.width, ps.render.height);
+      parse_view(a->view, ps.render);
+      ps.render.fit_uv = true;
       ReadOptions ro;
       ro.max_vertices = a->max_vertices;
       const MeshData data = read_mesh(a->input, ro);
@@ -293,6 +315,18 @@ void register_param(CLI::App& app, Runner& run) {
       }
       const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, r.UV);
 
+      // Pictures are made before anything is written, so a failure leaves no file.
+      const auto t_pic = std::chrono::steady_clock::now();
+      std::vector<std::pair<std::string, std::string>> files;
+      if (!pictures.empty()) {
+        Distortion dist;
+        dist.faces = face_distortion(mesh.V, mesh.F, r.UV);
+        dist.summary = d;
+        for (const auto& [mode, path] : pictures)
+          files.emplace_back(path, encode_png(make_picture(mode, mesh.V, mesh.F, r.UV, ps, &dist).image));
+      }
+      const double t_render = elapsed_ms(t_pic);
+
       const auto t2 = std::chrono::steady_clock::now();
       WriteOptions wo;
       wo.binary = a->binary;
@@ -351,16 +385,11 @@ void register_param(CLI::App& app, Runner& run) {
                               {"assemble", r.timings.assemble_ms},
                               {"factor", r.timings.factor_ms},
                               {"solve", r.timings.solve_ms},
+                              {"render", t_render},
                               {"write", t_write},
                               {"total", elapsed_ms(t0)}};
-      if (!a->report.empty()) {
-        try {
-          write_report(a->report, report);
-        } catch (...) {
-          std::filesystem::remove(a->output);  // no partial set of outputs
-          throw;
-        }
-      }
+      if (!a->report.empty()) files.insert(files.begin(), {a->report, report.dump(2) + "\n"});
+      write_all(files, {a->output});  // on failure the mesh goes too: no partial set of outputs
       if (!a->quiet)
         std::cout << a->output << ": " << mesh.V.rows() << " vertices, " << report["method"].get<std::string>()
                   << (a->optimize_lambda.empty() ? "" : " lambda=" + std::to_string(optimal["lambda"].get<double>())) << ", "

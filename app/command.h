@@ -22,6 +22,8 @@ void register_edit(CLI::App& app, Runner& run);
 // --method, --lambda, --mu as weight options; throws Error(Usage) for
 // inconsistent combinations (shared by param and edit).
 WeightOptions weight_options(const std::string& method, bool lambda_set, double lambda, bool mu_set, double mu);
+void register_render(CLI::App& app, Runner& run);
+void register_compare(CLI::App& app, Runner& run);
 
 // Milliseconds since t0.
 double elapsed_ms(std::chrono::steady_clock::time_point t0);

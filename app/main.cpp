@@ -42,6 +42,8 @@ int main(int argc, char** argv) {
   app::register_metrics(app, run);
   app::register_generate(app, run);
   app::register_edit(app, run);
+  app::register_render(app, run);
+  app::register_compare(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -391,6 +391,11 @@ TEST(Render, TickValuesAreRoundAndIncludeEnds) {
   EXPECT_EQ(t.front(), 1);
   EXPECT_EQ(t.back(), 2.5);
   for (std::size_t i = 1; i + 1 < t.size(); ++i) EXPECT_NEAR(std::fmod(t[i], 0.5), 0, 1e-12) << t[i];
+  // A range narrow next to its magnitude ends (this once looped forever).
+  const auto narrow = render::tick_values(1, std::nextafter(1.0, 2.0), false);
+  EXPECT_EQ(narrow.front(), 1);
+  EXPECT_EQ(narrow.back(), std::nextafter(1.0, 2.0));
+  EXPECT_LE(narrow.size(), 12u);
   const auto g = render::tick_values(0.01, 1000, true);
   EXPECT_EQ(g.front(), 0.01);
   EXPECT_EQ(g.back(), 1000);

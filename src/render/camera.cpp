@@ -73,6 +73,26 @@ Camera make_camera(const MatrixX3d& V, const MatrixX3i& F, const ViewDirection& 
   cam.scale = 0.5 * kMargin * std::min(width, height);
   cam.cx = 0.5 * width;
   cam.cy = 0.5 * height;
+  // Tighter: frame the extent of the projected vertices (a flat patch seen
+  // from above, or a wide one from the side, would otherwise fill a small
+  // part of the bounding sphere's disc), centred in the image.
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = V.row(F(f, k));
+      if (!p.allFinite()) continue;
+      const Eigen::Vector3d q = p / radius - cam.centre;
+      const double x = q.dot(cam.right), y = q.dot(cam.up);
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+  const double sx = x1 > x0 ? kMargin * width / (x1 - x0) : INFINITY;
+  const double sy = y1 > y0 ? kMargin * height / (y1 - y0) : INFINITY;
+  const double tight = std::min(sx, sy);
+  if (std::isfinite(tight) && tight > 0) {
+    cam.scale = tight;
+    cam.cx = 0.5 * width - tight * (x0 / 2 + x1 / 2);
+    cam.cy = 0.5 * height + tight * (y0 / 2 + y1 / 2);
+  }
   return cam;
 }
 

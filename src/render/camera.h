@@ -1,5 +1,5 @@
 // Orthographic camera: chooses the view direction (automatic or from
-// azimuth/elevation) and frames the mesh's bounding sphere in the image.
+// azimuth/elevation) and frames the projected mesh in the image.
 #pragma once
 
 #include <Eigen/Core>

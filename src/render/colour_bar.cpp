@@ -61,7 +61,12 @@ std::vector<double> tick_values(double lo, double hi, bool log_scale) {
     for (double e = e0; e <= e1; e += every) ticks.push_back(std::pow(10.0, e));
   } else {
     const double step = nice_step((hi - lo) / 4);
-    for (double k = std::ceil(lo / step); k * step <= hi; ++k) ticks.push_back(k * step);
+    // A range narrow next to its magnitude (1 .. 1 + 2e-16) makes k larger
+    // than the integers a double holds, so ++k would not advance: no interior
+    // ticks then, and never more than a handful.
+    const double k0 = std::ceil(lo / step);
+    if (std::abs(k0) < 1e12 && std::abs(hi / step) < 1e12)
+      for (double k = k0; k * step <= hi && ticks.size() < 12; ++k) ticks.push_back(k * step);
   }
   ticks.push_back(hi);
   return ticks;

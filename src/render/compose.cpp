@@ -24,7 +24,17 @@ Image compose_panels(const std::vector<Image>& panels, const std::vector<std::st
     cell_w = std::max(cell_w, p.width);
     cell_h = std::max(cell_h, p.height);
   }
-  const int s = std::max(1, static_cast<int>(std::lround(std::min(cell_w, cell_h) / 300.0)));
+  // Text grows with the cell width, but never so much that a caption line
+  // is wider than its cell.
+  int widest = 0;  // at scale 1
+  for (const std::string& c : captions)
+    for (std::size_t start = 0; start <= c.size();) {
+      const std::size_t end = std::min(c.find('\n', start), c.size());
+      widest = std::max(widest, text_width(c.substr(start, end - start), 1));
+      start = end + 1;
+    }
+  int s = std::max(1, static_cast<int>(std::lround(cell_w / 150.0)));
+  while (s > 1 && widest * s > cell_w) --s;
   const int pad = 6 * s;
   int caption_h = 0;
   for (const std::string& c : captions) caption_h = std::max(caption_h, text_height(c, s));

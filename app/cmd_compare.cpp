@@ -1,0 +1,154 @@
+// `intrinsic compare`: one picture, a checker-rendered panel per method with
+// its distortion figures under it, all from the same view (paper Figure 3).
+#include <algorithm>
+#include <climits>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "command.h"
+#include "intrinsic/error.h"
+#include "intrinsic/io.h"
+#include "intrinsic/parameterize.h"
+#include "pictures.h"
+#include "report.h"
+
+namespace intrinsic::app {
+namespace {
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream s(text);
+  for (std::string item; std::getline(s, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+// The methods compare can run without further parameters; "natural" is the
+// conformal weights with the natural (free) boundary.
+Method compare_method(const std::string& name) {
+  if (name == "natural") return Method::Conformal;
+  if (name == "mixed") throw_usage("--methods: 'mixed' needs --lambda and --mu; run it with `intrinsic param`");
+  if (name != "tutte" && name != "floater" && name != "conformal" && name != "authalic")
+    throw_usage("--methods: unknown method '" + name + "' (use tutte, floater, conformal, authalic, natural)");
+  return parse_method(name);
+}
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+// Every panel shows the same view with the same framing, which fits the
+// mesh's bounding sphere; a tall or wide mesh leaves empty bands. Crops the
+// rows (or columns) that are empty in every panel, keeping a small margin, so
+// the panels stay aligned with each other.
+void crop_common_background(std::vector<Image>& panels) {
+  int x0 = INT_MAX, y0 = INT_MAX, x1 = -1, y1 = -1;
+  for (const Image& p : panels)
+    for (int y = 0; y < p.height; ++y)
+      for (int x = 0; x < p.width; ++x) {
+        const std::uint8_t* c = p.pixel(x, y);
+        if (c[0] != 255 || c[1] != 255 || c[2] != 255)
+          x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+  if (x1 < 0) return;  // nothing drawn
+  const Image& first = panels.front();
+  const int margin = std::max(2, std::min(first.width, first.height) / 25);
+  x0 = std::max(0, x0 - margin), y0 = std::max(0, y0 - margin);
+  x1 = std::min(first.width - 1, x1 + margin), y1 = std::min(first.height - 1, y1 + margin);
+  for (Image& p : panels) {
+    Image out(x1 - x0 + 1, y1 - y0 + 1);
+    for (int y = y0; y <= y1; ++y) std::copy(p.pixel(x0, y), p.pixel(x1, y) + 3, out.pixel(0, y - y0));
+    p = std::move(out);
+  }
+}
+
+}  // namespace
+
+void register_compare(CLI::App& app, Runner& run) {
+  struct Args {
+    std::string input, output, report;
+    std::string methods = "tutte,floater,conformal,authalic,natural";
+    std::string boundary = "circle", size = "400,400", view = "auto";
+    int columns = 0, squares = 16;
+    bool quiet = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("compare", "One picture comparing methods: checker render and figures per method");
+  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
+  cmd->add_option("-o,--output", a->output, "Output picture (.png)")->required();
+  cmd->add_option("--methods", a->methods, "Comma-separated: tutte, floater, conformal, authalic, natural")
+      ->capture_default_str();
+  cmd->add_option("--boundary", a->boundary, "Fixed boundary shape: circle | square")
+      ->check(CLI::IsMember({"circle", "square"}))
+      ->capture_default_str();
+  cmd->add_option("--size", a->size, "Size of each panel in pixels, W,H")->capture_default_str();
+  cmd->add_option("--columns", a->columns, "Panels per row (default: one row of up to 5, else two rows)")
+      ->check(CLI::Range(1, 64));
+  cmd->add_option("--view", a->view, "3D view: auto | top | front | AZIMUTH,ELEVATION")->capture_default_str();
+  cmd->add_option("--squares", a->squares, "Checker squares across the UV square")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  cmd->add_option("--report", a->report, "Write the figures of every method as JSON");
+  cmd->add_flag("-q,--quiet", a->quiet, "Print nothing on success");
+  cmd->callback([&run, a] {
+    run = [a] {
+      const auto t0 = std::chrono::steady_clock::now();
+      check_png_path(a->output, "--output");
+      const std::vector<std::string> names = split_list(a->methods);
+      if (names.empty()) throw_usage("--methods: give at least one method");
+      std::vector<Method> methods;
+      for (const std::string& n : names) methods.push_back(compare_method(n));
+      RenderOptions ro;
+      parse_size(a->size, "--size", ro.width, ro.height);
+      parse_view(a->view, ro);
+      ro.checker_squares = a->squares;
+      ro.fit_uv = true;
+
+      const MeshData data = read_mesh(a->input);
+      const Mesh mesh = make_mesh(data);
+      std::vector<Image> panels;
+      std::vector<std::string> captions;
+      nlohmann::json results = nlohmann::json::array();
+      for (size_t i = 0; i < methods.size(); ++i) {
+        ParamOptions o;
+        o.weights.method = methods[i];
+        o.boundary = names[i] == "natural"      ? BoundaryShape::Natural
+                     : a->boundary == "square" ? BoundaryShape::Square
+                                               : BoundaryShape::Circle;
+        const auto t1 = std::chrono::steady_clock::now();
+        const ParamResult r = parameterize(mesh, o);
+        const double ms = elapsed_ms(t1);
+        const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, r.UV);
+        panels.push_back(render_checker(mesh.V, mesh.F, r.UV, ro));
+        // Short lines, so the text can be large in a narrow panel.
+        captions.push_back(names[i] + "\n" + std::to_string(d.flipped_triangles) + " flipped\nangle mean " +
+                           fixed(d.angle_distortion.mean, 3) + "\nangle max " + fixed(d.angle_distortion.max, 2) +
+                           "\narea mean " + fixed(d.area_distortion.mean, 3) + "\n" + fixed(ms, 0) + " ms");
+        nlohmann::json j = {{"method", names[i]}, {"solver", r.solver}, {"time_ms", ms}};
+        add_distortion(j, d);
+        results.push_back(j);
+      }
+      crop_common_background(panels);
+      const int n = static_cast<int>(panels.size());
+      const int columns = a->columns > 0 ? a->columns : n <= 5 ? n : (n + 1) / 2;
+      const std::string png = encode_png(compose_panels(panels, captions, columns));
+      std::vector<std::pair<std::string, std::string>> files = {{a->output, png}};
+      if (!a->report.empty()) {
+        nlohmann::json report = mesh_json(mesh);
+        report["boundary"] = a->boundary;
+        report["methods"] = results;
+        report["timings_ms"] = {{"total", elapsed_ms(t0)}};
+        files.emplace_back(a->report, report.dump(2) + "\n");
+      }
+      write_all(files);
+      if (!a->quiet)
+        std::cout << a->output << ": " << n << " methods, " << static_cast<long>(elapsed_ms(t0)) << " ms\n";
+      return 0;
+    };
+  });
+}
+
+}  // namespace intrinsic::app

@@ -1,0 +1,118 @@
+// `intrinsic render`: a picture of a mesh that already has UVs.
+#include <iostream>
+
+#include "command.h"
+#include "intrinsic/error.h"
+#include "intrinsic/io.h"
+#include "pictures.h"
+#include "report.h"
+#include "uv_mesh.h"
+
+namespace intrinsic::app {
+
+void register_render(CLI::App& app, Runner& run) {
+  struct Args {
+    std::string input, output, report, texture;
+    std::string mode = "checker", size = "1024,1024", view = "auto";
+    int squares = 16, supersample = 3;
+    bool on_surface = false, log_scale = false, quiet = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("render", "Picture of a mesh with UVs: checkerboard, layout or distortion");
+  cmd->add_option("input", a->input, "Mesh with texture coordinates (OBJ vt or PLY u,v; optionally .gz)")->required();
+  cmd->add_option("-o,--output", a->output, "Output picture (.png)")->required();
+  cmd->add_option("--mode", a->mode,
+                  "checker: textured 3D surface | layout: the flattened mesh, flipped triangles red | "
+                  "angle, area, stretch: distortion per triangle with a colour bar")
+      ->check(CLI::IsMember({"checker", "layout", "angle", "area", "stretch"}))
+      ->capture_default_str();
+  cmd->add_option("--size", a->size, "Picture size in pixels, W,H")->capture_default_str();
+  cmd->add_option("--view", a->view, "3D view: auto (along the mean normal) | top | front | AZIMUTH,ELEVATION")
+      ->capture_default_str();
+  cmd->add_option("--texture", a->texture, "PNG image to map through the UVs instead of the checkerboard");
+  cmd->add_option("--squares", a->squares, "Checker squares across the UV bounding box")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  cmd->add_option("--supersample", a->supersample, "Antialiasing samples per pixel along each axis")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
+  cmd->add_flag("--on-surface", a->on_surface, "Distortion modes: colour the 3D surface instead of the layout");
+  cmd->add_flag("--log", a->log_scale, "Distortion modes: logarithmic colour scale");
+  cmd->add_option("--report", a->report, "Write what was drawn (mode, colour range, figures) as JSON");
+  cmd->add_flag("-q,--quiet", a->quiet, "Print nothing on success");
+  cmd->callback([&run, a] {
+    run = [a] {
+      const auto t0 = std::chrono::steady_clock::now();
+      check_png_path(a->output, "--output");
+      const PictureMode mode = parse_mode(a->mode);
+      PictureSettings s;
+      parse_size(a->size, "--size", s.render.width, s.render.height);
+      parse_view(a->view, s.render);
+      s.render.checker_squares = a->squares;
+      s.render.supersample = a->supersample;
+      s.on_surface = a->on_surface;
+      s.log_scale = a->log_scale;
+      // The checker density follows the UV bounding box, whatever the UV
+      // scale; a texture image is mapped through the UVs as they are.
+      s.render.fit_uv = a->texture.empty();
+      Image texture;
+      if (!a->texture.empty()) {
+        if (mode != PictureMode::Checker) throw_usage("--texture applies to --mode checker only");
+        texture = read_texture(a->texture);
+        s.render.texture = &texture;
+      }
+      if ((a->on_surface || a->log_scale) && (mode == PictureMode::Checker || mode == PictureMode::Layout))
+        throw_usage("--on-surface and --log apply to the angle, area and stretch modes only");
+
+      const MeshData data = read_mesh(a->input);
+      const UvMesh m = split_by_texcoord(data);
+      const double t_read = elapsed_ms(t0);
+      const auto t1 = std::chrono::steady_clock::now();
+      Distortion d;
+      const bool needs_distortion = mode != PictureMode::Checker && mode != PictureMode::Layout;
+      if (needs_distortion) {
+        d.faces = face_distortion(m.V, m.F, m.UV);
+        d.summary = summarize_distortion(m.V, m.F, m.UV);
+      }
+      const Picture p = make_picture(mode, m.V, m.F, m.UV, s, needs_distortion ? &d : nullptr);
+      const double t_render = elapsed_ms(t1);
+      const auto t2 = std::chrono::steady_clock::now();
+      const std::string png = encode_png(p.image);
+      const double t_encode = elapsed_ms(t2);
+
+      std::vector<std::pair<std::string, std::string>> files;
+      if (!a->report.empty()) {
+        nlohmann::json r = {{"input", a->input},
+                            {"output", a->output},
+                            {"mode", a->mode},
+                            {"width", p.image.width},
+                            {"height", p.image.height},
+                            {"vertices", m.input_vertices},
+                            {"texture_coordinates", m.UV.rows()},
+                            {"faces", m.F.rows()}};
+        if (p.has_range) {
+          const Stat& st = mode_stat(mode, d.summary);
+          r["measure"] = mode == PictureMode::Stretch ? "stretch_l2"
+                         : mode == PictureMode::Angle ? "angle_distortion"
+                                                      : "area_distortion";
+          r["colour_range"] = {{"lo", p.range.lo}, {"hi", p.range.hi}, {"log", p.range.log_scale}};
+          r["values"] = stat_json(st);
+          r["flipped_triangles"] = d.summary.flipped_triangles;
+          r["collapsed_triangles"] = d.summary.collapsed_triangles;
+        }
+        r["timings_ms"] = {{"read", t_read}, {"render", t_render}, {"encode", t_encode}, {"total", elapsed_ms(t0)}};
+        files.emplace_back(a->report, r.dump(2) + "\n");
+      }
+      files.insert(files.begin(), {a->output, png});
+      write_all(files);
+      if (!a->quiet) {
+        std::cout << a->output << ": " << a->mode << ", " << p.image.width << "x" << p.image.height;
+        if (p.has_range) std::cout << ", colour range " << p.range.lo << " .. " << p.range.hi;
+        std::cout << ", render " << static_cast<long>(t_render) << " ms\n";
+      }
+      return 0;
+    };
+  });
+}
+
+}  // namespace intrinsic::app
