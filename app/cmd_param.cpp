@@ -19,7 +19,7 @@ struct ParamArgs {
   bool lambda_set = false, mu_set = false;
   std::string boundary = "circle", spacing = "arclength", scale = "unit", holes = "fill", solver = "auto";
   bool binary = false, quiet = false;
-  std::int64_t max_vertices = 50'000'000;
+  std::int64_t max_vertices = ReadOptions().max_vertices;
   double max_residual = 1e-8;
 };
 
@@ -82,7 +82,9 @@ void register_param(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
   cmd->add_flag("--binary", a->binary, "Binary PLY output");
-  cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();
+  cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", a->quiet, "Print nothing on success");
   cmd->callback([&run, a] {
     run = [a] {
@@ -90,8 +92,10 @@ void register_param(CLI::App& app, Runner& run) {
       check_output_mesh_path(a->output);
       parse_method(a->method);
       parse_solver(a->solver);
+      if (!(a->max_residual > 0)) throw_usage("--max-residual must be a positive number");
       ReadOptions ro;
       ro.max_vertices = a->max_vertices;
+      ro.max_faces = faces_for_vertices(ro.max_vertices);
       const MeshData data = read_mesh(a->input, ro);
       const double t_read = elapsed_ms(t0);
       const auto t1 = std::chrono::steady_clock::now();

@@ -3,8 +3,11 @@
 // solve u and v together, check the residual, scale.
 #include "intrinsic/parameterize.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <numeric>
 
 #include "intrinsic/assemble.h"
 #include "intrinsic/error.h"
@@ -14,6 +17,67 @@ namespace {
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Two fixed vertices at one point fold the parameterization (a boundary that
+// touches itself, or collapsed triangles): refused, naming both vertices.
+void check_distinct_positions(const std::vector<FixedVertex>& given) {
+  std::vector<int> order(given.size());
+  std::iota(order.begin(), order.end(), 0);
+  const auto key = [&](int i) { return std::make_pair(given[i].uv.x(), given[i].uv.y()); };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  for (size_t k = 1; k < order.size(); ++k) {
+    const FixedVertex &a = given[order[k - 1]], &b = given[order[k]];
+    if (a.uv == b.uv)
+      throw_input("the boundary positions give vertices " + std::to_string(std::min(a.vertex, b.vertex)) + " and " +
+                  std::to_string(std::max(a.vertex, b.vertex)) + " the same position (" + std::to_string(a.uv.x()) +
+                  ", " + std::to_string(a.uv.y()) + ")");
+  }
+}
+
+// After a failed solve: what cheap checks can tell about why. Free vertices
+// that nonzero weights do not tie to any fixed vertex make the system
+// singular; non-finite weights and nearly degenerate faces make it
+// ill-conditioned. Empty when nothing is found.
+std::string likely_cause(const Mesh& mesh, const SparseMatrix& K, const Partition& p) {
+  std::vector<std::string> causes;
+  std::vector<std::vector<int>> adjacent(K.rows());
+  bool finite = true;
+  for (int c = 0; c < K.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(K, c); it; ++it) {
+      finite = finite && std::isfinite(it.value());
+      if (it.row() != it.col() && it.value() != 0) adjacent[it.row()].push_back(static_cast<int>(it.col()));
+    }
+  if (!finite) causes.push_back("some weights are not finite");
+  std::vector<char> reached(K.rows(), 0);
+  std::vector<int> queue(p.fixed_vertices.begin(), p.fixed_vertices.end());
+  for (int v : queue) reached[v] = 1;
+  for (size_t k = 0; k < queue.size(); ++k)
+    for (int w : adjacent[queue[k]])
+      if (!reached[w]) reached[w] = 1, queue.push_back(w);
+  int cut_off = 0, first = -1;
+  for (int v : p.free_vertices)
+    if (!reached[v] && cut_off++ == 0) first = v;
+  if (cut_off > 0)
+    causes.push_back(std::string(first < mesh.V.rows() ? "vertex " + std::to_string(first) : "a hole's fill vertex") +
+                     (cut_off > 1 ? " and " + std::to_string(cut_off - 1) + " other free vertices are" : " is") +
+                     " not tied to any fixed vertex by a nonzero weight");
+  double worst = INFINITY;
+  int worst_face = -1;
+  for (int f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector3d x0 = mesh.V.row(mesh.F(f, 0)), x1 = mesh.V.row(mesh.F(f, 1)), x2 = mesh.V.row(mesh.F(f, 2));
+    const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
+    const double ratio = (x1 - x0).cross(x2 - x0).norm() / longest;
+    if (ratio < worst) worst = ratio, worst_face = f;
+  }
+  if (worst < 1e-6) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1e", worst);
+    causes.push_back(mesh.describe_face(worst_face) + " is nearly degenerate (area / longest edge squared " + buf + ")");
+  }
+  std::string out;
+  for (const std::string& c : causes) out += (out.empty() ? "; likely cause: " : "; ") + c;
+  return out;
 }
 
 // Positions of the fixed vertices: the outer loop on the chosen shape, or the
@@ -42,6 +106,7 @@ std::vector<FixedVertex> fixed_positions(const Mesh& mesh, const ParamOptions& o
   if (missing > 0)
     throw_input("the boundary positions miss " + std::to_string(missing) + " of the " +
                 std::to_string(outer.size()) + " outer-loop vertices, e.g. vertex " + std::to_string(first_missing));
+  check_distinct_positions(o.given);
   return o.given;
 }
 
@@ -165,7 +230,12 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
   if (result.free_vertices > 0) {
     const auto t_factor = std::chrono::steady_clock::now();
     LinearSolver solver(o.solver, is_symmetric(o.weights));
-    solver.factor(A);
+    try {
+      solver.factor(A);
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::Numerical) throw;
+      throw_numerical(e.what() + likely_cause(mesh, K, p));
+    }
     result.timings.factor_ms = ms_since(t_factor);
     const auto t_solve = std::chrono::steady_clock::now();
     X = solver.solve(rhs);
@@ -174,8 +244,8 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
     result.factorizations = solver.factorizations();
     result.iterations = solver.iterations();
     if (!X.allFinite())
-      throw_numerical("the solution has non-finite values: the system is singular or nearly so "
-                      "(look for coincident boundary positions or nearly degenerate faces)");
+      throw_numerical("the solution has non-finite values: the system is singular or nearly so" +
+                      likely_cause(mesh, K, p));
     for (int c = 0; c < 2; ++c) {
       const double b = rhs.col(c).norm();
       const double r = (A * X.col(c) - rhs.col(c)).norm();
@@ -184,7 +254,7 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
     if (!(result.residual <= o.max_residual))
       throw_numerical("the relative residual " + std::to_string(result.residual) + " of solver " + result.solver +
                       " exceeds " + std::to_string(o.max_residual) +
-                      " (an iterative solver may not have converged; try --solver auto)");
+                      " (an iterative solver may not have converged; try --solver auto)" + likely_cause(mesh, K, p));
   } else {
     result.solver = "none (every vertex is fixed)";
   }
