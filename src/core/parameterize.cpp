@@ -19,6 +19,13 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// "1.5e-12", "0.25": numbers in messages (std::to_string would print 0.000000).
+std::string short_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
+
 // Two fixed vertices at one point fold the parameterization (a boundary that
 // touches itself, or collapsed triangles): refused, naming both vertices.
 void check_distinct_positions(const std::vector<FixedVertex>& given) {
@@ -30,8 +37,8 @@ void check_distinct_positions(const std::vector<FixedVertex>& given) {
     const FixedVertex &a = given[order[k - 1]], &b = given[order[k]];
     if (a.uv == b.uv)
       throw_input("the boundary positions give vertices " + std::to_string(std::min(a.vertex, b.vertex)) + " and " +
-                  std::to_string(std::max(a.vertex, b.vertex)) + " the same position (" + std::to_string(a.uv.x()) +
-                  ", " + std::to_string(a.uv.y()) + ")");
+                  std::to_string(std::max(a.vertex, b.vertex)) + " the same position (" + short_number(a.uv.x()) +
+                  ", " + short_number(a.uv.y()) + ")");
   }
 }
 
@@ -71,9 +78,8 @@ std::string likely_cause(const Mesh& mesh, const SparseMatrix& K, const Partitio
     if (ratio < worst) worst = ratio, worst_face = f;
   }
   if (worst < 1e-6) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1e", worst);
-    causes.push_back(mesh.describe_face(worst_face) + " is nearly degenerate (area / longest edge squared " + buf + ")");
+    causes.push_back(mesh.describe_face(worst_face) + " is nearly degenerate (area / longest edge squared " +
+                     short_number(worst) + ")");
   }
   std::string out;
   for (const std::string& c : causes) out += (out.empty() ? "; likely cause: " : "; ") + c;
@@ -252,8 +258,8 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
       result.residual = std::max(result.residual, b > 0 ? r / b : r);
     }
     if (!(result.residual <= o.max_residual))
-      throw_numerical("the relative residual " + std::to_string(result.residual) + " of solver " + result.solver +
-                      " exceeds " + std::to_string(o.max_residual) +
+      throw_numerical("the relative residual " + short_number(result.residual) + " of solver " + result.solver +
+                      " exceeds " + short_number(o.max_residual) +
                       " (an iterative solver may not have converged; try --solver auto)" + likely_cause(mesh, K, p));
   } else {
     result.solver = "none (every vertex is fixed)";
