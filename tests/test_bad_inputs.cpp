@@ -228,6 +228,8 @@ std::vector<BadCase> bad_cases() {
       {"ply binary gigantic count", "in.ply", square_ply().str(4000000000LL), "", 2, "but the file holds at most"},
       {"ply binary over --max-vertices", "in.ply", square_ply().str(), "--max-vertices 4", 2,
        "5 vertices, more than the limit of 4"},
+      {"file larger than the limits admit", "in.obj", std::string(2 << 20, '#'), "--max-vertices 10", 2,
+       "the most a mesh within the limits (10 vertices"},
       // GZIP
       {"gz garbage", "in.obj.gz", "\x1f\x8b" + garbage(500, 3), "", 2, "corrupt gzip data"},
       {"gz truncated", "in.obj.gz", gzip(grid).substr(0, gzip(grid).size() / 2), "", 2, "truncated gzip data"},
