@@ -32,7 +32,7 @@ struct ParamArgs {
   std::string boundary = "circle", spacing = "arclength", scale = "unit", holes = "fill", solver = "auto";
   std::vector<std::string> pins;  // "V:U,V"
   bool binary = false, quiet = false, largest_component = false;
-  std::int64_t max_vertices = 50'000'000;
+  std::int64_t max_vertices = ReadOptions().max_vertices;
   double max_residual = 1e-8;
   std::string optimize_lambda;            // "", "edge" or "area"
   std::vector<double> lambda_range{0, 1};
@@ -176,7 +176,9 @@ void register_param(CLI::App& app, Runner& run) {
   cmd->add_flag("--largest-component", a->largest_component,
                 "Keep only the component with the most faces (vertex numbering unchanged); "
                 "otherwise every component becomes its own chart");
-  cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();
+  cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--render", a->render, "Also write the checker picture of the result (.png)");
   cmd->add_option("--render-all", a->render_all,
                   "Also write PREFIX_checker.png, PREFIX_layout.png, PREFIX_angle.png, PREFIX_area.png, "
@@ -191,6 +193,7 @@ void register_param(CLI::App& app, Runner& run) {
       check_output_mesh_path(a->output);
       parse_method(a->method);
       parse_solver(a->solver);
+      if (!(a->max_residual > 0)) throw_usage("--max-residual must be a positive number");
       for (const std::string& p : a->pins) parse_pin(p);  // syntax first: a usage error whatever the file
       // Picture requests: (mode, path), checked before any work is done.
       std::vector<std::pair<PictureMode, std::string>> pictures;
@@ -206,6 +209,7 @@ void register_param(CLI::App& app, Runner& run) {
       ps.render.fit_uv = true;
       ReadOptions ro;
       ro.max_vertices = a->max_vertices;
+      ro.max_faces = faces_for_vertices(ro.max_vertices);
       const MeshData data = read_mesh(a->input, ro);
       const double t_read = elapsed_ms(t0);
       const auto t1 = std::chrono::steady_clock::now();

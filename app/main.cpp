@@ -7,6 +7,7 @@
 
 #include "command.h"
 #include "intrinsic/error.h"
+#include "intrinsic/io.h"
 
 namespace intrinsic::app {
 
@@ -24,6 +25,11 @@ std::string mesh_extension(const std::string& path) {
   return p.substr(dot);
 }
 
+std::int64_t faces_for_vertices(std::int64_t max_vertices) {
+  const std::int64_t default_cap = ReadOptions().max_faces;
+  return max_vertices >= default_cap / 4 ? default_cap : 4 * max_vertices + 1000;
+}
+
 void check_output_mesh_path(const std::string& path) {
   const std::string ext = mesh_extension(path);
   if (ext != ".obj" && ext != ".ply")
@@ -34,6 +40,7 @@ void check_output_mesh_path(const std::string& path) {
 
 int main(int argc, char** argv) {
   using namespace intrinsic;
+  remove_temporary_files_on_signals();
   CLI::App app{"intrinsic: intrinsic parameterizations of surface meshes (Desbrun, Meyer, Alliez 2002)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "intrinsic 0.1.0");

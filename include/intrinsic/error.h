@@ -4,6 +4,7 @@
 // tool maps to its exit code (see README "Exit codes").
 #pragma once
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -26,6 +27,13 @@ class Error : public std::runtime_error {
  private:
   ErrorKind kind_;
 };
+
+// "1.5e-12", "0.25": numbers in messages (std::to_string prints 0.000000).
+inline std::string short_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 
 [[noreturn]] inline void throw_usage(const std::string& m) { throw Error(ErrorKind::Usage, m); }
 [[noreturn]] inline void throw_input(const std::string& m) { throw Error(ErrorKind::Input, m); }

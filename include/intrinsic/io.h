@@ -42,4 +42,11 @@ void write_mesh(const std::string& path, const MatrixX3d& V, const MatrixX3i& F,
 // writer in the project (JSON reports, PNG images, meshes).
 void write_file_atomically(const std::string& path, const std::string& contents);
 
+// For programs (the CLI calls it first thing; library code never installs
+// handlers by itself): SIGINT, SIGTERM, SIGHUP and SIGQUIT delete the temporary
+// files of writes in progress before taking their default action, and SIGXFSZ
+// is ignored so that exceeding a file size limit fails the write (EFBIG,
+// Error(Output)) instead of killing the process with the file half written.
+void remove_temporary_files_on_signals();
+
 }  // namespace intrinsic

@@ -158,8 +158,8 @@ PinnedSolution solve_pinned(const SparseMatrix& Q, const std::vector<FixedVertex
     const double b = rhs.norm(), r = (A * x - rhs).norm();
     s.residual = b > 0 ? r / b : r;
     if (!(s.residual <= max_residual))
-      throw_numerical("the relative residual " + std::to_string(s.residual) + " of solver " + s.solver + " exceeds " +
-                      std::to_string(max_residual) + " (an iterative solver may not have converged; try --solver auto)");
+      throw_numerical("the relative residual " + short_number(s.residual) + " of solver " + s.solver + " exceeds " +
+                      short_number(max_residual) + " (an iterative solver may not have converged; try --solver auto)");
   } else {
     s.solver = "none (every vertex is fixed)";
   }

@@ -3,15 +3,82 @@
 // helpers it shares.
 #include "intrinsic/parameterize.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <numeric>
 
 #include "core/natural_map.h"
 #include "intrinsic/assemble.h"
-#include <chrono>
 #include "intrinsic/error.h"
 #include "intrinsic/parameterizer.h"
 
 namespace intrinsic {
+
+namespace {
+
+// Two fixed vertices at one point fold the parameterization (a boundary that
+// touches itself, or collapsed triangles): refused, naming both vertices.
+void check_distinct_positions(const std::vector<FixedVertex>& given) {
+  std::vector<int> order(given.size());
+  std::iota(order.begin(), order.end(), 0);
+  const auto key = [&](int i) { return std::make_pair(given[i].uv.x(), given[i].uv.y()); };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  for (size_t k = 1; k < order.size(); ++k) {
+    const FixedVertex &a = given[order[k - 1]], &b = given[order[k]];
+    if (a.uv == b.uv)
+      throw_input("the boundary positions give vertices " + std::to_string(std::min(a.vertex, b.vertex)) + " and " +
+                  std::to_string(std::max(a.vertex, b.vertex)) + " the same position (" + short_number(a.uv.x()) +
+                  ", " + short_number(a.uv.y()) + ")");
+  }
+}
+
+// After a failed solve: what cheap checks can tell about why. Free vertices
+// that nonzero weights do not tie to any fixed vertex make the system
+// singular; non-finite weights and nearly degenerate faces make it
+// ill-conditioned. Empty when nothing is found.
+std::string likely_cause(const Mesh& mesh, const SparseMatrix& K, const Partition& p) {
+  std::vector<std::string> causes;
+  std::vector<std::vector<int>> adjacent(K.rows());
+  bool finite = true;
+  for (int c = 0; c < K.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(K, c); it; ++it) {
+      finite = finite && std::isfinite(it.value());
+      if (it.row() != it.col() && it.value() != 0) adjacent[it.row()].push_back(static_cast<int>(it.col()));
+    }
+  if (!finite) causes.push_back("some weights are not finite");
+  std::vector<char> reached(K.rows(), 0);
+  std::vector<int> queue(p.fixed_vertices.begin(), p.fixed_vertices.end());
+  for (int v : queue) reached[v] = 1;
+  for (size_t k = 0; k < queue.size(); ++k)
+    for (int w : adjacent[queue[k]])
+      if (!reached[w]) reached[w] = 1, queue.push_back(w);
+  int cut_off = 0, first = -1;
+  for (int v : p.free_vertices)
+    if (!reached[v] && cut_off++ == 0) first = v;
+  if (cut_off > 0)
+    causes.push_back(std::string(first < mesh.V.rows() ? "vertex " + std::to_string(first) : "a hole's fill vertex") +
+                     (cut_off > 1 ? " and " + std::to_string(cut_off - 1) + " other free vertices are" : " is") +
+                     " not tied to any fixed vertex by a nonzero weight");
+  double worst = INFINITY;
+  int worst_face = -1;
+  for (int f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector3d x0 = mesh.V.row(mesh.F(f, 0)), x1 = mesh.V.row(mesh.F(f, 1)), x2 = mesh.V.row(mesh.F(f, 2));
+    const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
+    const double ratio = (x1 - x0).cross(x2 - x0).norm() / longest;
+    if (ratio < worst) worst = ratio, worst_face = f;
+  }
+  if (worst < 1e-6) {
+    causes.push_back(mesh.describe_face(worst_face) + " is nearly degenerate (area / longest edge squared " +
+                     short_number(worst) + ")");
+  }
+  std::string out;
+  for (const std::string& c : causes) out += (out.empty() ? "; likely cause: " : "; ") + c;
+  return out;
+}
+
+}  // namespace
 
 std::vector<FixedVertex> boundary_positions(const Mesh& mesh, const ParamOptions& o) {
   const Topology& t = mesh.topology;
@@ -38,6 +105,7 @@ std::vector<FixedVertex> boundary_positions(const Mesh& mesh, const ParamOptions
   if (missing > 0)
     throw_input("the boundary positions miss " + std::to_string(missing) + " of the " +
                 std::to_string(outer.size()) + " outer-loop vertices, e.g. vertex " + std::to_string(first_missing));
+  check_distinct_positions(o.given);
   return o.given;
 }
 
@@ -166,7 +234,18 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
     return natural_holes_map(mesh, o, boundary_positions(mesh, o), area_weight);
   // Fill and free holes (and natural holes without a conformal term, which
   // are free) go through the Parameterizer.
-  ParamResult r = Parameterizer(mesh, o).solve();
+  ParamResult r;
+  try {
+    r = Parameterizer(mesh, o).solve();
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::Numerical) throw;
+    // Diagnose on the mesh itself (holes left free): cheap, and only on failure.
+    std::vector<char> fixed(mesh.V.rows(), 0);
+    for (const FixedVertex& fv : boundary_positions(mesh, o)) fixed[fv.vertex] = 1;
+    const Partition p = partition(static_cast<int>(mesh.V.rows()), fixed,
+                                  std::vector<char>(t.is_used.begin(), t.is_used.end()));
+    throw_numerical(e.what() + likely_cause(mesh, assemble_weight_matrix(mesh.V, mesh.F, o.weights), p));
+  }
   r.holes = !has_holes ? "none"
             : o.holes == HoleRule::Natural ? "free (method has no conformal term)"
                                            : hole_rule_name(o.holes);

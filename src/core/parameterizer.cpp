@@ -109,8 +109,8 @@ ParamResult Parameterizer::solve() {
       r.residual = std::max(r.residual, b > 0 ? e / b : e);
     }
     if (!(r.residual <= s.o.max_residual))
-      throw_numerical("the relative residual " + std::to_string(r.residual) + " of solver " + r.solver +
-                      " exceeds " + std::to_string(s.o.max_residual) +
+      throw_numerical("the relative residual " + short_number(r.residual) + " of solver " + r.solver +
+                      " exceeds " + short_number(s.o.max_residual) +
                       " (an iterative solver may not have converged; try --solver auto)");
   } else {
     r.solver = "none (every vertex is fixed)";

@@ -1,10 +1,15 @@
 // Atomic file replacement: readers of `path` see either the old file or the
 // complete new one, never a partial write, and failures leave nothing behind.
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <climits>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <vector>
@@ -33,7 +38,63 @@ mode_t process_umask() {
   return mask;
 }
 
+// Temporary files being written, for the signal handler: fixed storage and
+// atomic flags only, since a handler may use nothing else. A path that does
+// not fit (or more concurrent writes than slots) is simply not tracked.
+constexpr int kSlots = 16;
+constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+std::atomic<bool> g_slot_taken[kSlots];
+std::atomic<bool> g_slot_live[kSlots];
+char g_slot_path[kSlots][PATH_MAX];
+
+int track_temporary(const std::string& tmp) {
+  if (tmp.size() >= PATH_MAX) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    bool expected = false;
+    if (g_slot_taken[i].compare_exchange_strong(expected, true)) {
+      std::memcpy(g_slot_path[i], tmp.c_str(), tmp.size() + 1);
+      g_slot_live[i].store(true);
+      return i;
+    }
+  }
+  return -1;
+}
+
+void untrack_temporary(int slot) {
+  if (slot < 0) return;
+  g_slot_live[slot].store(false);
+  g_slot_taken[slot].store(false);
+}
+
+extern "C" void remove_temporaries_and_reraise(int sig) {
+  for (int i = 0; i < kSlots; ++i)
+    if (g_slot_live[i].load()) ::unlink(g_slot_path[i]);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+// Untracks the temporary file when the write finishes, however it finishes.
+struct TrackedTemporary {
+  int slot;
+  ~TrackedTemporary() { untrack_temporary(slot); }
+};
+
 }  // namespace
+
+void remove_temporary_files_on_signals() {
+  for (int sig : kCleanupSignals) {
+    struct sigaction sa {};
+    sa.sa_handler = remove_temporaries_and_reraise;
+    sigemptyset(&sa.sa_mask);
+    struct sigaction old {};
+    // A signal the caller's parent ignores (nohup) stays ignored.
+    if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    ::sigaction(sig, &sa, nullptr);
+  }
+  // With a file size limit (ulimit -f), exceeding it must fail the write with
+  // EFBIG (reported, temporary removed), not kill the process.
+  std::signal(SIGXFSZ, SIG_IGN);
+}
 
 void write_file_atomically(const std::string& path, const std::string& contents) {
   if (path.empty()) throw_output("cannot write a file with an empty name");
@@ -46,9 +107,18 @@ void write_file_atomically(const std::string& path, const std::string& contents)
   std::string tmpl = dir + "/." + base + ".tmp.XXXXXX";
   std::vector<char> buf(tmpl.begin(), tmpl.end());
   buf.push_back('\0');
+  // The cleanup signals wait while the file is created and tracked, so that
+  // none can land between the two and leave it behind.
+  sigset_t cleanup_signals, previous;
+  sigemptyset(&cleanup_signals);
+  for (int sig : kCleanupSignals) sigaddset(&cleanup_signals, sig);
+  ::pthread_sigmask(SIG_BLOCK, &cleanup_signals, &previous);
   const int fd = ::mkstemp(buf.data());
-  if (fd < 0) throw_output("cannot write " + path + ": " + std::strerror(errno));
-  const std::string tmp(buf.data());
+  const int mkstemp_errno = errno;
+  const std::string tmp(fd >= 0 ? buf.data() : "");
+  const TrackedTemporary tracked{fd >= 0 ? track_temporary(tmp) : -1};
+  ::pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  if (fd < 0) throw_output("cannot write " + path + ": " + std::strerror(mkstemp_errno));
 
   auto fail = [&](int err) {
     ::close(fd);

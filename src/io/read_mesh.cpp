@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 
 #include "intrinsic/io.h"
@@ -77,12 +78,26 @@ MeshData read_mesh(const std::string& path, const ReadOptions& options) {
     struct stat st {};
     if (::fstat(fd, &st) != 0) throw_input("cannot read " + path + ": " + std::strerror(errno));
     if (S_ISDIR(st.st_mode)) throw_input("cannot read " + path + ": it is a directory");
+    // A file larger than any mesh within the limits could be (the same bound
+    // as for inflated gzip data) is refused before it is read into memory.
+    const std::uint64_t max_bytes = inflate_cap(options);
+    auto too_big = [&] {
+      char mib[32];
+      std::snprintf(mib, sizeof mib, "%.1f MiB", static_cast<double>(max_bytes) / (1 << 20));
+      throw_input(path + ": the file is larger than " + mib + ", the most a mesh within the limits (" +
+                  std::to_string(options.max_vertices) + " vertices, " + std::to_string(options.max_faces) +
+                  " faces) can take");
+    };
+    if (S_ISREG(st.st_mode) && static_cast<std::uint64_t>(st.st_size) > max_bytes) too_big();
     // One read of the announced size; pipes and growing files fall back to
     // reading in chunks until EOF.
     std::size_t have = 0;
     bytes.resize(S_ISREG(st.st_mode) ? static_cast<std::size_t>(st.st_size) + 1 : (1u << 20));
     while (true) {
-      if (have == bytes.size()) bytes.resize(bytes.size() * 2);
+      if (have == bytes.size()) {
+        if (have > max_bytes) too_big();
+        bytes.resize(bytes.size() * 2);
+      }
       const ssize_t n = ::read(fd, &bytes[have], bytes.size() - have);
       if (n < 0) {
         if (errno == EINTR) continue;

@@ -1,0 +1,156 @@
+#!/usr/bin/env python3
+"""Writes the seed corpus fuzz/corpus/<target>/: small valid and invalid files.
+
+Run from anywhere; the files are committed, so this is only needed to change
+them. Deterministic (gzip without timestamps)."""
+import gzip
+import os
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+# A square split into 4 triangles around a centre vertex, and a 3x3 grid.
+SQUARE_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 0.5, 0.1)]
+SQUARE_F = [(0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)]
+GRID_V = [(x, y, 0.1 * ((x * y) % 2)) for y in range(3) for x in range(3)]
+GRID_F = []
+for y in range(2):
+    for x in range(2):
+        a = y * 3 + x
+        GRID_F += [(a, a + 1, a + 4), (a, a + 4, a + 3)]
+# The grid with its centre face removed ... too small for a hole; an annulus:
+RING_V = [(x, y, 0) for y in range(4) for x in range(4)]
+RING_F = []
+for y in range(3):
+    for x in range(3):
+        if (x, y) == (1, 1):
+            continue
+        a = y * 4 + x
+        RING_F += [(a, a + 1, a + 5), (a, a + 5, a + 4)]
+
+
+def obj(V, F, uv=False):
+    s = "# seed\n" + "".join("v %g %g %g\n" % v for v in V)
+    if uv:
+        s += "".join("vt %g %g\n" % (v[0], v[1]) for v in V)
+        s += "".join("f %d/%d %d/%d %d/%d\n" % (a + 1, a + 1, b + 1, b + 1, c + 1, c + 1) for a, b, c in F)
+    else:
+        s += "".join("f %d %d %d\n" % (a + 1, b + 1, c + 1) for a, b, c in F)
+    return s
+
+
+def off(V, F):
+    return "OFF\n%d %d 0\n" % (len(V), len(F)) + "".join("%g %g %g\n" % v for v in V) + \
+        "".join("3 %d %d %d\n" % f for f in F)
+
+
+def ply_header(fmt, nv, nf, uv=False):
+    return ("ply\nformat %s 1.0\ncomment seed\nelement vertex %d\nproperty float x\nproperty float y\n"
+            "property float z\n%selement face %d\nproperty list uchar int vertex_indices\nend_header\n"
+            % (fmt, nv, "property float u\nproperty float v\n" if uv else "", nf))
+
+
+def ply_ascii(V, F, uv=False):
+    body = "".join(("%g %g %g %g %g\n" % (v + v[:2])) if uv else ("%g %g %g\n" % v) for v in V)
+    body += "".join("3 %d %d %d\n" % f for f in F)
+    return ply_header("ascii", len(V), len(F), uv) + body
+
+
+def ply_binary(V, F, big=False, uv=False):
+    e = ">" if big else "<"
+    fmt = "binary_big_endian" if big else "binary_little_endian"
+    b = ply_header(fmt, len(V), len(F), uv).encode()
+    for v in V:
+        b += struct.pack(e + ("5f" if uv else "3f"), *(v + v[:2] if uv else v))
+    for f in F:
+        b += struct.pack(e + "B3i", 3, *f)
+    return b
+
+
+def write(target, name, data):
+    d = os.path.join(HERE, "corpus", target)
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, name), "wb") as f:
+        f.write(data.encode() if isinstance(data, str) else data)
+
+
+def gz(data):
+    return gzip.compress(data.encode() if isinstance(data, str) else data, mtime=0)
+
+
+def main():
+    o = {
+        "square.obj": obj(SQUARE_V, SQUARE_F),
+        "grid_uv.obj": obj(GRID_V, GRID_F, uv=True),
+        "ring.obj": obj(RING_V, RING_F),
+        "quad_negative.obj": "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf -4//1 -3//1 -2//1 -1//1\n",
+        "zero_index.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n",
+        "nan.obj": "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        "huge_index.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n",
+        "truncated.obj": obj(SQUARE_V, SQUARE_F)[:-7],
+        "crlf.obj": obj(SQUARE_V, SQUARE_F).replace("\n", "\r\n"),
+    }
+    f = {
+        "square.off": off(SQUARE_V, SQUARE_F),
+        "grid.off": off(GRID_V, GRID_F),
+        "ring.off": off(RING_V, RING_F),
+        "coff.off": "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2\n",
+        "huge_counts.off": "OFF\n2000000000 2000000000 0\n0 0 0\n",
+        "negative.off": "OFF\n-3 1 0\n",
+        "truncated.off": off(SQUARE_V, SQUARE_F)[:-10],
+        "inf.off": "OFF 3 1 0\n0 0 inf\n1 0 0\n0 1 0\n3 0 1 2\n",
+    }
+    p = {
+        "square_ascii.ply": ply_ascii(SQUARE_V, SQUARE_F),
+        "grid_uv_ascii.ply": ply_ascii(GRID_V, GRID_F, uv=True),
+        "square_le.ply": ply_binary(SQUARE_V, SQUARE_F),
+        "square_be.ply": ply_binary(SQUARE_V, SQUARE_F, big=True),
+        "ring_le.ply": ply_binary(RING_V, RING_F),
+        "grid_uv_be.ply": ply_binary(GRID_V, GRID_F, big=True, uv=True),
+        "truncated_le.ply": ply_binary(SQUARE_V, SQUARE_F)[:-5],
+        "huge_count.ply": ply_header("binary_little_endian", 4000000000, 1) + "xyz",
+        "extra_element.ply": ply_header("ascii", 3, 1).replace(
+            "end_header", "element edge 1\nproperty int a\nproperty list uchar float w\nend_header") +
+            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n7 2 0.5 0.5\n",
+    }
+    for k, v in o.items():
+        write("obj", k, v)
+    for k, v in f.items():
+        write("off", k, v)
+    for k, v in p.items():
+        write("ply", k, v)
+    write("gzip", "square.obj.gz", gz(o["square.obj"]))
+    write("gzip", "ring.off.gz", gz(f["ring.off"]))
+    write("gzip", "square_le.ply.gz", gz(p["square_le.ply"]))
+    write("gzip", "two_members.gz", gz(o["square.obj"][:40]) + gz(o["square.obj"][40:]))
+    write("gzip", "truncated.gz", gz(o["grid_uv.obj"])[:-12])
+    write("gzip", "bomb.gz", gz(b"v 0 0 0\n" + b" " * 200000))
+    write("gzip", "trailing_zeros.gz", gz(o["square.obj"]) + b"\0" * 8)
+    b = {
+        "square.txt": "# corners\n0 0 0\n1 1 0\n2 1 1\n3 0 1\n",
+        "spaces.txt": "  7\t0.5  -0.25  # comment\n\n99 1e3 -1e-3\n",
+        "duplicate.txt": "0 0 0\n0 1 1\n",
+        "out_of_range.txt": "100 0 0\n",
+        "not_number.txt": "1 x 0\n",
+        "nan.txt": "1 nan 0\n",
+        "extra.txt": "1 0 0 0\n",
+    }
+    for k, v in b.items():
+        write("boundary", k, v)
+    # Pipeline: one option byte, the mesh, optionally "\n===\n" + boundary file.
+    pl = {
+        "square_obj": b"\x00" + o["square.obj"].encode(),
+        "grid_off_authalic": b"\x05" + f["grid.off"].encode(),
+        "square_ply_mixed_free": bytes([2 | (2 << 2) | 64]) + p["square_ascii.ply"].encode(),
+        "ring_obj_fill": b"\x00" + o["ring.obj"].encode(),
+        "ring_obj_tutte_square": bytes([(3 << 2) | 32]) + o["ring.obj"].encode(),
+        "square_given": b"\x00" + o["square.obj"].encode() + b"\n===\n" + b["square.txt"].encode(),
+        "square_given_coincident": b"\x00" + o["square.obj"].encode() + b"\n===\n0 0 0\n1 0 0\n2 1 1\n3 0 1\n",
+        "grid_floater_uniform": bytes([(4 << 2) | 128]) + o["grid_uv.obj"].encode(),
+    }
+    for k, v in pl.items():
+        write("pipeline", k, v)
+
+
+if __name__ == "__main__":
+    main()
