@@ -2,7 +2,7 @@
 // irregular curved disks of growing size and on a shared scanned mesh.
 //
 // Each (mesh, method) case runs in a child process (fork), so its peak
-// memory (ru_maxrss) is its own. Per stage the median of --runs runs is
+// memory (ru_maxrss, taken before the reference check) is its own. Per stage the median of --runs runs is
 // reported; the scaling exponent is the least-squares slope of log(total)
 // against log(V) over the generated meshes. Every case is checked against a
 // plain reference solve (triplet assembly, Eigen's simplicial LDL^T or
@@ -36,7 +36,10 @@
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
 #include "intrinsic/parameterize.h"
+#if __has_include("solve/suitesparse.h")  // absent when measuring older trees
 #include "solve/suitesparse.h"
+#define INTRINSIC_BENCH_ORDERINGS 1
+#endif
 #ifdef INTRINSIC_HAVE_SUITESPARSE
 #include <Eigen/UmfPackSupport>
 #endif
@@ -169,6 +172,9 @@ CaseResult run_case(const std::string& path, const std::string& method, int runs
   }
   r.vertices = static_cast<int>(mesh.V.rows());
   for (auto& [stage, x] : times) r.median_ms[stage] = median(x);
+  struct rusage ru {};
+  getrusage(RUSAGE_SELF, &ru);  // before the reference solve, which is not part of the pipeline
+  r.peak_mb = ru.ru_maxrss / 1024.0;
   if (r.vertices <= check_max) {
     const MatrixX2d ref = reference_uv(mesh, options_for(method));
     r.check_error = (UV - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff();
@@ -181,12 +187,12 @@ std::string to_line(const CaseResult& r) {
   std::ostringstream s;
   s.precision(10);
   s << r.mesh << '\t' << r.vertices << '\t' << r.method << '\t' << r.solver << '\t' << r.check_error << '\t'
-    << r.ok;
+    << r.ok << '\t' << r.peak_mb;
   for (const char* st : kStages) s << '\t' << r.median_ms.at(st);
   return s.str();
 }
 
-CaseResult from_line(const std::string& line, double peak_mb) {
+CaseResult from_line(const std::string& line) {
   std::istringstream s(line);
   CaseResult r;
   std::string field;
@@ -199,11 +205,12 @@ CaseResult from_line(const std::string& line, double peak_mb) {
   r.check_error = std::stod(field);
   std::getline(s, field, '\t');
   r.ok = field == "1";
+  std::getline(s, field, '\t');
+  r.peak_mb = std::stod(field);
   for (const char* st : kStages) {
     std::getline(s, field, '\t');
     r.median_ms[st] = std::stod(field);
   }
-  r.peak_mb = peak_mb;
   return r;
 }
 
@@ -246,7 +253,7 @@ CaseResult run_child(const std::string& path, const std::string& method, int run
     return r;
   }
   line.pop_back();
-  return from_line(line, ru.ru_maxrss / 1024.0);
+  return from_line(line);
 }
 
 std::vector<std::string> split(const std::string& s) {
@@ -265,7 +272,7 @@ std::string fmt(double ms) {
 }
 
 int orderings(int vertices) {
-#ifdef INTRINSIC_HAVE_SUITESPARSE
+#if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_BENCH_ORDERINGS)
   GenerateOptions g;
   g.rings = std::max(2, static_cast<int>(std::lround(std::sqrt(vertices / 3.0))));
   const Mesh mesh = make_mesh(generate_wavy_patch(g));

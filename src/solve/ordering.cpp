@@ -10,8 +10,9 @@ namespace {
 
 struct Piece {
   std::vector<int> vertices;
-  int first;  // first position of the piece in the permutation
-  int tag;    // owner[] value of its vertices
+  int first;      // first position of the piece in the permutation
+  int tag;        // owner[] value of its vertices
+  int start = -1; // a vertex known to be far from the others, or -1
 };
 
 class Dissection {
@@ -68,10 +69,19 @@ class Dissection {
         emit_all(piece.vertices, piece.first);
         continue;
       }
-      bfs(piece.vertices[0], piece.tag, order);
+      // A half's peripheral vertex is known from its parent's search: the
+      // parent's start for the near half, its last vertex for the far one.
+      // Otherwise search once to find one.
+      if (piece.start < 0) {
+        bfs(piece.vertices[0], piece.tag, order);
+        piece.start = order.back();
+        clear_levels(order);
+      }
+      const int levels = bfs(piece.start, piece.tag, order);
       if (static_cast<int>(order.size()) < size) {
         // Disconnected: the component found first and the rest, no separator.
-        Piece a{order, piece.first, next_tag++}, b{{}, piece.first + static_cast<int>(order.size()), next_tag++};
+        Piece a{order, piece.first, next_tag++, order.back()},
+            b{{}, piece.first + static_cast<int>(order.size()), next_tag++};
         for (int v : piece.vertices)
           if (level_[v] < 0) b.vertices.push_back(v);
         clear_levels(order);
@@ -81,10 +91,6 @@ class Dissection {
         stack.push_back(std::move(a));
         continue;
       }
-      // Pseudo-peripheral start: the last vertex reached, searched from again.
-      const int far = order.back();
-      clear_levels(order);
-      const int levels = bfs(far, piece.tag, order);
       if (levels < 3) {  // no interior level to cut at
         clear_levels(order);
         emit_all(order, piece.first);
@@ -104,7 +110,7 @@ class Dissection {
         below += count[l];
       }
       if (cut < 0) cut = balanced;
-      Piece a{{}, piece.first, next_tag++}, b{{}, 0, next_tag++};
+      Piece a{{}, piece.first, next_tag++, piece.start}, b{{}, 0, next_tag++, order.back()};
       std::vector<int> separator;
       for (int v : order) {
         if (level_[v] < cut) a.vertices.push_back(v);

@@ -163,6 +163,10 @@ bool UmfpackFactor::factor(const SparseMatrix& input) {
   // Mesh matrices have a symmetric pattern and a strong diagonal: the
   // symmetric strategy keeps the ordering's fill.
   s.control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;
+  // No iterative refinement: each step costs a matrix product and two
+  // triangular solves per right-hand side, and the LU of these diagonally
+  // dominated matrices is accurate without (the caller checks the residual).
+  s.control[UMFPACK_IRSTEP] = 0;
   void* symbolic = nullptr;
   Long status;
   if (s.ordering == Ordering::AMD || s.ordering == Ordering::METIS) {
