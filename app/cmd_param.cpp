@@ -1,11 +1,20 @@
-// `intrinsic param`: read, validate, parameterize, write the mesh with UVs
-// and the distortion report.
+// `intrinsic param`: read, validate, parameterize (one chart per component
+// when the mesh has several), optionally optimize lambda or the boundary,
+// write the mesh with UVs and the distortion report.
+#include <unistd.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "command.h"
+#include "intrinsic/charts.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
+#include "intrinsic/boundary_optimization.h"
+#include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
 #include "report.h"
 
@@ -18,10 +27,41 @@ struct ParamArgs {
   double lambda = 1, mu = 0;
   bool lambda_set = false, mu_set = false;
   std::string boundary = "circle", spacing = "arclength", scale = "unit", holes = "fill", solver = "auto";
-  bool binary = false, quiet = false;
+  std::vector<std::string> pins;  // "V:U,V"
+  bool binary = false, quiet = false, largest_component = false;
   std::int64_t max_vertices = 50'000'000;
   double max_residual = 1e-8;
+  std::string optimize_lambda;            // "", "edge" or "area"
+  std::vector<double> lambda_range{0, 1};
+  std::string optimize_boundary;  // "", "edge", "area", "dirichlet"
+  int iterations = 200;
+  double tolerance = 1e-6;
+  std::string gradient = "adjoint", descent = "lbfgs";
 };
+
+// "V:U,V" -> pin. Malformed text is a usage error; the vertex range is
+// checked against the mesh later (an input error).
+FixedVertex parse_pin(const std::string& text) {
+  const auto bad = [&]() -> FixedVertex {
+    throw_usage("--pin '" + text + "': expected VERTEX:U,V, e.g. --pin 12:0.5,0");
+  };
+  const size_t colon = text.find(':'), comma = text.find(',', colon == std::string::npos ? 0 : colon);
+  if (colon == std::string::npos || comma == std::string::npos) return bad();
+  FixedVertex p{};
+  const char* b = text.data();
+  auto [end, ec] = std::from_chars(b, b + colon, p.vertex);
+  if (ec != std::errc() || end != b + colon || colon == 0) return bad();
+  auto number = [&](size_t from, size_t to, double& x) {
+    // strtod, not from_chars<double>: the latter is missing from older libstdc++
+    const std::string part = text.substr(from, to - from);
+    char* stop = nullptr;
+    x = std::strtod(part.c_str(), &stop);
+    return !part.empty() && !std::isspace(static_cast<unsigned char>(part[0])) && stop == part.c_str() + part.size() &&
+           std::isfinite(x);
+  };
+  if (!number(colon + 1, comma, p.uv.x()) || !number(comma + 1, text.size(), p.uv.y())) return bad();
+  return p;
+}
 
 ParamOptions to_options(const ParamArgs& a, int num_vertices) {
   ParamOptions o;
@@ -36,27 +76,34 @@ ParamOptions to_options(const ParamArgs& a, int num_vertices) {
   }
   if (a.boundary == "circle") o.boundary = BoundaryShape::Circle;
   else if (a.boundary == "square") o.boundary = BoundaryShape::Square;
+  else if (a.boundary == "natural") o.boundary = BoundaryShape::Natural;
   else {
     o.boundary = BoundaryShape::Given;
     o.given = read_boundary_file(a.boundary, num_vertices);
   }
   o.spacing = a.spacing == "uniform" ? Spacing::Uniform : Spacing::ArcLength;
   o.scale = a.scale == "surface" ? ScaleMode::Surface : ScaleMode::Unit;
-  o.holes = a.holes == "free" ? HoleRule::Free : HoleRule::Fill;
+  o.holes = a.holes == "free" ? HoleRule::Free : a.holes == "natural" ? HoleRule::Natural : HoleRule::Fill;
+  for (const std::string& p : a.pins) o.pins.push_back(parse_pin(p));
+  if (!o.pins.empty() && o.boundary != BoundaryShape::Natural) throw_usage("--pin applies to --boundary natural only");
+  if (o.pins.size() == 1) throw_usage("--pin needs at least two pins (translation, rotation and scale)");
   o.solver = parse_solver(a.solver);
   o.max_residual = a.max_residual;
   return o;
 }
 
 std::string boundary_label(const ParamArgs& a) {
-  return a.boundary == "circle" || a.boundary == "square" ? a.boundary : "file:" + a.boundary;
+  return a.boundary == "circle" || a.boundary == "square" || a.boundary == "natural" ? a.boundary
+                                                                                     : "file:" + a.boundary;
 }
 
 }  // namespace
 
 void register_param(CLI::App& app, Runner& run) {
   auto a = std::make_shared<ParamArgs>();
-  CLI::App* cmd = app.add_subcommand("param", "Parameterize a disk-like mesh with a fixed boundary");
+  CLI::App* cmd = app.add_subcommand(
+      "param", "Parameterize a mesh with boundary: a fixed outer boundary or the natural conformal map; "
+               "several components become charts laid out side by side");
   cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
   cmd->add_option("-o,--output", a->output, "Output mesh with UVs (.obj or .ply)")->required();
   cmd->add_option("--method", a->method, "conformal | authalic | mixed | tutte | floater")
@@ -66,22 +113,59 @@ void register_param(CLI::App& app, Runner& run) {
                                    "Weight of the conformal energy (mixed)");
   cmd->add_option_function<double>("--mu", [a](double v) { a->mu = v; a->mu_set = true; },
                                    "Weight of the authalic energy (mixed)");
-  cmd->add_option("--boundary", a->boundary, "circle | square | FILE with lines 'vertex u v'")->capture_default_str();
+  cmd->add_option("--boundary", a->boundary,
+                  "circle | square | natural (natural conformal map, no fixed boundary; conformal only) | "
+                  "FILE with lines 'vertex u v'")
+      ->capture_default_str();
+  cmd->add_option("--pin", a->pins,
+                  "Natural boundary: keep vertex V exactly at (U,V); repeatable, at least two, any vertex, "
+                  "no rescaling. Default: the two outer-loop vertices farthest apart in 3D, at their 3D distance")
+      ->type_name("V:U,V")
+      ->allow_extra_args(false)  // one value per --pin, so "--pin 1:0,0 in.obj" leaves the input alone
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--spacing", a->spacing, "Boundary spacing: arclength | uniform")
       ->check(CLI::IsMember({"arclength", "uniform"}))
       ->capture_default_str();
-  cmd->add_option("--scale", a->scale, "unit: fit [0,1]^2 | surface: parameter area = 3D area")
+  cmd->add_option("--scale", a->scale,
+                  "unit: fit [0,1]^2 | surface: parameter area = 3D area (natural: pins at their 3D distance)")
       ->check(CLI::IsMember({"unit", "surface"}))
       ->capture_default_str();
-  cmd->add_option("--holes", a->holes, "Holes without given positions: fill (temporary fan) | free")
-      ->check(CLI::IsMember({"fill", "free"}))
+  cmd->add_option("--holes", a->holes,
+                  "Holes without given positions, fixed-boundary modes: fill (temporary fan) | free | natural "
+                  "(natural conformal condition on hole loops; see docs/holes.md). Natural boundary: every loop is natural")
+      ->check(CLI::IsMember({"fill", "free", "natural"}))
       ->capture_default_str();
   cmd->add_option("--solver", a->solver, "auto | cholmod | umfpack | eigen-llt | eigen-lu | cg | bicgstab")
       ->capture_default_str();
   cmd->add_option("--max-residual", a->max_residual, "Fail (exit 3) if the relative residual exceeds this")
       ->capture_default_str();
+  cmd->add_option("--optimize-lambda", a->optimize_lambda,
+                  "Blend lambda*conformal + (1-lambda)*authalic with the lambda minimising edge or area distortion")
+      ->check(CLI::IsMember({"edge", "area"}));
+  cmd->add_option("--lambda-range", a->lambda_range, "Interval searched by --optimize-lambda, as LO,HI")
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
+  cmd->add_option("--optimize-boundary", a->optimize_boundary,
+                  "Move the boundary to minimise edge, area or (symmetric) dirichlet distortion")
+      ->check(CLI::IsMember({"edge", "area", "dirichlet"}));
+  cmd->add_option("--iterations", a->iterations, "Boundary optimization: iteration limit")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--tolerance", a->tolerance, "Boundary optimization: stop below this relative decrease")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--gradient", a->gradient, "Boundary optimization gradient: adjoint | responses")
+      ->check(CLI::IsMember({"adjoint", "responses"}))
+      ->capture_default_str();
+  cmd->add_option("--descent", a->descent, "Boundary optimization descent: lbfgs | gradient")
+      ->check(CLI::IsMember({"lbfgs", "gradient"}))
+      ->capture_default_str();
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
   cmd->add_flag("--binary", a->binary, "Binary PLY output");
+  cmd->add_flag("--largest-component", a->largest_component,
+                "Keep only the component with the most faces (vertex numbering unchanged); "
+                "otherwise every component becomes its own chart");
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();
   cmd->add_flag("-q,--quiet", a->quiet, "Print nothing on success");
   cmd->callback([&run, a] {
@@ -90,15 +174,104 @@ void register_param(CLI::App& app, Runner& run) {
       check_output_mesh_path(a->output);
       parse_method(a->method);
       parse_solver(a->solver);
+      for (const std::string& p : a->pins) parse_pin(p);  // syntax first: a usage error whatever the file
       ReadOptions ro;
       ro.max_vertices = a->max_vertices;
       const MeshData data = read_mesh(a->input, ro);
       const double t_read = elapsed_ms(t0);
       const auto t1 = std::chrono::steady_clock::now();
-      const Mesh mesh = make_mesh(data);
+      ValidateOptions vo;
+      vo.allow_several_components = true;
+      vo.allow_closed = a->largest_component;  // a closed small piece may be dropped; the kept one is checked below
+      Mesh mesh = make_mesh(data, vo);
+      if (a->largest_component && mesh.topology.num_components > 1) {
+        const int reoriented = mesh.validation.reoriented_faces;
+        mesh = make_mesh(component_data(mesh, largest_component(mesh)));
+        mesh.validation.reoriented_faces = reoriented;
+      }
       const double t_validate = elapsed_ms(t1);
       const ParamOptions options = to_options(*a, static_cast<int>(mesh.V.rows()));
-      const ParamResult r = parameterize(mesh, options);
+      ParamResult r;
+      nlohmann::json optimal;
+      ChartsResult charts;
+      const bool several = mesh.topology.num_components > 1;
+      if (several && (!a->optimize_lambda.empty() || !a->optimize_boundary.empty()))
+        throw_usage("--optimize-lambda and --optimize-boundary take a single component; use --largest-component");
+      if (several) {
+        charts = parameterize_charts(mesh, options);
+        r.UV = charts.UV;
+        r.solver = charts.solver;
+        r.residual = charts.residual;
+        r.scale = charts.scale;
+        r.timings = charts.timings;
+      } else if (!a->optimize_lambda.empty()) {
+        if (!a->optimize_boundary.empty())
+          throw_usage("--optimize-lambda and --optimize-boundary cannot be combined");
+        if (a->method != "conformal" || a->lambda_set || a->mu_set)
+          throw_usage("--optimize-lambda chooses the blend itself; do not give --method, --lambda or --mu");
+        OptimalLambdaOptions lo;
+        lo.base = options;
+        lo.energy = parse_lambda_energy(a->optimize_lambda);
+        lo.lo = a->lambda_range.at(0);
+        lo.hi = a->lambda_range.at(1);
+        const OptimalLambdaResult best = optimal_lambda(mesh, lo);
+        r = best.map;
+        optimal = {{"energy", a->optimize_lambda},
+                   {"lambda", best.lambda},
+                   {"range", {lo.lo, lo.hi}},
+                   {"energy_at_lambda", best.energy},
+                   {"energy_at_0_authalic", best.energy_at_0},
+                   {"energy_at_1_conformal", best.energy_at_1},
+                   {"polynomial", best.coefficients},
+                   {"boundary_scale", best.boundary_scale},
+                   {"note", "map = lambda*conformal + (1-lambda)*authalic with a common fixed boundary; energies "
+                            "evaluated with the boundary scaled so that parameter area = 3D area"},
+                   {"timings_ms", {{"conformal", best.conformal_ms}, {"authalic", best.authalic_ms},
+                                   {"polynomial", best.polynomial_ms}}}};
+      } else if (!a->optimize_boundary.empty()) {
+        BoundaryOptimizationOptions bo;
+        bo.base = options;
+        bo.energy = parse_boundary_energy(a->optimize_boundary);
+        bo.route = parse_gradient_route(a->gradient);
+        bo.descent = parse_descent(a->descent);
+        bo.max_iterations = a->iterations;
+        bo.tolerance = a->tolerance;
+        const bool tty = isatty(fileno(stderr));
+        if (!a->quiet)
+          bo.progress = [tty](int it, double e) {
+            std::cerr << (tty ? "\r" : "") << "boundary optimization: iteration " << it << ", energy " << e
+                      << (tty ? "   " : "\n") << std::flush;
+          };
+        const BoundaryOptimizationResult best = optimize_boundary(mesh, bo);
+        if (!a->quiet && tty && best.iterations > 0) std::cerr << "\n";
+        r.UV = best.UV;
+        r.solver = solver_name(options.solver);
+        r.factorizations = best.factorizations;
+        r.timings.solve_ms = best.optimize_ms;
+        r.timings.factor_ms = best.setup_ms;
+        if (options.scale == ScaleMode::Unit) {
+          fit_unit_square(r.UV, mesh.topology.is_used);
+          r.scale = "unit";
+        } else {
+          r.scale = "surface";
+        }
+        optimal = {{"boundary_energy", a->optimize_boundary},
+                   {"gradient", a->gradient},
+                   {"descent", a->descent},
+                   {"iterations", best.iterations},
+                   {"stop_reason", best.stop_reason},
+                   {"energy_initial", best.energy_history.front()},
+                   {"energy_final", best.energy_history.back()},
+                   {"energy_history", best.energy_history},
+                   {"solves", best.solves},
+                   {"response_solves", best.response_solves},
+                   {"factorizations", best.factorizations},
+                   {"flipped_initial", best.flipped_initial},
+                   {"flipped_final", best.flipped_final},
+                   {"timings_ms", {{"setup", best.setup_ms}, {"optimize", best.optimize_ms}}}};
+      } else {
+        r = parameterize(mesh, options);
+      }
       const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, r.UV);
 
       const auto t2 = std::chrono::steady_clock::now();
@@ -109,16 +282,41 @@ void register_param(CLI::App& app, Runner& run) {
 
       nlohmann::json report = mesh_json(mesh);
       report["output"] = a->output;
-      report["method"] = a->method;
-      report["lambda"] = options.weights.method == Method::Mixed ? options.weights.lambda
+      report["method"] = a->optimize_lambda.empty() ? a->method : "optimal-lambda";
+      if (!a->optimize_lambda.empty()) report["optimal_lambda"] = optimal;
+      if (!a->optimize_boundary.empty()) report["boundary_optimization"] = optimal;
+      report["lambda"] = !a->optimize_lambda.empty() ? optimal["lambda"].get<double>()
+                         : options.weights.method == Method::Mixed ? options.weights.lambda
                          : options.weights.method == Method::Conformal ? 1.0 : 0.0;
-      report["mu"] = options.weights.method == Method::Mixed ? options.weights.mu
+      report["mu"] = !a->optimize_lambda.empty() ? 1 - optimal["lambda"].get<double>()
+                     : options.weights.method == Method::Mixed ? options.weights.mu
                      : options.weights.method == Method::Authalic ? 1.0 : 0.0;
       report["boundary"] = boundary_label(*a);
       report["spacing"] = a->spacing;
       report["scale"] = r.scale;
-      report["holes"] = a->holes;
+      report["holes"] = several || r.holes.empty() ? a->holes : r.holes;
       report["filled_holes"] = r.filled_holes;
+      if (!r.pins.empty()) {
+        nlohmann::json pins = nlohmann::json::array();
+        for (const FixedVertex& p : r.pins) pins.push_back({{"vertex", p.vertex}, {"u", p.uv.x()}, {"v", p.uv.y()}});
+        report["pins"] = pins;  // as solved, before any --scale unit fit
+      }
+      // The scale the map came out at: parameter area over 3D area.
+      report["area_ratio"] = std::abs(parameter_area(mesh.F, r.UV)) / surface_area(mesh.V, mesh.F);
+      if (several) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const ChartSummary& c : charts.charts)
+          list.push_back({{"component", c.component},
+                          {"vertices", c.vertices},
+                          {"faces", c.faces},
+                          {"boundary", c.boundary},
+                          {"holes", c.holes},
+                          {"packed", c.packed},
+                          {"flipped_triangles", c.flipped_triangles},
+                          {"angle_distortion_mean", c.angle_distortion_mean},
+                          {"uv_box", {{"min", {c.box_min.x(), c.box_min.y()}}, {"max", {c.box_max.x(), c.box_max.y()}}}}});
+        report["charts"] = list;
+      }
       report["solver"] = r.solver;
       report["residual"] = r.residual;
       report["free_vertices"] = r.free_vertices;
@@ -141,8 +339,10 @@ void register_param(CLI::App& app, Runner& run) {
         }
       }
       if (!a->quiet)
-        std::cout << a->output << ": " << mesh.V.rows() << " vertices, " << a->method << ", "
-                  << boundary_label(*a) << ", " << d.flipped_triangles << " flipped, angle distortion mean "
+        std::cout << a->output << ": " << mesh.V.rows() << " vertices, " << report["method"].get<std::string>()
+                  << (a->optimize_lambda.empty() ? "" : " lambda=" + std::to_string(optimal["lambda"].get<double>())) << ", "
+                  << boundary_label(*a) << (several ? ", " + std::to_string(charts.charts.size()) + " charts" : "")
+                  << ", " << d.flipped_triangles << " flipped, angle distortion mean "
                   << d.angle_distortion.mean << ", " << static_cast<long>(elapsed_ms(t0)) << " ms\n";
       return 0;
     };

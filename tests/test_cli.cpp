@@ -71,8 +71,16 @@ TEST(Cli, ErrorsGiveCodeMessageAndNoOutput) {
       {"closed", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n", "", 2, "closed"},
       {"non-manifold edge",
        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n", "", 2, "has 3 faces"},
-      {"two components",
-       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 6 0 0\nv 5 1 0\nf 1 2 3\nf 4 5 6\n", "", 2, "2 connected components"},
+      {"closed component among several",
+       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 0 0\nv 6 0 0\nv 5 1 0\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\nf 5 6 7\n",
+       "", 2, "component 0 is closed"},
+      {"pin syntax", square, "--boundary natural --pin 1:0 --pin 2:1,0", 1, "expected VERTEX:U,V"},
+      {"pin letters", square, "--boundary natural --pin a:0,0 --pin 2:1,0", 1, "expected VERTEX:U,V"},
+      {"one pin", square, "--boundary natural --pin 1:0,0", 1, "at least two"},
+      {"pin out of range", square, "--boundary natural --pin 1:0,0 --pin 99:1,0", 2, "vertex 99, which does not exist"},
+      {"pin without natural", square, "--pin 1:0,0 --pin 2:1,0", 1, "natural only"},
+      {"natural authalic", square, "--boundary natural --method authalic", 1, "conformal method"},
+      {"unknown holes rule", square, "--holes magic", 1, "holes"},
       {"unknown method", square, "--method foo", 1, "method"},
       {"lambda without mixed", square, "--lambda 0.5", 1, "--method mixed only"},
       {"mixed zero", square, "--method mixed --lambda 0 --mu 0", 1, "both be zero"},
@@ -123,6 +131,46 @@ TEST(Cli, BoundaryFileMustListOuterLoop) {
   EXPECT_NEAR(out.TC(4, 0), 1.0, 1e-12);  // centre of the given square, not rescaled
   EXPECT_NEAR(out.TC(4, 1), 1.0, 1e-12);
   EXPECT_EQ(nlohmann::json::parse(test::slurp(dir / "r.json"))["scale"], "given");
+}
+
+TEST(Cli, OptimizeLambda) {
+  TempDir dir;
+  ASSERT_EQ(run_cli("generate cap --rings 10 -o " + (dir / "cap.obj"), dir).code, 0);
+  for (const char* energy : {"edge", "area"}) {
+    const auto r = run_cli("param " + (dir / "cap.obj") + " -o " + (dir / "out.obj") + " --optimize-lambda " + energy +
+                               " --lambda-range -0.5,1.5 --report " + (dir / "r.json"),
+                           dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
+    const auto& o = j["optimal_lambda"];
+    EXPECT_GE(o["lambda"].get<double>(), -0.5);
+    EXPECT_LE(o["lambda"].get<double>(), 1.5);
+    EXPECT_LE(o["energy_at_lambda"].get<double>(), o["energy_at_0_authalic"].get<double>());
+    EXPECT_LE(o["energy_at_lambda"].get<double>(), o["energy_at_1_conformal"].get<double>());
+    EXPECT_EQ(j["method"], "optimal-lambda");
+  }
+  const auto bad = run_cli("param " + (dir / "cap.obj") + " -o " + (dir / "out2.obj") +
+                               " --optimize-lambda edge --method authalic", dir);
+  EXPECT_EQ(bad.code, 1);
+}
+
+TEST(Cli, OptimizeBoundary) {
+  TempDir dir;
+  ASSERT_EQ(run_cli("generate strip --rings 10 -o " + (dir / "strip.obj"), dir).code, 0);
+  const auto r = run_cli("param " + (dir / "strip.obj") + " -o " + (dir / "out.obj") +
+                             " --optimize-boundary dirichlet --iterations 50 --report " + (dir / "r.json"),
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("boundary optimization: iteration 1,"), std::string::npos);  // progress lines
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "r.json"));
+  const auto& b = j["boundary_optimization"];
+  EXPECT_LT(b["energy_final"].get<double>(), b["energy_initial"].get<double>());
+  EXPECT_LE(b["iterations"].get<int>(), 50);
+  EXPECT_EQ(j["flipped_triangles"], 0);
+  const auto quiet = run_cli("param " + (dir / "strip.obj") + " -o " + (dir / "out.obj") +
+                                 " --optimize-boundary edge --gradient responses -q", dir);
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_TRUE(quiet.err.empty());
 }
 
 TEST(Cli, HelpAndUsage) {

@@ -1,7 +1,9 @@
 // Fixed boundary positions (paper section 4.1; SPEC section 3): the outer
 // loop mapped to a circle or a square, spaced by 3D arc length or uniformly,
 // or positions the user gives for any vertices (outer loop, holes'
-// "additional boundary vertices", even interior points).
+// "additional boundary vertices", even interior points). BoundaryShape::Natural
+// fixes no loop at all: the natural conformal map (paper section 4.2, eq. 7)
+// finds the boundary itself, with two pinned vertices.
 #pragma once
 
 #include <string>
@@ -12,7 +14,7 @@
 
 namespace intrinsic {
 
-enum class BoundaryShape { Circle, Square, Given };
+enum class BoundaryShape { Circle, Square, Given, Natural };
 enum class Spacing { ArcLength, Uniform };
 
 struct FixedVertex {

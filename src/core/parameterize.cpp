@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/natural_map.h"
 #include "intrinsic/assemble.h"
 #include "intrinsic/error.h"
 
@@ -16,15 +17,16 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Positions of the fixed vertices: the outer loop on the chosen shape, or the
-// user's positions (which must cover the outer loop).
-std::vector<FixedVertex> fixed_positions(const Mesh& mesh, const ParamOptions& o) {
+}  // namespace
+
+std::vector<FixedVertex> boundary_positions(const Mesh& mesh, const ParamOptions& o) {
   const Topology& t = mesh.topology;
   const std::vector<int>& outer = t.boundary_loops.at(t.component_loops.at(0).at(0));
   switch (o.boundary) {
     case BoundaryShape::Circle: return circle_boundary(mesh.V, outer, o.spacing);
     case BoundaryShape::Square: return square_boundary(mesh.V, outer, o.spacing);
     case BoundaryShape::Given: break;
+    case BoundaryShape::Natural: return {};  // handled by natural_map
   }
   std::vector<char> given(mesh.V.rows(), 0);
   for (const FixedVertex& fv : o.given) {
@@ -45,7 +47,43 @@ std::vector<FixedVertex> fixed_positions(const Mesh& mesh, const ParamOptions& o
   return o.given;
 }
 
+namespace {
+
+// The weight of the conformal energy in the method's interior rows: the
+// factor of the area term under HoleRule::Natural (0: no such term).
+double conformal_part(const WeightOptions& w) {
+  switch (w.method) {
+    case Method::Conformal: return 1.0;
+    case Method::Mixed: return w.lambda;
+    default: return 0.0;
+  }
+}
+
+void finish_scale(ParamResult& result, const Mesh& mesh, const ParamOptions& o) {
+  if (o.boundary == BoundaryShape::Given) {
+    result.scale = "given";
+  } else if (o.scale == ScaleMode::Unit) {
+    // The circle and square live in [-1, 1]^2: map that box onto [0, 1]^2
+    // exactly (a bounding-box fit would depend on where the vertices fall).
+    for (int v = 0; v < mesh.V.rows(); ++v)
+      if (mesh.topology.is_used[v]) result.UV.row(v) = 0.5 * result.UV.row(v) + Eigen::RowVector2d(0.5, 0.5);
+    result.scale = "unit";
+  } else {
+    scale_to_surface_area(result.UV, mesh);
+    result.scale = "surface";
+  }
+}
+
 }  // namespace
+
+std::string hole_rule_name(HoleRule r) {
+  switch (r) {
+    case HoleRule::Fill: return "fill";
+    case HoleRule::Free: return "free";
+    case HoleRule::Natural: return "natural";
+  }
+  return "?";
+}
 
 double parameter_area(const MatrixX3i& F, const MatrixX2d& UV) {
   double area = 0;
@@ -83,14 +121,8 @@ void scale_to_surface_area(MatrixX2d& UV, const Mesh& mesh) {
   const double a_param = std::abs(parameter_area(mesh.F, UV));
   const double a_surface = surface_area(mesh.V, mesh.F);
   if (!(a_param > 0)) return;
-  const double s = std::sqrt(a_surface / a_param);
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  int count = 0;
-  for (int v = 0; v < UV.rows(); ++v)
-    if (mesh.topology.is_used[v]) { centroid += UV.row(v).transpose(); ++count; }
-  centroid /= std::max(count, 1);
-  for (int v = 0; v < UV.rows(); ++v)
-    if (mesh.topology.is_used[v]) UV.row(v) = (centroid + s * (UV.row(v).transpose() - centroid)).transpose();
+  // About the origin, so that maps sharing a fixed boundary still share it.
+  UV *= std::sqrt(a_surface / a_param);
 }
 
 ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
@@ -102,17 +134,26 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
     throw_usage("mixed method needs lambda and mu not both zero");
   if (!std::isfinite(o.weights.lambda) || !std::isfinite(o.weights.mu))
     throw_usage("lambda and mu must be finite");
+  if (o.boundary == BoundaryShape::Natural) return natural_map(mesh, o);
+  if (!o.pins.empty()) throw_usage("pins apply to the natural boundary only (use given boundary positions instead)");
 
   ParamResult result;
   const auto t_assemble = std::chrono::steady_clock::now();
   const int n = static_cast<int>(mesh.V.rows());
-  const std::vector<FixedVertex> fixed = fixed_positions(mesh, o);
+  const std::vector<FixedVertex> fixed = boundary_positions(mesh, o);
 
   // Working copy of the surface, extended by one vertex per filled hole.
   MatrixX3d V = mesh.V;
   MatrixX3i F = mesh.F;
   std::vector<char> is_fixed(n, 0), is_used(t.is_used.begin(), t.is_used.end());
   for (const FixedVertex& fv : fixed) is_fixed[fv.vertex] = 1;
+  const bool has_holes = t.component_loops[0].size() > 1;
+  result.holes = has_holes ? hole_rule_name(o.holes) : "none";
+  // The area term of E_D - A on the hole loops (the outer loop is fixed, so
+  // its terms only reach fixed unknowns and drop out).
+  const double area_weight = conformal_part(o.weights);
+  const bool natural_holes = has_holes && o.holes == HoleRule::Natural && area_weight != 0;
+  if (has_holes && o.holes == HoleRule::Natural && area_weight == 0) result.holes = "free (method has no conformal term)";
   if (o.holes == HoleRule::Fill) {
     std::vector<Eigen::Vector3i> fan;
     std::vector<Eigen::Vector3d> centres;
@@ -151,6 +192,24 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
   }
 
   const SparseMatrix K = assemble_weight_matrix(V, F, o.weights);
+  if (natural_holes) {
+    std::vector<std::vector<int>> holes;
+    for (size_t k = 1; k < t.component_loops[0].size(); ++k) holes.push_back(t.boundary_loops[t.component_loops[0][k]]);
+    const SparseMatrix Q = block_diagonal2(K) - area_weight * area_hessian(n, holes);
+    result.timings.assemble_ms = ms_since(t_assemble);
+    const PinnedSolution s = solve_pinned(Q, fixed, is_used, o.solver, is_symmetric(o.weights), o.max_residual);
+    result.UV = s.UV;
+    result.solver = s.solver;
+    result.residual = s.residual;
+    result.free_vertices = s.free_vertices;
+    result.fixed_vertices = s.fixed_vertices;
+    result.factorizations = s.factorizations;
+    result.iterations = s.iterations;
+    result.timings.factor_ms = s.factor_ms;
+    result.timings.solve_ms = s.solve_ms;
+    finish_scale(result, mesh, o);
+    return result;
+  }
   const Partition p = partition(static_cast<int>(V.rows()), is_fixed, is_used);
   SparseMatrix A, K_IB;
   split_matrix(K, p, A, K_IB);
@@ -194,18 +253,7 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
     if (p.free_index[v] >= 0) result.UV.row(v) = X.row(p.free_index[v]);
     else if (p.fixed_index[v] >= 0) result.UV.row(v) = UB.row(p.fixed_index[v]);
   }
-  if (o.boundary == BoundaryShape::Given) {
-    result.scale = "given";
-  } else if (o.scale == ScaleMode::Unit) {
-    // The circle and square live in [-1, 1]^2: map that box onto [0, 1]^2
-    // exactly (a bounding-box fit would depend on where the vertices fall).
-    for (int v = 0; v < n; ++v)
-      if (t.is_used[v]) result.UV.row(v) = 0.5 * result.UV.row(v) + Eigen::RowVector2d(0.5, 0.5);
-    result.scale = "unit";
-  } else {
-    scale_to_surface_area(result.UV, mesh);
-    result.scale = "surface";
-  }
+  finish_scale(result, mesh, o);
   return result;
 }
 

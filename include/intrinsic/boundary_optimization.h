@@ -1,0 +1,96 @@
+// Boundary optimization (paper section 5.2; SPEC section 7): move the
+// boundary vertices (every loop, outer and holes) to minimise a distortion
+// energy while the interior follows the chosen intrinsic map of that boundary.
+//
+// The interior is U_I = -A^{-1} K_IB U_B (A = K_II, factored once), so
+// dE/dU_B = dE/dU_B|direct - K_IB^T A^{-T} dE/dU_I. Two routes give that:
+//   adjoint:   one solve with A^T per gradient, whatever the boundary size;
+//   responses: the paper's route, the boundary responses R = A^{-1} K_IB
+//              precomputed once (n_free x n_boundary doubles), after which an
+//              evaluation and a gradient are dense products, no solves.
+// Descent is L-BFGS (or plain gradient descent to compare) with a
+// backtracking line search that only accepts steps that lower the energy
+// (Armijo), add no flipped triangle and make no boundary segments cross.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <array>
+
+#include "intrinsic/assemble.h"
+#include "intrinsic/parameterize.h"
+
+namespace intrinsic {
+
+enum class BoundaryEnergy { EdgeLength, Area, SymmetricDirichlet };
+enum class GradientRoute { Adjoint, Responses };
+enum class Descent { LBFGS, GradientDescent };
+
+BoundaryEnergy parse_boundary_energy(const std::string& name);  // edge | area | dirichlet
+GradientRoute parse_gradient_route(const std::string& name);    // adjoint | responses
+Descent parse_descent(const std::string& name);                 // lbfgs | gradient
+
+struct BoundaryOptimizationOptions {
+  ParamOptions base;  // weights of the interior map, starting boundary, holes rule for the start, solver
+  BoundaryEnergy energy = BoundaryEnergy::EdgeLength;
+  GradientRoute route = GradientRoute::Adjoint;
+  Descent descent = Descent::LBFGS;
+  int max_iterations = 200;
+  double tolerance = 1e-6;  // stop when an iteration lowers the energy by less than this fraction
+  int lbfgs_memory = 8;
+  double responses_budget_bytes = 2.0 * (1u << 30);  // refuse the responses route above this
+  std::function<void(int iteration, double energy)> progress;  // called after each iteration
+};
+
+struct BoundaryOptimizationResult {
+  MatrixX2d UV;  // #V x 2, at the scale the energy chose (the surface's own scale)
+  std::vector<double> energy_history;  // initial energy, then one per iteration
+  int iterations = 0;
+  int solves = 0;           // linear solves (each with 2 right-hand sides), responses excluded
+  int response_solves = 0;  // right-hand sides solved to build the responses
+  int factorizations = 0;
+  int flipped_initial = 0, flipped_final = 0;
+  std::string stop_reason;
+  double setup_ms = 0, optimize_ms = 0;
+};
+
+// Energy of a map and its gradient with respect to every UV (for tests and
+// the optimizer). Symmetric Dirichlet is sum_f A_f (|J|^2 + |J^-1|^2), which
+// is +inf on a flipped or collapsed triangle.
+double boundary_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, BoundaryEnergy e,
+                       MatrixX2d* gradient);
+
+BoundaryOptimizationResult optimize_boundary(const Mesh& mesh, const BoundaryOptimizationOptions& options);
+
+// The objective as a function of the boundary positions x (u, v of each
+// boundary vertex in turn): the map it induces and the energy with its
+// gradient by the chosen route. Factors A once; optimize_boundary uses it,
+// and tool builders can drive their own descent with it.
+class BoundaryObjective {
+ public:
+  // `stats` receives the solve and factorization counts.
+  BoundaryObjective(const Mesh& mesh, const BoundaryOptimizationOptions& options, BoundaryOptimizationResult& stats);
+  int boundary_size() const { return static_cast<int>(p_.fixed_vertices.size()); }
+  const std::vector<int>& boundary_vertices() const { return p_.fixed_vertices; }
+  const std::vector<std::array<int, 2>>& segments() const { return segments_; }
+  Eigen::VectorXd boundary_of(const MatrixX2d& UV) const;
+  MatrixX2d map(const Eigen::VectorXd& x);
+  double energy(const MatrixX2d& UV, Eigen::VectorXd* gradient);
+
+ private:
+  const Mesh& mesh_;
+  const BoundaryOptimizationOptions& o_;
+  BoundaryOptimizationResult& stats_;
+  Partition p_;
+  SparseMatrix A_, K_IB_;
+  LinearSolver solver_;
+  Eigen::MatrixXd R_;  // responses, for GradientRoute::Responses
+  std::vector<std::array<int, 2>> segments_;
+};
+
+// True when two boundary segments that share no vertex cross in the plane.
+bool boundary_crosses(const std::vector<std::array<int, 2>>& segments, const MatrixX2d& UV);
+
+}  // namespace intrinsic

@@ -1,0 +1,218 @@
+// The natural conformal map (paper section 4.2, eq. 7; SPEC section 3): no
+// boundary is fixed; the minimiser of E_D - A with two pinned vertices, which
+// equals LSCM (Levy et al. 2002) with the same pins.
+#include "core/natural_map.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <set>
+
+#include "intrinsic/assemble.h"
+#include "intrinsic/error.h"
+
+namespace intrinsic {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The user's pins, checked: at least two, existing used vertices, each once,
+// finite, not all at one point (the minimiser would then be the constant map).
+void check_pins(const Mesh& mesh, const std::vector<FixedVertex>& pins) {
+  if (pins.size() < 2)
+    throw_usage("the natural map needs at least two pins (fixing translation, rotation and scale); got " +
+                std::to_string(pins.size()));
+  std::set<int> seen;
+  for (const FixedVertex& p : pins) {
+    if (p.vertex < 0 || p.vertex >= mesh.V.rows())
+      throw_input("pin on vertex " + std::to_string(p.vertex) + ", which does not exist (the mesh has " +
+                  std::to_string(mesh.V.rows()) + " vertices)");
+    if (!mesh.topology.is_used[p.vertex])
+      throw_input("pin on vertex " + std::to_string(p.vertex) + ", which no face uses");
+    if (!seen.insert(p.vertex).second) throw_usage("vertex " + std::to_string(p.vertex) + " is pinned twice");
+    if (!p.uv.allFinite()) throw_usage("pin on vertex " + std::to_string(p.vertex) + " has a non-finite position");
+  }
+  bool all_same = true;
+  for (const FixedVertex& p : pins) all_same = all_same && p.uv == pins[0].uv;
+  if (all_same) throw_usage("the pins are all at the same position; the map would collapse to a point");
+}
+
+}  // namespace
+
+SparseMatrix area_hessian(int n, const std::vector<std::vector<int>>& loops) {
+  // 2A = sum over half-edges a->b of (u_a v_b - u_b v_a): its Hessian has +1
+  // at (u_a, v_b) and -1 at (v_a, u_b), symmetrised.
+  std::vector<Eigen::Triplet<double>> t;
+  for (const std::vector<int>& loop : loops)
+    for (size_t k = 0; k < loop.size(); ++k) {
+      const int a = loop[k], b = loop[(k + 1) % loop.size()];
+      t.emplace_back(a, n + b, 1.0);
+      t.emplace_back(n + b, a, 1.0);
+      t.emplace_back(n + a, b, -1.0);
+      t.emplace_back(b, n + a, -1.0);
+    }
+  SparseMatrix H(2 * n, 2 * n);
+  H.setFromTriplets(t.begin(), t.end());
+  return H;
+}
+
+SparseMatrix block_diagonal2(const SparseMatrix& K) {
+  const int n = static_cast<int>(K.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(2 * static_cast<size_t>(K.nonZeros()));
+  for (int j = 0; j < K.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(K, j); it; ++it) {
+      t.emplace_back(it.row(), j, it.value());
+      t.emplace_back(n + it.row(), n + j, it.value());
+    }
+  SparseMatrix Q(2 * n, 2 * n);
+  Q.setFromTriplets(t.begin(), t.end());
+  return Q;
+}
+
+SparseMatrix assemble_natural_system(const Mesh& mesh) {
+  WeightOptions conformal;
+  conformal.method = Method::Conformal;
+  const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, conformal);
+  const SparseMatrix Q = block_diagonal2(K) - area_hessian(static_cast<int>(mesh.V.rows()), mesh.topology.boundary_loops);
+  return Q;
+}
+
+std::pair<int, int> default_pin_pair(const Mesh& mesh) {
+  const Topology& t = mesh.topology;
+  if (t.component_loops.empty() || t.component_loops[0].empty())
+    throw_input("the surface is closed (no boundary): nothing to pin by default");
+  return farthest_pair(mesh.V, t.boundary_loops[t.component_loops[0][0]]);
+}
+
+std::pair<int, int> farthest_pair(const MatrixX3d& V, std::vector<int> b) {
+  if (b.size() < 2) throw_input("fewer than two boundary vertices: nothing to pin by default");
+  std::sort(b.begin(), b.end());
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int v : b) c += V.row(v).transpose();
+  c /= static_cast<double>(b.size());
+  // Visit vertices by decreasing distance to the centroid: once r_i + r_j
+  // cannot beat the best pair, no later j (nor, for j = i+1, later i) can.
+  std::vector<double> r(b.size());
+  for (size_t k = 0; k < b.size(); ++k) r[k] = (V.row(b[k]).transpose() - c).norm();
+  std::vector<int> order(b.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return r[x] > r[y]; });
+  double best = -1;
+  std::pair<int, int> pair{b[0], b[1]};
+  for (size_t i = 0; i + 1 < order.size(); ++i) {
+    const int p = order[i];
+    if (r[p] + r[order[i + 1]] < std::sqrt(std::max(best, 0.0)) * (1 - 1e-12)) break;
+    const Eigen::Vector3d xp = V.row(b[p]);
+    for (size_t j = i + 1; j < order.size(); ++j) {
+      const int q = order[j];
+      if (r[p] + r[q] < std::sqrt(std::max(best, 0.0)) * (1 - 1e-12)) break;
+      const double d2 = (V.row(b[q]).transpose() - xp).squaredNorm();
+      const std::pair<int, int> cand{std::min(b[p], b[q]), std::max(b[p], b[q])};
+      if (d2 > best || (d2 == best && cand < pair)) {  // ties: smallest indices, whatever the visiting order
+        best = d2;
+        pair = cand;
+      }
+    }
+  }
+  return pair;
+}
+
+PinnedSolution solve_pinned(const SparseMatrix& Q, const std::vector<FixedVertex>& fixed,
+                            const std::vector<char>& is_used, SolverKind kind, bool symmetric, double max_residual) {
+  const int n = static_cast<int>(is_used.size());
+  std::vector<char> fixed2(2 * n, 0), used2(2 * n, 0);
+  for (int v = 0; v < n; ++v) used2[v] = used2[n + v] = is_used[v];
+  for (const FixedVertex& f : fixed) fixed2[f.vertex] = fixed2[n + f.vertex] = 1;
+  const Partition p = partition(2 * n, fixed2, used2);
+  SparseMatrix A, Q_IB;
+  split_matrix(Q, p, A, Q_IB);
+  Eigen::VectorXd xB(p.fixed_vertices.size());
+  for (const FixedVertex& f : fixed) {
+    xB(p.fixed_index[f.vertex]) = f.uv.x();
+    xB(p.fixed_index[n + f.vertex]) = f.uv.y();
+  }
+  const Eigen::VectorXd rhs = -(Q_IB * xB);
+
+  PinnedSolution s;
+  s.free_vertices = static_cast<int>(p.free_vertices.size()) / 2;
+  s.fixed_vertices = static_cast<int>(fixed.size());
+  Eigen::VectorXd x(0);
+  if (A.rows() > 0) {
+    const auto t_factor = std::chrono::steady_clock::now();
+    LinearSolver solver(kind, symmetric);
+    solver.factor(A);
+    s.factor_ms = ms_since(t_factor);
+    const auto t_solve = std::chrono::steady_clock::now();
+    x = solver.solve(rhs);
+    s.solve_ms = ms_since(t_solve);
+    s.solver = solver.name();
+    s.factorizations = solver.factorizations();
+    s.iterations = solver.iterations();
+    if (!x.allFinite())
+      throw_numerical("the solution has non-finite values: the system is singular or nearly so "
+                      "(look for coincident pins or nearly degenerate faces)");
+    const double b = rhs.norm(), r = (A * x - rhs).norm();
+    s.residual = b > 0 ? r / b : r;
+    if (!(s.residual <= max_residual))
+      throw_numerical("the relative residual " + std::to_string(s.residual) + " of solver " + s.solver + " exceeds " +
+                      std::to_string(max_residual) + " (an iterative solver may not have converged; try --solver auto)");
+  } else {
+    s.solver = "none (every vertex is fixed)";
+  }
+  s.UV = MatrixX2d::Zero(n, 2);
+  for (int v = 0; v < n; ++v)
+    for (int c = 0; c < 2; ++c) {
+      const int k = c * n + v;
+      if (p.free_index[k] >= 0) s.UV(v, c) = x(p.free_index[k]);
+      else if (p.fixed_index[k] >= 0) s.UV(v, c) = xB(p.fixed_index[k]);
+    }
+  return s;
+}
+
+ParamResult natural_map(const Mesh& mesh, const ParamOptions& o) {
+  const bool conformal = o.weights.method == Method::Conformal ||
+                         (o.weights.method == Method::Mixed && o.weights.mu == 0 && o.weights.lambda != 0);
+  if (!conformal)
+    throw_usage("the natural boundary needs the conformal method: its condition (eq. 7) comes from the conformal "
+                "energy E_D - A, and the authalic weights derive from no known energy (paper section 4.2)");
+  ParamResult result;
+  const auto t_assemble = std::chrono::steady_clock::now();
+  std::vector<FixedVertex> pins = o.pins;
+  if (pins.empty()) {
+    const auto [a, b] = default_pin_pair(mesh);
+    const double d = (mesh.V.row(a) - mesh.V.row(b)).norm();
+    pins = {{a, Eigen::Vector2d(0, 0)}, {b, Eigen::Vector2d(d, 0)}};
+  } else {
+    check_pins(mesh, pins);
+  }
+  const SparseMatrix Q = assemble_natural_system(mesh);
+  result.timings.assemble_ms = ms_since(t_assemble);
+
+  const PinnedSolution s = solve_pinned(Q, pins, mesh.topology.is_used, o.solver, true, o.max_residual);
+  result.UV = s.UV;
+  result.solver = s.solver;
+  result.residual = s.residual;
+  result.free_vertices = s.free_vertices;
+  result.fixed_vertices = s.fixed_vertices;
+  result.factorizations = s.factorizations;
+  result.iterations = s.iterations;
+  result.timings.factor_ms = s.factor_ms;
+  result.timings.solve_ms = s.solve_ms;
+  result.pins = pins;
+  result.holes = mesh.topology.boundary_loops.size() > 1 ? "natural" : "none";
+  if (!o.pins.empty()) {
+    result.scale = "given";
+  } else if (o.scale == ScaleMode::Unit) {
+    fit_unit_square(result.UV, mesh.topology.is_used);
+    result.scale = "unit";
+  } else {
+    result.scale = "surface";  // pins at their 3D distance: the surface's own scale
+  }
+  return result;
+}
+
+}  // namespace intrinsic
