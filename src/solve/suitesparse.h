@@ -30,7 +30,8 @@ class CholmodFactor {
   ~CholmodFactor();
   CholmodFactor(const CholmodFactor&) = delete;
   CholmodFactor& operator=(const CholmodFactor&) = delete;
-  // False when A is not positive definite.
+  // False when A is not positive definite. A must outlive the solves (they
+  // refine with it).
   bool factor(const SparseMatrix& A);
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   double factor_nonzeros() const;  // nnz(L)
