@@ -12,14 +12,16 @@
 //   intrinsic_bench [--sizes 10000,100000,300000,1000000] [--runs 3]
 //                   [--methods conformal,authalic,mixed,natural] [--mesh FILE]...
 //                   [--workdir DIR] [--check-max N] [--json FILE]
-//   intrinsic_bench --orderings N   (conformal and authalic systems of an
-//                   N-vertex patch: analyse/factor time and fill per ordering)
+//   intrinsic_bench --orderings N|FILE   (conformal and authalic systems of an
+//                   N-vertex patch or a mesh file: analyse/factor time and
+//                   fill per ordering)
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -312,11 +314,16 @@ std::string fmt(double ms) {
   return b;
 }
 
-int orderings(int vertices) {
+int orderings(const std::string& what) {
 #if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_BENCH_ORDERINGS)
-  GenerateOptions g;
-  g.rings = std::max(2, static_cast<int>(std::lround(std::sqrt(vertices / 3.0))));
-  const Mesh mesh = make_mesh(generate_wavy_patch(g));
+  Mesh mesh;
+  if (!what.empty() && std::isdigit(static_cast<unsigned char>(what[0]))) {
+    GenerateOptions g;
+    g.rings = std::max(2, static_cast<int>(std::lround(std::sqrt(std::stoi(what) / 3.0))));
+    mesh = make_mesh(generate_wavy_patch(g));
+  } else {
+    mesh = make_mesh(read_mesh(what));
+  }
   std::cout << "| system | ordering | analyse s | factor s | solve s | nnz(factor) |\n|---|---|---|---|---|---|\n";
   for (const char* method : {"conformal", "authalic"}) {
     const ParamOptions o = options_for(method);
@@ -351,7 +358,7 @@ int orderings(int vertices) {
   }
   return 0;
 #else
-  (void)vertices;
+  (void)what;
   std::cerr << "--orderings needs SuiteSparse\n";
   return 1;
 #endif
@@ -364,7 +371,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> methods = {"conformal", "authalic", "mixed", "natural"};
   std::vector<std::string> meshes;
   std::string workdir = "/tmp", json;
-  int runs = 3, check_max = 1000000;
+  int runs = 3, check_max = 1100000;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -379,7 +386,7 @@ int main(int argc, char** argv) {
     else if (a == "--mesh") meshes.push_back(next());
     else if (a == "--workdir") workdir = next();
     else if (a == "--check-max") check_max = std::stoi(next());
-    else if (a == "--orderings") return orderings(std::stoi(next()));
+    else if (a == "--orderings") return orderings(next());
     else {
       std::cerr << "usage: intrinsic_bench [--sizes N,N,...] [--runs R] [--methods m,...] [--mesh FILE]... "
                    "[--workdir DIR] [--check-max N] | --orderings N\n";
