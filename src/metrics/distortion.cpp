@@ -112,8 +112,9 @@ Eigen::MatrixX2i unique_edges(const MatrixX3i& F) {
   return E;
 }
 
-double edge_length_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
-  const Eigen::MatrixX2i E = unique_edges(F);
+namespace {
+
+double edge_length_energy(const MatrixX3d& V, const Eigen::MatrixX2i& E, const MatrixX2d& UV) {
   double e = 0;
   for (int k = 0; k < E.rows(); ++k) {
     const int i = E(k, 0), j = E(k, 1);
@@ -121,6 +122,12 @@ double edge_length_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2
     e += r * r;
   }
   return e;
+}
+
+}  // namespace
+
+double edge_length_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
+  return edge_length_energy(V, unique_edges(F), UV);
 }
 
 double area_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
@@ -153,7 +160,7 @@ DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, c
   for (int k = 0; k < E.rows(); ++k)
     r[k] = (UVn.row(E(k, 0)) - UVn.row(E(k, 1))).squaredNorm() / (V.row(E(k, 0)) - V.row(E(k, 1))).squaredNorm();
   s.edge_length_distortion = weighted_stat(r, Eigen::VectorXd::Ones(r.size()));
-  s.edge_length_energy = edge_length_energy(V, F, UVn);
+  s.edge_length_energy = edge_length_energy(V, E, UVn);
   s.area_energy = area_energy(V, F, UVn);
   return s;
 }

@@ -1,6 +1,7 @@
-// Backends of LinearSolver. CHOLMOD is told to use AMD alone: its default
-// analysis also tries METIS, which on meshes costs more than the
-// factorization it saves.
+// Backends of LinearSolver. CHOLMOD and UMFPACK get the level-set nested
+// dissection ordering (solve/ordering.h) instead of their own analysis:
+// CHOLMOD's default tries METIS, which on meshes costs more than the
+// factorization it saves, and AMD fills more on large meshes.
 #include "intrinsic/linear_solver.h"
 
 #include <Eigen/IterativeLinearSolvers>
@@ -11,8 +12,7 @@
 #include "intrinsic/error.h"
 
 #ifdef INTRINSIC_HAVE_SUITESPARSE
-#include <Eigen/CholmodSupport>
-#include <Eigen/UmfPackSupport>
+#include "solve/suitesparse.h"
 #endif
 
 namespace intrinsic {
@@ -57,8 +57,8 @@ using EigenLU = Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>>;
 using CG = Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>>;
 using BiCG = Eigen::BiCGSTAB<SparseMatrix, Eigen::DiagonalPreconditioner<double>>;
 #ifdef INTRINSIC_HAVE_SUITESPARSE
-using Cholmod = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
-using Umfpack = Eigen::UmfPackLU<SparseMatrix>;
+using Cholmod = detail::CholmodFactor;
+using Umfpack = detail::UmfpackFactor;
 #endif
 
 }  // namespace
@@ -85,11 +85,7 @@ struct LinearSolver::Impl {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
     if (requested != SolverKind::EigenLLT) {
       cholmod = std::make_unique<Cholmod>();
-      cholmod->cholmod().nmethods = 1;
-      cholmod->cholmod().method[0].ordering = CHOLMOD_AMD;
-      cholmod->cholmod().postorder = 1;
-      cholmod->compute(A);
-      if (cholmod->info() == Eigen::Success) { used = "cholmod"; return true; }
+      if (cholmod->factor(A)) { used = "cholmod"; return true; }
       cholmod.reset();
       return false;
     }
@@ -105,14 +101,7 @@ struct LinearSolver::Impl {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
     if (requested != SolverKind::EigenLU) {
       umfpack = std::make_unique<Umfpack>();
-      // Mesh matrices have a symmetric pattern and a strong diagonal: the
-      // symmetric strategy (AMD on A+A^T, diagonal pivots preferred) fills
-      // far less than the default unsymmetric COLAMD path, and AMD alone
-      // avoids the METIS trial that costs more than it saves.
-      umfpack->umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
-      umfpack->umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_AMD;
-      umfpack->compute(A);
-      if (umfpack->info() == Eigen::Success) { used = "umfpack"; return true; }
+      if (umfpack->factor(A)) { used = "umfpack"; return true; }
       umfpack.reset();
       return false;
     }
@@ -211,6 +200,9 @@ Eigen::MatrixXd LinearSolver::solve_transposed(const Eigen::MatrixXd& B) const {
   const Impl& s = *impl_;
   if (s.symmetric) return solve(B);
   if (s.lu) return s.lu->transpose().solve(B);
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+  if (s.umfpack) return s.umfpack->solve(B, true);
+#endif
   // Other backends: factor the transpose on first use and keep it.
   if (!s.transposed) {
     s.transposed = std::make_unique<LinearSolver>(s.requested, false, s.tolerance);

@@ -1,0 +1,452 @@
+// intrinsic_bench: end-to-end timings per stage and method on generated
+// irregular curved disks of growing size and on a shared scanned mesh.
+//
+// Each (mesh, method) case runs in a child process (fork), so its peak
+// memory (ru_maxrss, taken before the reference check) is its own. Per stage the median of --runs runs is
+// reported; the scaling exponent is the least-squares slope of log(total)
+// against log(V) over the generated meshes. Every case is checked against a
+// plain reference solve (triplet assembly, Eigen's simplicial LDL^T or
+// UMFPACK with its default analysis) to 1e-9 relative, up to --check-max
+// vertices.
+//
+//   intrinsic_bench [--sizes 10000,100000,300000,1000000] [--runs 3]
+//                   [--methods conformal,authalic,mixed,natural] [--mesh FILE]...
+//                   [--workdir DIR] [--check-max N] [--json FILE]
+//   intrinsic_bench --orderings N|FILE   (conformal and authalic systems of an
+//                   N-vertex patch or a mesh file: analyse/factor time and
+//                   fill per ordering)
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "intrinsic/assemble.h"
+#include "intrinsic/generate.h"
+#include "intrinsic/io.h"
+#include "intrinsic/metrics.h"
+#include "intrinsic/parameterize.h"
+#include "core/natural_map.h"  // assemble_natural_system
+#if __has_include("solve/suitesparse.h")  // absent when measuring older trees
+#include "solve/suitesparse.h"
+#define INTRINSIC_BENCH_ORDERINGS 1
+#endif
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+#include <Eigen/UmfPackSupport>
+#endif
+
+using namespace intrinsic;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+const char* kStages[] = {"read", "validate", "assemble", "factor", "solve", "write", "metrics", "total"};
+
+struct CaseResult {
+  std::string mesh;
+  int vertices = 0;
+  std::string method, solver;
+  std::map<std::string, double> median_ms;
+  double peak_mb = 0;
+  double check_error = -1;  // max |uv - uv_ref| / max |uv_ref|; -1 = not checked
+  bool ok = false;
+  std::string error;
+};
+
+double median(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  const size_t n = x.size();
+  return n == 0 ? 0 : n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+}
+
+ParamOptions options_for(const std::string& method) {
+  ParamOptions o;
+  if (method == "natural") {
+    o.boundary = BoundaryShape::Natural;  // conformal weights, two pins
+    o.scale = ScaleMode::Surface;         // pins at their 3D distance, no fit (the reference is unscaled)
+    return o;
+  }
+  o.weights.method = parse_method(method);
+  if (method == "mixed") {
+    o.weights.lambda = 0.5;
+    o.weights.mu = 0.5;
+  }
+  return o;
+}
+
+// The plain path the fast one must agree with: triplet assembly of the whole
+// matrix, triplet split, and a solver with its own default analysis.
+MatrixX2d reference_uv(const Mesh& mesh, const ParamOptions& o, const ParamResult& ours) {
+  if (o.boundary == BoundaryShape::Natural) {
+    // The 2n x 2n system by Eigen's simplicial LL^T (AMD) with iterative
+    // refinement: pinning two vertices leaves it less well conditioned than
+    // the fixed-boundary systems, so a plain solve is only good to ~1e-8.
+    const SparseMatrix Q = assemble_natural_system(mesh);
+    const int n = static_cast<int>(mesh.V.rows());
+    std::vector<int> index(2 * n, -1);
+    Eigen::VectorXd pinned = Eigen::VectorXd::Zero(2 * n);
+    std::vector<char> is_pin(n, 0);
+    for (const FixedVertex& p : ours.pins) is_pin[p.vertex] = 1, pinned[p.vertex] = p.uv.x(), pinned[n + p.vertex] = p.uv.y();
+    int m = 0;
+    for (int k = 0; k < 2 * n; ++k)
+      if (mesh.topology.is_used[k % n] && !is_pin[k % n]) index[k] = m++;
+    std::vector<Eigen::Triplet<double>> t;
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(m);
+    for (int j = 0; j < 2 * n; ++j)
+      for (SparseMatrix::InnerIterator it(Q, j); it; ++it) {
+        if (index[it.row()] < 0) continue;
+        if (index[j] >= 0) t.emplace_back(index[it.row()], index[j], it.value());
+        else b[index[it.row()]] -= it.value() * pinned[j];
+      }
+    SparseMatrix A(m, m);
+    A.setFromTriplets(t.begin(), t.end());
+    Eigen::SimplicialLLT<SparseMatrix> llt(A);
+    Eigen::VectorXd x = llt.solve(b);
+    for (int step = 0; step < 3; ++step) x += llt.solve(b - A * x);
+    MatrixX2d UV = MatrixX2d::Zero(n, 2);
+    for (int k = 0; k < 2 * n; ++k) {
+      const double value = index[k] >= 0 ? x[index[k]] : pinned[k];
+      if (mesh.topology.is_used[k % n]) UV(k % n, k / n) = value;
+    }
+    return UV;
+  }
+  const int n = static_cast<int>(mesh.V.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  for (int f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Matrix3d W = face_weights(mesh.V, mesh.F, f, o.weights);
+    for (int c = 0; c < 3; ++c)
+      for (int d = 0; d < 3; ++d)
+        if (c != d) {
+          t.emplace_back(mesh.F(f, c), mesh.F(f, d), -W(c, d));
+          t.emplace_back(mesh.F(f, c), mesh.F(f, c), W(c, d));
+        }
+  }
+  SparseMatrix K(n, n);
+  K.setFromTriplets(t.begin(), t.end());
+  const std::vector<int>& outer = mesh.topology.boundary_loops[mesh.topology.component_loops[0][0]];
+  const std::vector<FixedVertex> fixed = circle_boundary(mesh.V, outer, o.spacing);
+  std::vector<int> fixed_index(n, -1), free_index(n, -1);
+  for (size_t k = 0; k < fixed.size(); ++k) fixed_index[fixed[k].vertex] = static_cast<int>(k);
+  int nf = 0;
+  for (int v = 0; v < n; ++v)
+    if (fixed_index[v] < 0 && mesh.topology.is_used[v]) free_index[v] = nf++;
+  std::vector<Eigen::Triplet<double>> ii;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, 2);
+  for (int j = 0; j < n; ++j)
+    for (SparseMatrix::InnerIterator it(K, j); it; ++it) {
+      const int r = free_index[it.row()];
+      if (r < 0) continue;
+      if (free_index[j] >= 0) ii.emplace_back(r, free_index[j], it.value());
+      else if (fixed_index[j] >= 0) rhs.row(r) -= it.value() * fixed[fixed_index[j]].uv.transpose();
+    }
+  SparseMatrix A(nf, nf);
+  A.setFromTriplets(ii.begin(), ii.end());
+  Eigen::MatrixXd X;
+  if (is_symmetric(o.weights)) {
+    Eigen::SimplicialLDLT<SparseMatrix> s(A);
+    X = s.solve(rhs);
+  } else {
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+    Eigen::UmfPackLU<SparseMatrix> s(A);
+    X = s.solve(rhs);
+#else
+    Eigen::SparseLU<SparseMatrix> s(A);
+    X = s.solve(rhs);
+#endif
+  }
+  MatrixX2d UV = MatrixX2d::Zero(n, 2);
+  for (int v = 0; v < n; ++v) {
+    if (free_index[v] >= 0) UV.row(v) = X.row(free_index[v]);
+    else if (fixed_index[v] >= 0) UV.row(v) = fixed[fixed_index[v]].uv.transpose();
+  }
+  for (int v = 0; v < n; ++v)
+    if (mesh.topology.is_used[v]) UV.row(v) = 0.5 * UV.row(v) + Eigen::RowVector2d(0.5, 0.5);
+  return UV;
+}
+
+// Runs one case (in the child): `runs` times read..metrics.
+CaseResult run_case(const std::string& path, const std::string& method, int runs, const std::string& workdir,
+                    int check_max) {
+  CaseResult r;
+  r.mesh = path;
+  r.method = method;
+  std::map<std::string, std::vector<double>> times;
+  MatrixX2d UV;
+  Mesh mesh;
+  ParamResult last;
+  for (int run = 0; run < runs; ++run) {
+    const auto t0 = Clock::now();
+    const MeshData data = read_mesh(path);
+    times["read"].push_back(ms_since(t0));
+    auto t = Clock::now();
+    mesh = make_mesh(data);
+    times["validate"].push_back(ms_since(t));
+    const ParamResult p = parameterize(mesh, options_for(method));
+    times["assemble"].push_back(p.timings.assemble_ms);
+    times["factor"].push_back(p.timings.factor_ms);
+    times["solve"].push_back(p.timings.solve_ms);
+    t = Clock::now();
+    write_mesh(workdir + "/bench-out.obj", mesh.V, mesh.F, p.UV);
+    times["write"].push_back(ms_since(t));
+    t = Clock::now();
+    const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, p.UV);
+    (void)d;
+    times["metrics"].push_back(ms_since(t));
+    times["total"].push_back(ms_since(t0));
+    r.solver = p.solver;
+    UV = p.UV;
+    last = p;
+  }
+  r.vertices = static_cast<int>(mesh.V.rows());
+  for (auto& [stage, x] : times) r.median_ms[stage] = median(x);
+  struct rusage ru {};
+  getrusage(RUSAGE_SELF, &ru);  // before the reference solve, which is not part of the pipeline
+  r.peak_mb = ru.ru_maxrss / 1024.0;
+  if (r.vertices <= check_max) {
+    const MatrixX2d ref = reference_uv(mesh, options_for(method), last);
+    r.check_error = (UV - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff();
+  }
+  r.ok = r.check_error <= 1e-9;
+  return r;
+}
+
+std::string to_line(const CaseResult& r) {
+  std::ostringstream s;
+  s.precision(10);
+  s << r.mesh << '\t' << r.vertices << '\t' << r.method << '\t' << r.solver << '\t' << r.check_error << '\t'
+    << r.ok << '\t' << r.peak_mb;
+  for (const char* st : kStages) s << '\t' << r.median_ms.at(st);
+  return s.str();
+}
+
+CaseResult from_line(const std::string& line) {
+  std::istringstream s(line);
+  CaseResult r;
+  std::string field;
+  std::getline(s, r.mesh, '\t');
+  std::getline(s, field, '\t');
+  r.vertices = std::stoi(field);
+  std::getline(s, r.method, '\t');
+  std::getline(s, r.solver, '\t');
+  std::getline(s, field, '\t');
+  r.check_error = std::stod(field);
+  std::getline(s, field, '\t');
+  r.ok = field == "1";
+  std::getline(s, field, '\t');
+  r.peak_mb = std::stod(field);
+  for (const char* st : kStages) {
+    std::getline(s, field, '\t');
+    r.median_ms[st] = std::stod(field);
+  }
+  return r;
+}
+
+// Forks a child for the case; its stdout line comes back through a pipe.
+CaseResult run_child(const std::string& path, const std::string& method, int runs, const std::string& workdir,
+                     int check_max) {
+  int fd[2];
+  if (pipe(fd) != 0) throw std::runtime_error("pipe failed");
+  std::cout.flush();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    std::string line;
+    try {
+      line = to_line(run_case(path, method, runs, workdir, check_max));
+    } catch (const std::exception& e) {
+      line = std::string("ERROR\t") + e.what();
+    }
+    line += '\n';
+    if (write(fd[1], line.data(), line.size()) < 0) _exit(2);
+    close(fd[1]);
+    _exit(0);
+  }
+  close(fd[1]);
+  std::string line;
+  char buf[4096];
+  ssize_t got;
+  while ((got = read(fd[0], buf, sizeof buf)) > 0) line.append(buf, static_cast<size_t>(got));
+  close(fd[0]);
+  int status = 0;
+  struct rusage ru {};
+  wait4(pid, &status, 0, &ru);
+  CaseResult r;
+  if (line.rfind("ERROR\t", 0) == 0 || line.empty()) {
+    r.mesh = path;
+    r.method = method;
+    r.error = line.empty() ? "child died (status " + std::to_string(status) + ")" : line.substr(6);
+    while (!r.error.empty() && r.error.back() == '\n') r.error.pop_back();
+    r.peak_mb = ru.ru_maxrss / 1024.0;
+    return r;
+  }
+  line.pop_back();
+  return from_line(line);
+}
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+std::string fmt(double ms) {
+  char b[32];
+  std::snprintf(b, sizeof b, ms >= 100 ? "%.2f" : "%.3f", ms / 1000);
+  return b;
+}
+
+int orderings(const std::string& what) {
+#if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_BENCH_ORDERINGS)
+  Mesh mesh;
+  if (!what.empty() && std::isdigit(static_cast<unsigned char>(what[0]))) {
+    GenerateOptions g;
+    g.rings = std::max(2, static_cast<int>(std::lround(std::sqrt(std::stoi(what) / 3.0))));
+    mesh = make_mesh(generate_wavy_patch(g));
+  } else {
+    mesh = make_mesh(read_mesh(what));
+  }
+  std::cout << "| system | ordering | analyse s | factor s | solve s | nnz(factor) |\n|---|---|---|---|---|---|\n";
+  for (const char* method : {"conformal", "authalic"}) {
+    const ParamOptions o = options_for(method);
+    const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, o.weights);
+    std::vector<char> fixed(mesh.V.rows(), 0);
+    for (int v : mesh.topology.boundary_loops[0]) fixed[v] = 1;
+    const Partition p = partition(static_cast<int>(mesh.V.rows()), fixed, mesh.topology.is_used);
+    SparseMatrix A, B;
+    split_matrix(K, p, A, B);
+    const Eigen::MatrixXd rhs = Eigen::MatrixXd::Random(A.rows(), 2);
+    for (detail::Ordering ord : {detail::Ordering::NestedDissection, detail::Ordering::AMD, detail::Ordering::METIS}) {
+      double analyse = 0, factor = 0, solve = 0, nnz = 0;
+      if (is_symmetric(o.weights)) {
+        detail::CholmodFactor f(ord);
+        f.factor(A);
+        const auto t = Clock::now();
+        f.solve(rhs);
+        solve = ms_since(t);
+        analyse = f.analyse_ms, factor = f.factor_ms, nnz = f.factor_nonzeros();
+      } else {
+        detail::UmfpackFactor f(ord);
+        f.factor(A);
+        const auto t = Clock::now();
+        f.solve(rhs);
+        solve = ms_since(t);
+        analyse = f.analyse_ms, factor = f.factor_ms, nnz = f.factor_nonzeros();
+      }
+      std::cout << "| " << method << " (" << (is_symmetric(o.weights) ? "CHOLMOD" : "UMFPACK") << ", n = " << A.rows()
+                << ") | " << detail::ordering_name(ord) << " | " << fmt(analyse) << " | " << fmt(factor) << " | "
+                << fmt(solve) << " | " << static_cast<long>(nnz) << " |" << std::endl;
+    }
+  }
+  return 0;
+#else
+  (void)what;
+  std::cerr << "--orderings needs SuiteSparse\n";
+  return 1;
+#endif
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes = {10000, 100000, 300000, 1000000};
+  std::vector<std::string> methods = {"conformal", "authalic", "mixed", "natural"};
+  std::vector<std::string> meshes;
+  std::string workdir = "/tmp", json;
+  int runs = 3, check_max = 1100000;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--sizes") {
+      sizes.clear();
+      for (const std::string& s : split(next())) sizes.push_back(std::stoi(s));
+    } else if (a == "--runs") runs = std::stoi(next());
+    else if (a == "--methods") methods = split(next());
+    else if (a == "--mesh") meshes.push_back(next());
+    else if (a == "--workdir") workdir = next();
+    else if (a == "--check-max") check_max = std::stoi(next());
+    else if (a == "--orderings") return orderings(next());
+    else {
+      std::cerr << "usage: intrinsic_bench [--sizes N,N,...] [--runs R] [--methods m,...] [--mesh FILE]... "
+                   "[--workdir DIR] [--check-max N] | --orderings N\n";
+      return 2;
+    }
+  }
+  // Generated meshes are written once (in a child, to keep this process
+  // small) so the read stage parses a real file.
+  std::vector<std::string> inputs;
+  for (int n : sizes) {
+    const std::string path = workdir + "/bench-wave-" + std::to_string(n) + ".obj";
+    if (access(path.c_str(), R_OK) != 0) {
+      const pid_t pid = fork();
+      if (pid == 0) {
+        GenerateOptions g;
+        g.rings = std::max(2, static_cast<int>(std::lround(std::sqrt(n / 3.0))));
+        const MeshData m = generate_wavy_patch(g);
+        write_mesh(path, m.V, m.F, MatrixX2d());
+        _exit(0);
+      }
+      int status = 0;
+      waitpid(pid, &status, 0);
+    }
+    inputs.push_back(path);
+  }
+  const size_t generated = inputs.size();
+  inputs.insert(inputs.end(), meshes.begin(), meshes.end());
+
+  std::cout << "| mesh | V | method | solver | read | validate | assemble | factor | solve | write | metrics | total s | peak MB | max rel. diff |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::map<std::string, std::vector<std::pair<double, double>>> fit;  // method -> (V, total)
+  for (size_t k = 0; k < inputs.size(); ++k)
+    for (const std::string& method : methods) {
+      const CaseResult r = run_child(inputs[k], method, runs, workdir, check_max);
+      std::string name = inputs[k].substr(inputs[k].find_last_of('/') + 1);
+      if (!r.error.empty()) {
+        std::cout << "| " << name << " | | " << method << " | failed: " << r.error << " | | | | | | | | | "
+                  << static_cast<long>(r.peak_mb) << " | |" << std::endl;
+        continue;
+      }
+      std::cout << "| " << name << " | " << r.vertices << " | " << method << " | " << r.solver;
+      for (const char* st : kStages) std::cout << " | " << fmt(r.median_ms.at(st));
+      char err[32];
+      std::snprintf(err, sizeof err, "%.1e", r.check_error);
+      std::cout << " | " << static_cast<long>(r.peak_mb) << " | "
+                << (r.check_error < 0 ? "not checked" : std::string(err) + (r.ok ? "" : " FAIL")) << " |"
+                << std::endl;
+      if (k < generated) fit[method].emplace_back(r.vertices, r.median_ms.at("total"));
+    }
+  std::cout << "\nScaling exponent (least-squares slope of log total time against log V, generated meshes):";
+  for (const auto& [method, pts] : fit) {
+    if (pts.size() < 2) continue;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (auto [v, t] : pts) {
+      const double x = std::log(v), y = std::log(t);
+      sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+    const double m = static_cast<double>(pts.size());
+    std::printf(" %s %.2f;", method.c_str(), (m * sxy - sx * sy) / (m * sxx - sx * sx));
+  }
+  std::cout << std::endl;
+  return 0;
+}

@@ -1,0 +1,146 @@
+// Level-set nested dissection (see ordering.h). Work is O(nnz) per level of
+// the dissection tree, so O(nnz log n) in all, with an explicit stack (no
+// recursion depth limit) and no allocation per vertex.
+#include "solve/ordering.h"
+
+#include <algorithm>
+
+namespace intrinsic::detail {
+namespace {
+
+struct Piece {
+  std::vector<int> vertices;
+  int first;      // first position of the piece in the permutation
+  int tag;        // owner[] value of its vertices
+  int start = -1; // a vertex known to be far from the others, or -1
+};
+
+class Dissection {
+ public:
+  explicit Dissection(const SparseMatrix& A)
+      : n_(static_cast<int>(A.rows())),
+        begin_(A.outerIndexPtr()),
+        end_(A.innerNonZeroPtr()),
+        index_(A.innerIndexPtr()),
+        owner_(n_, 0),
+        level_(n_, -1) {}
+
+  // Breadth-first search from `source` over the vertices tagged `tag`;
+  // visited vertices go to `order` with their level in level_. Returns the
+  // number of levels.
+  int bfs(int source, int tag, std::vector<int>& order) {
+    order.clear();
+    order.push_back(source);
+    level_[source] = 0;
+    for (size_t q = 0; q < order.size(); ++q) {
+      const int v = order[q];
+      const int e = end_ ? begin_[v] + end_[v] : begin_[v + 1];
+      for (int k = begin_[v]; k < e; ++k) {
+        const int w = index_[k];
+        if (owner_[w] != tag || level_[w] >= 0) continue;
+        level_[w] = level_[v] + 1;
+        order.push_back(w);
+      }
+    }
+    return level_[order.back()] + 1;
+  }
+  void clear_levels(const std::vector<int>& order) {
+    for (int v : order) level_[v] = -1;
+  }
+
+  std::vector<int> run(int leaf_size) {
+    std::vector<int> perm(n_);
+    std::vector<Piece> stack;
+    stack.push_back({std::vector<int>(n_), 0, 0});
+    for (int v = 0; v < n_; ++v) stack.back().vertices[v] = v;
+    int next_tag = 1;
+    std::vector<int> order, count;
+    while (!stack.empty()) {
+      Piece piece = std::move(stack.back());
+      stack.pop_back();
+      const int size = static_cast<int>(piece.vertices.size());
+      auto emit_all = [&](const std::vector<int>& vs, int first) {
+        for (size_t i = 0; i < vs.size(); ++i) {
+          perm[first + static_cast<int>(i)] = vs[i];
+          owner_[vs[i]] = -1;
+        }
+      };
+      if (size <= leaf_size) {
+        emit_all(piece.vertices, piece.first);
+        continue;
+      }
+      // A half's peripheral vertex is known from its parent's search: the
+      // parent's start for the near half, its last vertex for the far one.
+      // Otherwise search once to find one.
+      if (piece.start < 0) {
+        bfs(piece.vertices[0], piece.tag, order);
+        piece.start = order.back();
+        clear_levels(order);
+      }
+      const int levels = bfs(piece.start, piece.tag, order);
+      if (static_cast<int>(order.size()) < size) {
+        // Disconnected: the component found first and the rest, no separator.
+        Piece a{order, piece.first, next_tag++, order.back()},
+            b{{}, piece.first + static_cast<int>(order.size()), next_tag++};
+        for (int v : piece.vertices)
+          if (level_[v] < 0) b.vertices.push_back(v);
+        clear_levels(order);
+        for (int v : a.vertices) owner_[v] = a.tag;
+        for (int v : b.vertices) owner_[v] = b.tag;
+        stack.push_back(std::move(b));
+        stack.push_back(std::move(a));
+        continue;
+      }
+      if (levels < 3) {  // no interior level to cut at
+        clear_levels(order);
+        emit_all(order, piece.first);
+        continue;
+      }
+      count.assign(levels, 0);
+      for (int v : order) ++count[level_[v]];
+      // Among the levels that split the piece no worse than 40/60, the
+      // smallest one; the most balanced level if none does.
+      int cut = -1, balanced = 1;
+      long below = count[0], best_gap = -1;
+      for (int l = 1; l + 1 < levels; ++l) {
+        const long above = size - below - count[l];
+        const long gap = std::labs(above - below);
+        if (best_gap < 0 || gap < best_gap) { best_gap = gap; balanced = l; }
+        if (5 * std::min(below, above) >= 2 * (below + above) && (cut < 0 || count[l] < count[cut])) cut = l;
+        below += count[l];
+      }
+      if (cut < 0) cut = balanced;
+      Piece a{{}, piece.first, next_tag++, piece.start}, b{{}, 0, next_tag++, order.back()};
+      std::vector<int> separator;
+      for (int v : order) {
+        if (level_[v] < cut) a.vertices.push_back(v);
+        else if (level_[v] > cut) b.vertices.push_back(v);
+        else separator.push_back(v);
+      }
+      clear_levels(order);
+      b.first = piece.first + static_cast<int>(a.vertices.size());
+      emit_all(separator, b.first + static_cast<int>(b.vertices.size()));
+      for (int v : a.vertices) owner_[v] = a.tag;
+      for (int v : b.vertices) owner_[v] = b.tag;
+      stack.push_back(std::move(b));
+      stack.push_back(std::move(a));
+    }
+    return perm;
+  }
+
+ private:
+  int n_;
+  const int* begin_;
+  const int* end_;  // non-null for uncompressed matrices
+  const int* index_;
+  std::vector<int> owner_, level_;
+};
+
+}  // namespace
+
+std::vector<int> level_set_nested_dissection(const SparseMatrix& A, int leaf_size) {
+  if (A.rows() == 0) return {};
+  return Dissection(A).run(std::max(leaf_size, 3));
+}
+
+}  // namespace intrinsic::detail
