@@ -306,9 +306,6 @@ void register_param(CLI::App& app, Runner& run) {
                    {"flipped_final", best.flipped_final},
                    {"timings_ms", {{"setup", best.setup_ms}, {"optimize", best.optimize_ms}}}};
       } else if (!a->constraints.empty()) {
-        if (options.boundary == BoundaryShape::Natural || options.holes == HoleRule::Natural)
-          throw_usage("--constraints work with fixed boundaries (circle, square, file) and fill/free holes; "
-                      "the natural boundary does not take constraints yet");
         Parameterizer parameterizer(mesh, options);
         Constraints c = read_constraints_file(a->constraints);
         match_face_corners(c, data.F, mesh);

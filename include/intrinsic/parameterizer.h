@@ -1,4 +1,4 @@
-// The fixed-boundary member of the intrinsic family as an object that keeps
+// The intrinsic family (fixed boundary, or the natural conformal map) as an object that keeps
 // its factorization (paper sections 4.1 and 4.2; SPEC sections 2, 4, 5): for
 // constraints, boundary editing and optimization loops. parameterize() is a
 // thin wrapper over it.
@@ -28,15 +28,19 @@
 // in the same coordinates as the output UVs, and the result with constraints
 // is not rescaled (its area may differ from the surface's).
 //
-// The natural boundary (SPEC section 3; a 2n x 2n system coupling u and v)
-// will plug in at the same place: constraints are rows over unknowns handed
-// to detail::SaddleSolve (src/core/saddle_solve.h) together with a solve
-// callback of the factored system. Here the unknowns are the free vertices,
-// u and v are two right-hand-side columns of one matrix, and a constraint's
-// terms on fixed vertices move to its target. For the natural system the
-// unknowns are (u_0..u_n, v_0..v_n), each constraint gives a u row and a v
-// row (C = blockdiag(C, C)) and one column is solved; the resolution of
-// points and lines (resolve_constraints) is shared unchanged.
+// Natural layout (SPEC section 3): with BoundaryShape::Natural (every loop
+// natural, the pins fixed) or HoleRule::Natural on a mesh with holes and a
+// method with a conformal term (the outer loop fixed), the factored system is
+// the 2n x 2n one of natural_map.h, unknowns (u_0..u_n, v_0..v_n), one
+// right-hand-side column. Each constraint gives a u row and a v row with the
+// same weights (C = blockdiag(C, C)) handed to the same detail::SaddleSolve;
+// resolve_constraints is shared unchanged, and terms on pins or fixed
+// vertices move to the target. Scale: with default pins the unconstrained
+// natural map is placed in output coordinates first (ScaleMode::Unit: fitted
+// into [0, 1]^2 by a similarity, as natural_map does; Surface: pins at their
+// 3D distance); given pins are output coordinates. The constrained result is
+// not rescaled. solve_with_boundary() takes new pin positions (same pins: no
+// refactorization). BoundaryEditor refuses this layout (Error(Usage)).
 #pragma once
 
 #include <memory>

@@ -24,6 +24,9 @@ std::string gib(double bytes) {
 
 BoundaryEditor::BoundaryEditor(Parameterizer& parameterizer, const EditOptions& options)
     : p_(parameterizer), options_(options) {
+  if (p_.impl_->natural)
+    throw_usage("the boundary editor works with fixed boundaries and fill or free holes; the natural boundary "
+                "and natural holes couple u and v and have no per-vertex responses here");
   const auto t0 = std::chrono::steady_clock::now();
   uv_ = p_.solve().UV;
   const Parameterizer::Impl& s = *p_.impl_;

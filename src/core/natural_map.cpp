@@ -173,14 +173,15 @@ PinnedSolution solve_pinned(const SparseMatrix& Q, const std::vector<FixedVertex
   return s;
 }
 
-ParamResult natural_map(const Mesh& mesh, const ParamOptions& o) {
-  const bool conformal = o.weights.method == Method::Conformal ||
-                         (o.weights.method == Method::Mixed && o.weights.mu == 0 && o.weights.lambda != 0);
+void check_natural_method(const WeightOptions& w) {
+  const bool conformal =
+      w.method == Method::Conformal || (w.method == Method::Mixed && w.mu == 0 && w.lambda != 0);
   if (!conformal)
     throw_usage("the natural boundary needs the conformal method: its condition (eq. 7) comes from the conformal "
                 "energy E_D - A, and the authalic weights derive from no known energy (paper section 4.2)");
-  ParamResult result;
-  const auto t_assemble = std::chrono::steady_clock::now();
+}
+
+std::vector<FixedVertex> natural_pins(const Mesh& mesh, const ParamOptions& o) {
   std::vector<FixedVertex> pins = o.pins;
   if (pins.empty()) {
     const auto [a, b] = default_pin_pair(mesh);
@@ -189,6 +190,14 @@ ParamResult natural_map(const Mesh& mesh, const ParamOptions& o) {
   } else {
     check_pins(mesh, pins);
   }
+  return pins;
+}
+
+ParamResult natural_map(const Mesh& mesh, const ParamOptions& o) {
+  check_natural_method(o.weights);
+  ParamResult result;
+  const auto t_assemble = std::chrono::steady_clock::now();
+  const std::vector<FixedVertex> pins = natural_pins(mesh, o);
   const SparseMatrix Q = assemble_natural_system(mesh);
   result.timings.assemble_ms = ms_since(t_assemble);
 

@@ -66,6 +66,15 @@ struct PinnedSolution {
 PinnedSolution solve_pinned(const SparseMatrix& Q, const std::vector<FixedVertex>& fixed,
                             const std::vector<char>& is_used, SolverKind kind, bool symmetric, double max_residual);
 
+// Throws Error(Usage) unless the weights are conformal (mixed with mu = 0
+// counts): eq. 7 comes from the conformal energy.
+void check_natural_method(const WeightOptions& weights);
+
+// The pins of the natural map: options.pins checked (at least two, existing
+// used vertices, each once, finite, not all at one point), or the default
+// pair (default_pin_pair) at (0, 0) and (d, 0), d their 3D distance.
+std::vector<FixedVertex> natural_pins(const Mesh& mesh, const ParamOptions& options);
+
 // The natural conformal map of a one-component mesh with a boundary
 // (called by parameterize for BoundaryShape::Natural).
 ParamResult natural_map(const Mesh& mesh, const ParamOptions& options);

@@ -43,10 +43,25 @@ Parameterizer::Parameterizer(const Mesh& mesh, const ParamOptions& o) : impl_(st
   Impl& s = *impl_;
   s.mesh = &mesh;
   s.o = o;
-  s.build(fixed_positions(mesh, o));
-  if (o.boundary == BoundaryShape::Given) {
-    s.scale = "given";
-    return;
+  const bool has_holes = t.component_loops[0].size() > 1;
+  s.natural_boundary = o.boundary == BoundaryShape::Natural;
+  s.natural = s.natural_boundary ||
+              (has_holes && o.holes == HoleRule::Natural && detail::conformal_weight(o.weights) != 0);
+  if (s.natural_boundary) {
+    check_natural_method(o.weights);
+    s.pins = natural_pins(mesh, o);
+    s.build(s.pins);
+    if (!o.pins.empty()) {  // the user's pins are output coordinates
+      s.scale = "given";
+      return;
+    }
+  } else {
+    if (!o.pins.empty()) throw_usage("pins apply to the natural boundary only (use given boundary positions instead)");
+    s.build(fixed_positions(mesh, o));
+    if (o.boundary == BoundaryShape::Given) {
+      s.scale = "given";
+      return;
+    }
   }
   // Place the shape in output coordinates now, so constraints (set later)
   // and the result share one frame. The map commutes with similarities of
@@ -57,7 +72,30 @@ Parameterizer::Parameterizer(const Mesh& mesh, const ParamOptions& o) : impl_(st
   const auto t_solve = std::chrono::steady_clock::now();
   s.X = s.solve_for(s.UB);
   s.timings.solve_ms = detail::elapsed_ms(t_solve);
-  if (o.scale == ScaleMode::Unit) {
+  if (s.natural_boundary) {
+    // Default pins: as natural_map, fit [0, 1]^2 by a similarity (Unit) or
+    // keep the pins at their 3D distance (Surface). The natural map commutes
+    // with similarities of the pins (E_D - A is invariant under them), so
+    // moving the pins now gives the unconstrained natural_map result.
+    scale = 1.0;
+    offset.setZero();
+    s.scale = "surface";
+    if (o.scale == ScaleMode::Unit) {
+      s.scale = "unit";
+      const MatrixX2d UV = s.full_uv(s.X, s.UB);
+      Eigen::RowVector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+      for (int v = 0; v < UV.rows(); ++v)
+        if (t.is_used[v]) {
+          lo = lo.cwiseMin(UV.row(v));
+          hi = hi.cwiseMax(UV.row(v));
+        }
+      const double extent = (hi - lo).maxCoeff();
+      if (extent > 0) {
+        scale = 1.0 / extent;
+        offset = Eigen::RowVector2d(0.5, 0.5) - 0.5 * (lo + hi) / extent;
+      }
+    }
+  } else if (o.scale == ScaleMode::Unit) {
     // The circle and square live in [-1, 1]^2: that box goes onto [0, 1]^2
     // exactly (a bounding-box fit would depend on where the vertices fall).
     s.scale = "unit";
@@ -70,8 +108,7 @@ Parameterizer::Parameterizer(const Mesh& mesh, const ParamOptions& o) : impl_(st
     scale = a_param > 0 ? std::sqrt(surface_area(mesh.V, mesh.F) / a_param) : 1.0;
     offset.setZero();
   }
-  s.UB = (scale * s.UB).rowwise() + offset;
-  s.X = (scale * s.X).rowwise() + offset;
+  s.place(scale, offset);
   s.update_fixed_list();
   s.have_X = true;
 }
@@ -89,12 +126,18 @@ ParamResult Parameterizer::solve() {
     s.have_X = true;
   }
   ParamResult r;
-  r.free_vertices = s.num_free();
-  r.fixed_vertices = static_cast<int>(s.p.fixed_vertices.size());
+  r.free_vertices = s.free_vertex_count();
+  r.fixed_vertices = s.fixed_vertex_count();
   r.filled_holes = s.filled_holes;
   r.factorizations = s.factorizations;
   r.scale = s.scale;
   r.timings = s.timings;
+  if (s.natural_boundary) {
+    r.pins = s.pins;
+    r.holes = s.mesh->topology.component_loops[0].size() > 1 ? "natural" : "none";
+  } else if (s.natural) {
+    r.holes = "natural";
+  }
   if (r.free_vertices > 0) {
     r.solver = s.solver->name();
     r.iterations = s.solver->iterations();
@@ -104,7 +147,7 @@ ParamResult Parameterizer::solve() {
     const Eigen::MatrixXd rhs = -(s.K_IB * s.UB);
     Eigen::MatrixXd res = s.A * s.X - rhs;
     if (s.saddle.rows() > 0 && s.lambda.rows() == s.saddle.rows()) res += s.saddle.C().transpose() * s.lambda;
-    for (int c = 0; c < 2; ++c) {
+    for (int c = 0; c < res.cols(); ++c) {
       const double b = rhs.col(c).norm(), e = res.col(c).norm();
       r.residual = std::max(r.residual, b > 0 ? e / b : e);
     }
@@ -122,7 +165,7 @@ ParamResult Parameterizer::solve() {
 
 ParamResult Parameterizer::solve_with_boundary(const std::vector<FixedVertex>& fixed) {
   Impl& s = *impl_;
-  bool same_set = fixed.size() == s.p.fixed_vertices.size();
+  bool same_set = fixed.size() == s.fixed.size();
   std::vector<char> seen(s.n, 0);
   for (const FixedVertex& fv : fixed) {
     if (fv.vertex < 0 || fv.vertex >= s.n)
@@ -133,17 +176,23 @@ ParamResult Parameterizer::solve_with_boundary(const std::vector<FixedVertex>& f
     same_set = same_set && s.p.fixed_index[fv.vertex] >= 0;
   }
   if (same_set) {
-    Eigen::MatrixXd ub(s.UB.rows(), 2);
-    for (const FixedVertex& fv : fixed) ub.row(s.p.fixed_index[fv.vertex]) = fv.uv.transpose();
+    Eigen::MatrixXd ub(s.UB.rows(), s.UB.cols());
+    for (const FixedVertex& fv : fixed) s.set_fixed_uv(ub, fv.vertex, fv.uv);
     s.check_fixed_only(ub);
     s.UB = ub;
     s.update_fixed_list();
     s.have_X = false;
   } else {
     // Another set of fixed vertices changes K_II itself.
-    s.o.boundary = BoundaryShape::Given;
-    s.o.given = fixed;
-    s.build(fixed_positions(*s.mesh, s.o));
+    if (s.natural_boundary) {  // new pins
+      s.o.pins = fixed;
+      s.pins = natural_pins(*s.mesh, s.o);
+      s.build(s.pins);
+    } else {
+      s.o.boundary = BoundaryShape::Given;
+      s.o.given = fixed;
+      s.build(fixed_positions(*s.mesh, s.o));
+    }
     s.scale = "given";
     s.setup_constraints();
   }
@@ -203,7 +252,7 @@ std::vector<ConstraintResidual> Parameterizer::residuals(const MatrixX2d& UV) co
 const std::vector<FixedVertex>& Parameterizer::boundary() const { return impl_->fixed; }
 const Mesh& Parameterizer::mesh() const { return *impl_->mesh; }
 const ParamOptions& Parameterizer::options() const { return impl_->o; }
-int Parameterizer::free_vertices() const { return impl_->num_free(); }
+int Parameterizer::free_vertices() const { return impl_->free_vertex_count(); }
 int Parameterizer::factorizations() const { return impl_->factorizations; }
 int Parameterizer::constraint_setups() const { return impl_->constraint_setups; }
 

@@ -9,12 +9,23 @@
 #include "intrinsic/assemble.h"
 #include "intrinsic/error.h"
 #include "intrinsic/parameterizer.h"
+#include "natural_map.h"
 #include "saddle_solve.h"
 
 namespace intrinsic {
 namespace detail {
 inline double elapsed_ms(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The weight of the conformal energy in the method's rows: the factor of the
+// area term on natural hole loops (0: no such term, the holes are free).
+inline double conformal_weight(const WeightOptions& w) {
+  switch (w.method) {
+    case Method::Conformal: return 1.0;
+    case Method::Mixed: return w.lambda;
+    default: return 0.0;
+  }
 }
 }  // namespace detail
 
@@ -40,8 +51,87 @@ struct Parameterizer::Impl {
   bool have_X = false;
   Eigen::MatrixXd X, lambda;
 
+  // Natural layout (SPEC section 3, natural_map.h): the 2n x 2n system with
+  // blocked unknowns (u_v at index v, v_v at n + v) and one right-hand-side
+  // column; the partition, A, K_IB, UB (a column) and X are over those 2n
+  // unknowns, and each constraint gives a u row and a v row with the same
+  // weights (C = blockdiag(C, C)). Used for the natural boundary (the fixed
+  // unknowns are the pins) and for natural holes with a conformal term (the
+  // fixed unknowns are the outer loop). No holes are filled in this layout.
+  bool natural = false;
+  bool natural_boundary = false;
+  std::vector<FixedVertex> pins;  // natural boundary: the pins as given (or the default pair), before placing
+
+  void build_natural(const std::vector<FixedVertex>& given) {
+    const auto t_assemble = std::chrono::steady_clock::now();
+    const Topology& t = mesh->topology;
+    n = static_cast<int>(mesh->V.rows());
+    filled_holes = 0;
+    SparseMatrix Q;
+    bool symmetric = true;
+    if (natural_boundary) {
+      Q = assemble_natural_system(*mesh);  // every loop natural
+    } else {
+      const SparseMatrix K = assemble_weight_matrix(mesh->V, mesh->F, o.weights);
+      std::vector<std::vector<int>> holes;
+      for (size_t k = 1; k < t.component_loops[0].size(); ++k) holes.push_back(t.boundary_loops[t.component_loops[0][k]]);
+      Q = block_diagonal2(K) - detail::conformal_weight(o.weights) * area_hessian(n, holes);
+      symmetric = is_symmetric(o.weights);
+    }
+    std::vector<char> fixed2(2 * n, 0), used2(2 * n, 0);
+    for (int v = 0; v < n; ++v) used2[v] = used2[n + v] = t.is_used[v];
+    for (const FixedVertex& fv : given) fixed2[fv.vertex] = fixed2[n + fv.vertex] = 1;
+    p = partition(2 * n, fixed2, used2);
+    split_matrix(Q, p, A, K_IB);
+    UB.resize(static_cast<int>(p.fixed_vertices.size()), 1);
+    for (const FixedVertex& fv : given) set_fixed_uv(UB, fv.vertex, fv.uv);
+    update_fixed_list();
+    timings.assemble_ms = detail::elapsed_ms(t_assemble);
+
+    const auto t_factor = std::chrono::steady_clock::now();
+    solver = std::make_unique<LinearSolver>(o.solver, symmetric);
+    if (A.rows() > 0) {
+      solver->factor(A);
+      ++factorizations;
+    }
+    timings.factor_ms = detail::elapsed_ms(t_factor);
+    have_X = false;
+  }
+
+  // Position of fixed vertex v in ub (either layout).
+  Eigen::Vector2d fixed_uv(const Eigen::MatrixXd& ub, int v) const {
+    if (natural) return {ub(p.fixed_index[v], 0), ub(p.fixed_index[n + v], 0)};
+    return ub.row(p.fixed_index[v]).transpose();
+  }
+  void set_fixed_uv(Eigen::MatrixXd& ub, int v, const Eigen::Vector2d& uv) const {
+    if (natural) {
+      ub(p.fixed_index[v], 0) = uv.x();
+      ub(p.fixed_index[n + v], 0) = uv.y();
+    } else {
+      ub.row(p.fixed_index[v]) = uv.transpose();
+    }
+  }
+
+  // uv -> scale * uv + offset on the fixed positions and the current solution.
+  void place(double scale, const Eigen::RowVector2d& offset) {
+    if (!natural) {
+      UB = (scale * UB).rowwise() + offset;
+      X = (scale * X).rowwise() + offset;
+      return;
+    }
+    for (int k = 0; k < UB.rows(); ++k) UB(k, 0) = scale * UB(k, 0) + offset(p.fixed_vertices[k] >= n ? 1 : 0);
+    for (int k = 0; k < X.rows(); ++k) X(k, 0) = scale * X(k, 0) + offset(p.free_vertices[k] >= n ? 1 : 0);
+  }
+
+  int free_vertex_count() const { return natural ? num_free() / 2 : num_free(); }
+  int fixed_vertex_count() const { return static_cast<int>(fixed.size()); }
+
   // Working surface (holes filled), partition, blocks, factorization.
   void build(const std::vector<FixedVertex>& given) {
+    if (natural) {
+      build_natural(given);
+      return;
+    }
     const auto t_assemble = std::chrono::steady_clock::now();
     const Topology& t = mesh->topology;
     n = static_cast<int>(mesh->V.rows());
@@ -105,8 +195,9 @@ struct Parameterizer::Impl {
   }
 
   void update_fixed_list() {
-    fixed.resize(p.fixed_vertices.size());
-    for (size_t k = 0; k < fixed.size(); ++k) fixed[k] = {p.fixed_vertices[k], UB.row(static_cast<int>(k)).transpose()};
+    fixed.clear();
+    for (int v : p.fixed_vertices)
+      if (!natural || v < n) fixed.push_back({v, fixed_uv(UB, v)});
   }
 
   int num_free() const { return static_cast<int>(A.rows()); }
@@ -124,8 +215,17 @@ struct Parameterizer::Impl {
   }
 
   Eigen::MatrixXd active_targets() const {
-    Eigen::MatrixXd T(static_cast<int>(active.size()), 2);
-    for (size_t r = 0; r < active.size(); ++r) T.row(static_cast<int>(r)) = rows[active[r]].target.transpose();
+    const int m = static_cast<int>(active.size());
+    if (natural) {  // u rows, then v rows
+      Eigen::MatrixXd T(2 * m, 1);
+      for (int r = 0; r < m; ++r) {
+        T(r, 0) = rows[active[r]].target.x();
+        T(m + r, 0) = rows[active[r]].target.y();
+      }
+      return T;
+    }
+    Eigen::MatrixXd T(m, 2);
+    for (int r = 0; r < m; ++r) T.row(r) = rows[active[r]].target.transpose();
     return T;
   }
 
@@ -139,6 +239,15 @@ struct Parameterizer::Impl {
   // centres dropped.
   MatrixX2d full_uv(const Eigen::MatrixXd& x, const Eigen::MatrixXd& ub) const {
     MatrixX2d UV = MatrixX2d::Zero(n, 2);
+    if (natural) {
+      for (int v = 0; v < n; ++v)
+        for (int c = 0; c < 2; ++c) {
+          const int k = c * n + v;
+          if (p.free_index[k] >= 0) UV(v, c) = x(p.free_index[k], 0);
+          else if (p.fixed_index[k] >= 0) UV(v, c) = ub(p.fixed_index[k], 0);
+        }
+      return UV;
+    }
     for (int v = 0; v < n; ++v) {
       if (p.free_index[v] >= 0) UV.row(v) = x.row(p.free_index[v]);
       else if (p.fixed_index[v] >= 0) UV.row(v) = ub.row(p.fixed_index[v]);
@@ -152,12 +261,13 @@ struct Parameterizer::Impl {
       Eigen::Vector2d value = Eigen::Vector2d::Zero();
       std::string vertices;
       for (auto [v, w] : c.terms) {
-        value += w * ub.row(p.fixed_index[v]).transpose();
+        value += w * fixed_uv(ub, v);
         vertices += (vertices.empty() ? "" : ", ") + std::to_string(v);
       }
       const double tol = 1e-9 * std::max(1.0, c.target.cwiseAbs().maxCoeff());
       if ((value - c.target).cwiseAbs().maxCoeff() > tol)
-        throw_input(c.label + " lies on fixed boundary vertices only (" + vertices + ") and asks for (" +
+        throw_input(c.label + " lies on " + (natural_boundary ? "pinned" : "fixed boundary") + " vertices only (" +
+                    vertices + ") and asks for (" +
                     std::to_string(c.target.x()) + ", " + std::to_string(c.target.y()) +
                     "), but the boundary puts it at (" + std::to_string(value.x()) + ", " +
                     std::to_string(value.y()) + ")");
@@ -173,19 +283,24 @@ struct Parameterizer::Impl {
       bool has_free = false;
       for (auto [v, w] : rows[k].terms) has_free = has_free || p.free_index[v] >= 0;
       if (!has_free) { fixed_only.push_back(static_cast<int>(k)); continue; }
-      const int r = static_cast<int>(active.size());
-      for (auto [v, w] : rows[k].terms) {
-        if (p.free_index[v] >= 0) c_free.emplace_back(r, p.free_index[v], w);
-        else c_fixed.emplace_back(r, p.fixed_index[v], w);
-      }
       active.push_back(static_cast<int>(k));
-      labels.push_back(rows[k].label);
     }
+    // Natural layout: the u rows (over unknowns v), then the v rows (n + v).
+    const int m = static_cast<int>(active.size()), blocks = natural ? 2 : 1;
+    for (int b = 0; b < blocks; ++b)
+      for (int r = 0; r < m; ++r) {
+        const LinearConstraint& c = rows[active[r]];
+        for (auto [v, w] : c.terms) {
+          const int k = b * n + v, row = b * m + r;
+          if (p.free_index[k] >= 0) c_free.emplace_back(row, p.free_index[k], w);
+          else c_fixed.emplace_back(row, p.fixed_index[k], w);
+        }
+        labels.push_back(natural ? c.label + (b == 0 ? " (u)" : " (v)") : c.label);
+      }
     check_fixed_only(UB);
-    const int m = static_cast<int>(active.size());
-    SparseMatrix C(m, num_free());
+    SparseMatrix C(blocks * m, num_free());
     C.setFromTriplets(c_free.begin(), c_free.end());
-    CB.resize(m, static_cast<int>(p.fixed_vertices.size()));
+    CB.resize(blocks * m, static_cast<int>(p.fixed_vertices.size()));
     CB.setFromTriplets(c_fixed.begin(), c_fixed.end());
     have_X = false;
     saddle.set([this](const Eigen::MatrixXd& B) { return solve_A(B); }, C, labels);

@@ -13,8 +13,8 @@
 //
 // It knows nothing of meshes: the fixed-boundary Parameterizer passes the
 // eliminated K_II (one matrix, u and v as two right-hand-side columns, C over
-// the free vertices); the natural conformal system (2n x 2n, u and v coupled)
-// will pass its own solve and C = blockdiag(C_u, C_v) with one column.
+// the free vertices); the natural system (2n x 2n, u and v coupled) passes
+// its own solve and C = blockdiag(C, C) with one column (parameterizer.h).
 #pragma once
 
 #include <Eigen/Dense>
