@@ -202,15 +202,7 @@ ParamResult natural_map(const Mesh& mesh, const ParamOptions& o) {
   result.timings.assemble_ms = ms_since(t_assemble);
 
   const PinnedSolution s = solve_pinned(Q, pins, mesh.topology.is_used, o.solver, true, o.max_residual);
-  result.UV = s.UV;
-  result.solver = s.solver;
-  result.residual = s.residual;
-  result.free_vertices = s.free_vertices;
-  result.fixed_vertices = s.fixed_vertices;
-  result.factorizations = s.factorizations;
-  result.iterations = s.iterations;
-  result.timings.factor_ms = s.factor_ms;
-  result.timings.solve_ms = s.solve_ms;
+  s.fill(result);
   result.pins = pins;
   result.holes = mesh.topology.boundary_loops.size() > 1 ? "natural" : "none";
   if (!o.pins.empty()) {

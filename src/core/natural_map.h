@@ -57,6 +57,20 @@ struct PinnedSolution {
   double residual = 0;
   int free_vertices = 0, fixed_vertices = 0, factorizations = 0, iterations = 0;
   double factor_ms = 0, solve_ms = 0;
+
+  // Copies the solution and its diagnostics into a result (scale, pins and
+  // holes are the caller's).
+  void fill(ParamResult& r) const {
+    r.UV = UV;
+    r.solver = solver;
+    r.residual = residual;
+    r.free_vertices = free_vertices;
+    r.fixed_vertices = fixed_vertices;
+    r.factorizations = factorizations;
+    r.iterations = iterations;
+    r.timings.factor_ms = factor_ms;
+    r.timings.solve_ms = solve_ms;
+  }
 };
 
 // Solves Q U = 0 (blocked ordering) with the vertices in `fixed` held at

@@ -206,15 +206,7 @@ ParamResult natural_holes_map(const Mesh& mesh, const ParamOptions& o, const std
   result.timings.assemble_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_assemble).count();
   const PinnedSolution s = solve_pinned(Q, fixed, is_used, o.solver, is_symmetric(o.weights), o.max_residual);
-  result.UV = s.UV;
-  result.solver = s.solver;
-  result.residual = s.residual;
-  result.free_vertices = s.free_vertices;
-  result.fixed_vertices = s.fixed_vertices;
-  result.factorizations = s.factorizations;
-  result.iterations = s.iterations;
-  result.timings.factor_ms = s.factor_ms;
-  result.timings.solve_ms = s.solve_ms;
+  s.fill(result);
   finish_scale(result, mesh, o);
   return result;
 }
