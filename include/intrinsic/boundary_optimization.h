@@ -61,6 +61,9 @@ struct BoundaryOptimizationResult {
 // is +inf on a flipped or collapsed triangle.
 double boundary_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, BoundaryEnergy e,
                        MatrixX2d* gradient);
+// Same, with the edge list (unique_edges(F)) computed once by the caller.
+double boundary_energy(const MatrixX3d& V, const MatrixX3i& F, const Eigen::MatrixX2i& edges, const MatrixX2d& UV,
+                       BoundaryEnergy e, MatrixX2d* gradient);
 
 BoundaryOptimizationResult optimize_boundary(const Mesh& mesh, const BoundaryOptimizationOptions& options);
 
@@ -88,6 +91,7 @@ class BoundaryObjective {
   LinearSolver solver_;
   Eigen::MatrixXd R_;  // responses, for GradientRoute::Responses
   std::vector<std::array<int, 2>> segments_;
+  Eigen::MatrixX2i edges_;  // unique_edges(F), once
 };
 
 // True when two boundary segments that share no vertex cross in the plane.

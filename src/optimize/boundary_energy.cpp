@@ -32,8 +32,7 @@ Descent parse_descent(const std::string& name) {
 
 namespace {
 
-double edge_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, MatrixX2d* g) {
-  const Eigen::MatrixX2i E = unique_edges(F);
+double edge_energy(const MatrixX3d& V, const Eigen::MatrixX2i& E, const MatrixX2d& UV, MatrixX2d* g) {
   double e = 0;
   for (int k = 0; k < E.rows(); ++k) {
     const int i = E(k, 0), j = E(k, 1);
@@ -104,9 +103,14 @@ double dirichlet_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d&
 
 double boundary_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, BoundaryEnergy e,
                        MatrixX2d* gradient) {
+  return boundary_energy(V, F, e == BoundaryEnergy::EdgeLength ? unique_edges(F) : Eigen::MatrixX2i(), UV, e, gradient);
+}
+
+double boundary_energy(const MatrixX3d& V, const MatrixX3i& F, const Eigen::MatrixX2i& edges, const MatrixX2d& UV,
+                       BoundaryEnergy e, MatrixX2d* gradient) {
   if (gradient) *gradient = MatrixX2d::Zero(UV.rows(), 2);
   switch (e) {
-    case BoundaryEnergy::EdgeLength: return edge_energy(V, F, UV, gradient);
+    case BoundaryEnergy::EdgeLength: return edge_energy(V, edges, UV, gradient);
     case BoundaryEnergy::Area: return area_energy_grad(V, F, UV, gradient);
     case BoundaryEnergy::SymmetricDirichlet: return dirichlet_energy(V, F, UV, gradient);
   }

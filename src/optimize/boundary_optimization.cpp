@@ -12,6 +12,7 @@
 
 #include "intrinsic/assemble.h"
 #include "intrinsic/error.h"
+#include "intrinsic/metrics.h"
 
 namespace intrinsic {
 namespace {
@@ -70,6 +71,7 @@ BoundaryObjective::BoundaryObjective(const Mesh& mesh, const BoundaryOptimizatio
     const auto& loop = mesh.topology.boundary_loops[l];
     for (size_t k = 0; k < loop.size(); ++k) segments_.push_back({loop[k], loop[(k + 1) % loop.size()]});
   }
+  edges_ = unique_edges(mesh.F);
   p_ = partition(n, fixed, std::vector<char>(mesh.topology.is_used.begin(), mesh.topology.is_used.end()));
   const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, o.base.weights);
   split_matrix(K, p_, A_, K_IB_);
@@ -118,7 +120,7 @@ MatrixX2d BoundaryObjective::map(const Eigen::VectorXd& x) {
 
 double BoundaryObjective::energy(const MatrixX2d& UV, Eigen::VectorXd* grad) {
   MatrixX2d g;
-  const double e = boundary_energy(mesh_.V, mesh_.F, UV, o_.energy, grad ? &g : nullptr);
+  const double e = boundary_energy(mesh_.V, mesh_.F, edges_, UV, o_.energy, grad ? &g : nullptr);
   if (!grad || !std::isfinite(e)) return e;
   Eigen::MatrixXd gI(p_.free_vertices.size(), 2);
   for (size_t i = 0; i < p_.free_vertices.size(); ++i) gI.row(i) = g.row(p_.free_vertices[i]);
