@@ -37,6 +37,12 @@ class LinearSolver {
   // Solves A^T X = B (adjoint gradients); same factorization.
   Eigen::MatrixXd solve_transposed(const Eigen::MatrixXd& B) const;
 
+  // Declares the system ill-conditioned (the natural map's, with only two
+  // pinned vertices): direct solves then refine iteratively until the
+  // correction is below 1e-13 of the solution, instead of only when the
+  // residual is above rounding level.
+  void set_ill_conditioned(bool on);
+
   std::string name() const;       // the backend actually used
   int factorizations() const;     // how many numeric factorizations so far
   int iterations() const;         // last iterative solve, 0 for direct

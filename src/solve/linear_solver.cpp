@@ -67,6 +67,7 @@ struct LinearSolver::Impl {
   SolverKind requested;
   bool symmetric;
   double tolerance;
+  bool ill_conditioned = false;
   SparseMatrix A;
   std::string used;
   int factorizations = 0;
@@ -177,7 +178,7 @@ Eigen::MatrixXd LinearSolver::solve(const Eigen::MatrixXd& B) const {
   if (s.llt) X = s.llt->solve(B);
   else if (s.lu) X = s.lu->solve(B);
 #ifdef INTRINSIC_HAVE_SUITESPARSE
-  else if (s.cholmod) X = s.cholmod->solve(B);
+  else if (s.cholmod) X = s.cholmod->solve(B, s.ill_conditioned);
   else if (s.umfpack) X = s.umfpack->solve(B);
 #endif
   else if (s.cg || s.bicg) {
@@ -210,6 +211,8 @@ Eigen::MatrixXd LinearSolver::solve_transposed(const Eigen::MatrixXd& B) const {
   }
   return s.transposed->solve(B);
 }
+
+void LinearSolver::set_ill_conditioned(bool on) { impl_->ill_conditioned = on; }
 
 std::string LinearSolver::name() const { return impl_->used; }
 int LinearSolver::factorizations() const { return impl_->factorizations; }

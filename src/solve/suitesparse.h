@@ -33,7 +33,10 @@ class CholmodFactor {
   // False when A is not positive definite. A must outlive the solves (they
   // refine with it).
   bool factor(const SparseMatrix& A);
-  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  // refine_always: iterative refinement until the correction is negligible
+  // (ill-conditioned systems); otherwise only when the backward error is
+  // above rounding level.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B, bool refine_always = false) const;
   double factor_nonzeros() const;  // nnz(L)
   double analyse_ms = 0, factor_ms = 0;  // split of factor(), for the bench
 
