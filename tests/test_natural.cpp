@@ -393,11 +393,28 @@ TEST(Natural, HoleRulesOnHoledSharedMeshes) {
     SCOPED_TRACE(row.mesh);
     const Mesh mesh = make_mesh(read_mesh(test::shared_mesh(row.mesh)));
     ASSERT_GT(mesh.topology.boundary_loops.size(), 1u);
+    // Triangles whose signed parameter area is below -1e-15 of the layout's
+    // area. Free holes pull the bunny through its 80-edge base loop (area
+    // distortion 1e8): besides 4 clear flips (1e-9 .. 1e-6 of the layout),
+    // two triangles end at 1e-20 of it, below the solver's accuracy, and
+    // their sign follows the factorization's rounding (the ordering), so
+    // they are not counted here; summarize_distortion counts them.
     auto flips = [&](ParamOptions o) {
       const ParamResult r = parameterize(mesh, o);
       EXPECT_TRUE(r.UV.allFinite());
       EXPECT_LT(r.residual, 1e-8);
-      return summarize_distortion(mesh.V, mesh.F, r.UV).flipped_triangles;
+      std::vector<double> area(mesh.F.rows());
+      double total = 0;
+      for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+        const Eigen::RowVector2d a = r.UV.row(mesh.F(f, 0)), b = r.UV.row(mesh.F(f, 1)), c = r.UV.row(mesh.F(f, 2));
+        area[f] = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+        total += area[f];
+      }
+      int clear = 0;
+      for (double x : area) clear += x < -1e-15 * std::abs(total);
+      const int all = summarize_distortion(mesh.V, mesh.F, r.UV).flipped_triangles;
+      EXPECT_LE(all - clear, 2);  // the rounding-level ones
+      return clear;
     };
     ParamOptions o;
     o.holes = HoleRule::Fill;
