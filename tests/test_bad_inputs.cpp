@@ -332,6 +332,34 @@ TEST(AtomicOutput, FileSizeLimitFailsTheWriteAndLeavesNothing) {
   EXPECT_EQ(dir.files(), std::vector<std::string>{"in.obj"});
 }
 
+// Large meshes are formatted on worker threads and streamed: a write failing
+// after several chunks went out must still leave nothing (and no thread).
+TEST(AtomicOutput, FileSizeLimitMidStreamLeavesNothing) {
+  TempDir dir;
+  ASSERT_EQ(run_cli("generate wave --rings 200 -o " + (dir / "in.obj"), dir).code, 0);  // 120k vertices
+  const auto r = run_cli_with("ulimit -f 4000", "param " + (dir / "in.obj") + " -o " + (dir / "out.obj"), dir);  // 2 MB
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_NE(r.err.find("cannot write " + (dir / "out.obj")), std::string::npos) << r.err;
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"in.obj"});
+}
+
+TEST(AtomicOutput, ProducerExceptionLeavesNothing) {
+  TempDir dir;
+  const std::string path = dir / "out.bin";
+  EXPECT_THROW(write_file_atomically(path,
+                                     [](const ByteSink& sink) {
+                                       sink("partial", 7);
+                                       throw_numerical("stop");
+                                     }),
+               Error);
+  EXPECT_TRUE(dir.files().empty());
+  write_file_atomically(path, [](const ByteSink& sink) {
+    sink("ab", 2);
+    sink("cd", 2);
+  });
+  EXPECT_EQ(test::slurp(path), "abcd");
+}
+
 TEST(AtomicOutput, FailingReportRemovesTheMeshAlreadyWritten) {
   TempDir dir;
   test::write_text(dir / "in.obj", grid_obj(6));

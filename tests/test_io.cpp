@@ -623,14 +623,16 @@ bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 
 TEST(IoWrite, RoundTripIsExact) {
   TempDir dir;
-  for (bool uv : {false, true}) {
-    const Mesh m = random_mesh(500, 1000, uv, uv ? 7 : 11);
+  // 500 vertices: one chunk, formatted in place; 100k: many chunks
+  // formatted on worker threads and streamed in order.
+  for (auto [uv, rows] : {std::pair{false, 500}, std::pair{true, 500}, std::pair{true, 100000}}) {
+    const Mesh m = random_mesh(rows, 2 * rows, uv, uv ? 7 : 11);
     struct Case {
       const char* name;
       bool binary;
     } cases[] = {{"out.obj", false}, {"out.ply", false}, {"bin.ply", true}};
     for (const Case& c : cases) {
-      SCOPED_TRACE(std::string(c.name) + (uv ? " with uv" : " without uv"));
+      SCOPED_TRACE(std::string(c.name) + (uv ? " with uv, " : " without uv, ") + std::to_string(rows));
       intrinsic::WriteOptions wo;
       wo.binary = c.binary;
       intrinsic::write_mesh(dir.file(c.name), m.V, m.F, m.UV, wo);

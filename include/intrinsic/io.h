@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "intrinsic/error.h"
@@ -41,6 +42,12 @@ void write_mesh(const std::string& path, const MatrixX3d& V, const MatrixX3i& F,
 // Atomically writes `contents` to `path` (temp file + rename). Shared by every
 // writer in the project (JSON reports, PNG images, meshes).
 void write_file_atomically(const std::string& path, const std::string& contents);
+// The same for contents produced piece by piece: `produce` is called once
+// with a sink and hands it the file's bytes in order (large files are then
+// formatted and written at the same time, never held whole in memory). An
+// exception from `produce` or the sink leaves no file behind.
+using ByteSink = std::function<void(const char* data, std::size_t size)>;
+void write_file_atomically(const std::string& path, const std::function<void(const ByteSink&)>& produce);
 
 // For programs (the CLI calls it first thing; library code never installs
 // handlers by itself): SIGINT, SIGTERM, SIGHUP and SIGQUIT delete the temporary

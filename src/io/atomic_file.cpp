@@ -97,6 +97,10 @@ void remove_temporary_files_on_signals() {
 }
 
 void write_file_atomically(const std::string& path, const std::string& contents) {
+  write_file_atomically(path, [&](const ByteSink& sink) { sink(contents.data(), contents.size()); });
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(const ByteSink&)>& produce) {
   if (path.empty()) throw_output("cannot write a file with an empty name");
   const std::size_t slash = path.find_last_of('/');
   const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
@@ -120,22 +124,33 @@ void write_file_atomically(const std::string& path, const std::string& contents)
   ::pthread_sigmask(SIG_SETMASK, &previous, nullptr);
   if (fd < 0) throw_output("cannot write " + path + ": " + std::strerror(mkstemp_errno));
 
+  bool removed = false;
   auto fail = [&](int err) {
     ::close(fd);
     ::unlink(tmp.c_str());
+    removed = true;
     throw_output("cannot write " + path + ": " + std::strerror(err));
   };
 
-  const char* p = contents.data();
-  std::size_t left = contents.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail(errno);
+  auto sink = [&](const char* p, std::size_t left) {
+    while (left > 0) {
+      const ssize_t n = ::write(fd, p, left);
+      if (n < 0) {
+        if (errno == EINTR) continue;
+        fail(errno);
+      }
+      p += n;
+      left -= static_cast<std::size_t>(n);
     }
-    p += n;
-    left -= static_cast<std::size_t>(n);
+  };
+  try {
+    produce(sink);
+  } catch (...) {
+    if (!removed) {  // a failed write has already cleaned up
+      ::close(fd);
+      ::unlink(tmp.c_str());
+    }
+    throw;
   }
   // mkstemp creates the file private (0600); results are ordinary files, so
   // give them the permissions a plain open(..., 0666) would under the umask.

@@ -1,11 +1,16 @@
 // OBJ and PLY writers. Numbers are printed with std::to_chars' shortest
 // round-trip form, so reading a written mesh gives back the same doubles.
+// Large files are formatted in chunks on worker threads and streamed to the
+// temporary file as they are ready.
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cstdint>
 #include <cmath>
 #include <cstring>
+#include <deque>
+#include <functional>
+#include <future>
 #include <thread>
 #include <vector>
 
@@ -15,8 +20,7 @@ namespace intrinsic {
 
 namespace {
 
-// Appends formatted numbers to one growing buffer; the whole file is then
-// handed to write_file_atomically.
+// Appends formatted numbers to one growing buffer (a chunk of the file).
 class OutBuffer {
  public:
   explicit OutBuffer(std::size_t reserve) { s_.reserve(reserve); }
@@ -62,117 +66,128 @@ void check_input(const std::string& path, const MatrixX3d& V, const MatrixX3i& F
                      std::to_string(F(f, k)) + " (mesh has " + std::to_string(V.rows()) + " vertices)");
 }
 
-// The vertex, texture and face lines of rows [part/parts, (part+1)/parts) of
-// each section, into three buffers.
-struct ObjPart {
-  std::string v, vt, f;
+// A file made of sections of rows (vertex lines, face lines, ...), each row
+// formatted independently.
+struct Section {
+  Eigen::Index rows;
+  std::size_t bytes_per_row;  // a generous guess, to reserve buffers
+  std::function<void(Eigen::Index row, OutBuffer& out)> format;
 };
 
-void obj_part(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, int part, int parts, ObjPart& out) {
-  auto range = [&](Eigen::Index n, Eigen::Index& b, Eigen::Index& e) {
-    b = n * part / parts;
-    e = n * (part + 1) / parts;
+// Formats the sections in chunks of rows on worker threads while this thread
+// hands finished chunks, in order, to the sink: formatting (shortest
+// round-trip doubles) and the kernel's copy into the page cache overlap, and
+// no more than a few chunks are in memory at once (a 1M-vertex OBJ with UVs
+// is 190 MB).
+void produce_sections(const std::string& header, const std::vector<Section>& sections, const ByteSink& sink) {
+  sink(header.data(), header.size());
+  constexpr Eigen::Index kChunkRows = 32768;
+  struct Chunk {
+    const Section* section;
+    Eigen::Index begin, end;
   };
-  Eigen::Index b, e;
-  range(V.rows(), b, e);
-  OutBuffer v(static_cast<std::size_t>(e - b) * 80);
-  for (Eigen::Index i = b; i < e; ++i) {
-    v.text("v ");
-    v.num(V(i, 0)); v.ch(' ');
-    v.num(V(i, 1)); v.ch(' ');
-    v.num(V(i, 2)); v.ch('\n');
-  }
-  out.v = std::move(v.str());
-  range(UV.rows(), b, e);
-  OutBuffer t(static_cast<std::size_t>(e - b) * 48);
-  for (Eigen::Index i = b; i < e; ++i) {
-    t.text("vt ");
-    t.num(UV(i, 0)); t.ch(' ');
-    t.num(UV(i, 1)); t.ch('\n');
-  }
-  out.vt = std::move(t.str());
-  const bool uv = UV.rows() > 0;
-  range(F.rows(), b, e);
-  OutBuffer o(static_cast<std::size_t>(e - b) * 48);
-  for (Eigen::Index f = b; f < e; ++f) {
-    o.ch('f');
-    for (int k = 0; k < 3; ++k) {
-      const long long idx = static_cast<long long>(F(f, k)) + 1;
-      o.ch(' ');
-      o.num(idx);
-      if (uv) {
-        o.ch('/');
-        o.num(idx);
-      }
+  std::vector<Chunk> chunks;
+  for (const Section& sec : sections)
+    for (Eigen::Index b = 0; b < sec.rows; b += kChunkRows) chunks.push_back({&sec, b, std::min(sec.rows, b + kChunkRows)});
+  auto format = [](const Chunk& c) {
+    OutBuffer out(static_cast<std::size_t>(c.end - c.begin) * c.section->bytes_per_row);
+    for (Eigen::Index r = c.begin; r < c.end; ++r) c.section->format(r, out);
+    return std::move(out.str());
+  };
+  const bool threaded = chunks.size() > 2 && std::thread::hardware_concurrency() > 1;
+  if (!threaded) {
+    for (const Chunk& c : chunks) {
+      const std::string text = format(c);
+      sink(text.data(), text.size());
     }
-    o.ch('\n');
+    return;
   }
-  out.f = std::move(o.str());
+  // Two chunks formatting ahead of the one being written. A future's
+  // destructor waits for its task, so an exception from the sink leaves no
+  // thread running.
+  constexpr std::size_t kAhead = 2;
+  std::deque<std::future<std::string>> pending;
+  std::size_t next = 0;
+  while (next < chunks.size() && pending.size() < kAhead)
+    pending.push_back(std::async(std::launch::async, format, std::cref(chunks[next++])));
+  while (!pending.empty()) {
+    const std::string text = pending.front().get();
+    pending.pop_front();
+    if (next < chunks.size()) pending.push_back(std::async(std::launch::async, format, std::cref(chunks[next++])));
+    sink(text.data(), text.size());
+  }
 }
 
-// Formatting (shortest round-trip doubles) dominates writing: large meshes
-// are formatted in two halves on two threads, then joined.
-std::string obj_text(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
-  const int parts = V.rows() + F.rows() >= 200000 && std::thread::hardware_concurrency() > 1 ? 2 : 1;
-  std::vector<ObjPart> p(parts);
-  std::vector<std::thread> threads;
-  for (int k = 1; k < parts; ++k)
-    threads.emplace_back(obj_part, std::cref(V), std::cref(F), std::cref(UV), k, parts, std::ref(p[k]));
-  obj_part(V, F, UV, 0, parts, p[0]);
-  for (std::thread& t : threads) t.join();
-  const char* header = "# written by intrinsic\n";
-  std::size_t size = std::strlen(header);
-  for (const ObjPart& q : p) size += q.v.size() + q.vt.size() + q.f.size();
-  std::string s;
-  s.reserve(size);
-  s.append(header);
-  for (const ObjPart& q : p) s.append(q.v);
-  for (const ObjPart& q : p) s.append(q.vt);
-  for (const ObjPart& q : p) s.append(q.f);
-  return s;
+void write_obj(const std::string& path, const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
+  const bool uv = UV.rows() > 0;
+  std::vector<Section> sections;
+  sections.push_back({V.rows(), 80, [&](Eigen::Index i, OutBuffer& o) {
+                        o.text("v ");
+                        o.num(V(i, 0)); o.ch(' ');
+                        o.num(V(i, 1)); o.ch(' ');
+                        o.num(V(i, 2)); o.ch('\n');
+                      }});
+  sections.push_back({UV.rows(), 48, [&](Eigen::Index i, OutBuffer& o) {
+                        o.text("vt ");
+                        o.num(UV(i, 0)); o.ch(' ');
+                        o.num(UV(i, 1)); o.ch('\n');
+                      }});
+  sections.push_back({F.rows(), 48, [&](Eigen::Index f, OutBuffer& o) {
+                        o.ch('f');
+                        for (int k = 0; k < 3; ++k) {
+                          const long long idx = static_cast<long long>(F(f, k)) + 1;
+                          o.ch(' ');
+                          o.num(idx);
+                          if (uv) {
+                            o.ch('/');
+                            o.num(idx);
+                          }
+                        }
+                        o.ch('\n');
+                      }});
+  write_file_atomically(path, [&](const ByteSink& sink) { produce_sections("# written by intrinsic\n", sections, sink); });
 }
 
-std::string ply_text(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, bool binary) {
+void write_ply(const std::string& path, const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, bool binary) {
   const bool uv = UV.rows() > 0;
-  OutBuffer o(static_cast<std::size_t>(V.rows()) * (binary ? 40 : 80) +
-              static_cast<std::size_t>(F.rows()) * (binary ? 13 : 32) + 256);
-  o.text("ply\n");
-  o.text(binary ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n");
-  o.text("comment written by intrinsic\n");
-  o.text("element vertex " + std::to_string(V.rows()) + "\n");
-  o.text("property double x\nproperty double y\nproperty double z\n");
-  if (uv) o.text("property double u\nproperty double v\n");
-  o.text("element face " + std::to_string(F.rows()) + "\n");
-  o.text("property list uchar int vertex_indices\nend_header\n");
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    if (binary) {
-      for (int k = 0; k < 3; ++k) o.raw_le(V(i, k));
-      if (uv) o.raw_le(UV(i, 0)), o.raw_le(UV(i, 1));
-    } else {
-      o.num(V(i, 0)); o.ch(' ');
-      o.num(V(i, 1)); o.ch(' ');
-      o.num(V(i, 2));
-      if (uv) {
-        o.ch(' '); o.num(UV(i, 0));
-        o.ch(' '); o.num(UV(i, 1));
-      }
-      o.ch('\n');
-    }
-  }
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    if (binary) {
-      o.raw_le(static_cast<std::uint8_t>(3));
-      for (int k = 0; k < 3; ++k) o.raw_le(static_cast<std::int32_t>(F(f, k)));
-    } else {
-      o.ch('3');
-      for (int k = 0; k < 3; ++k) {
-        o.ch(' ');
-        o.num(static_cast<long long>(F(f, k)));
-      }
-      o.ch('\n');
-    }
-  }
-  return std::move(o.str());
+  std::string header = "ply\n";
+  header += binary ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n";
+  header += "comment written by intrinsic\n";
+  header += "element vertex " + std::to_string(V.rows()) + "\n";
+  header += "property double x\nproperty double y\nproperty double z\n";
+  if (uv) header += "property double u\nproperty double v\n";
+  header += "element face " + std::to_string(F.rows()) + "\n";
+  header += "property list uchar int vertex_indices\nend_header\n";
+  std::vector<Section> sections;
+  sections.push_back({V.rows(), binary ? 40u : 112u, [&](Eigen::Index i, OutBuffer& o) {
+                        if (binary) {
+                          for (int k = 0; k < 3; ++k) o.raw_le(V(i, k));
+                          if (uv) o.raw_le(UV(i, 0)), o.raw_le(UV(i, 1));
+                          return;
+                        }
+                        o.num(V(i, 0)); o.ch(' ');
+                        o.num(V(i, 1)); o.ch(' ');
+                        o.num(V(i, 2));
+                        if (uv) {
+                          o.ch(' '); o.num(UV(i, 0));
+                          o.ch(' '); o.num(UV(i, 1));
+                        }
+                        o.ch('\n');
+                      }});
+  sections.push_back({F.rows(), binary ? 13u : 32u, [&](Eigen::Index f, OutBuffer& o) {
+                        if (binary) {
+                          o.raw_le(static_cast<std::uint8_t>(3));
+                          for (int k = 0; k < 3; ++k) o.raw_le(static_cast<std::int32_t>(F(f, k)));
+                          return;
+                        }
+                        o.ch('3');
+                        for (int k = 0; k < 3; ++k) {
+                          o.ch(' ');
+                          o.num(static_cast<long long>(F(f, k)));
+                        }
+                        o.ch('\n');
+                      }});
+  write_file_atomically(path, [&](const ByteSink& sink) { produce_sections(header, sections, sink); });
 }
 
 }  // namespace
@@ -187,7 +202,8 @@ void write_mesh(const std::string& path, const MatrixX3d& V, const MatrixX3i& F,
   if (ext != ".obj" && ext != ".ply")
     throw_usage("unknown output format '" + ext + "' (use .obj or .ply)");
   check_input(path, V, F, UV);
-  write_file_atomically(path, ext == ".obj" ? obj_text(V, F, UV) : ply_text(V, F, UV, options.binary));
+  if (ext == ".obj") write_obj(path, V, F, UV);
+  else write_ply(path, V, F, UV, options.binary);
 }
 
 }  // namespace intrinsic
