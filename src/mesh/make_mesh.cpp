@@ -1,10 +1,12 @@
 // Validation of raw mesh data into a Mesh: element-level checks with messages
 // that name the element and its source line, then orientation and adjacency.
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
 #include "intrinsic/error.h"
 #include "intrinsic/topology.h"
+#include "core/parallel_for.h"
 #include "mesh/topology_build.h"
 
 namespace intrinsic {
@@ -43,16 +45,26 @@ void check_elements(const Mesh& mesh, const ValidateOptions& options) {
       if (!mesh.V.row(v).allFinite())
         throw_input(where(mesh) + "vertex " + std::to_string(v) + " has a non-finite coordinate");
     }
-  for (int f = 0; f < m; ++f) {
-    const Eigen::Vector3d x0 = mesh.V.row(mesh.F(f, 0)), x1 = mesh.V.row(mesh.F(f, 1)),
-                          x2 = mesh.V.row(mesh.F(f, 2));
-    const double twice_area = (x1 - x0).cross(x2 - x0).norm();
-    const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(),
-                                     (x0 - x2).squaredNorm()});
-    if (!(twice_area > options.degenerate_ratio * longest))
-      throw_input(where(mesh) + mesh.describe_face(f) +
-                  " is degenerate (zero area: its vertices are coincident or collinear)");
-  }
+  // The first degenerate face in file order, found on all cores.
+  std::atomic<int> first_degenerate{m};
+  detail::parallel_for(m, [&](std::int64_t begin, std::int64_t end) {
+    for (int f = static_cast<int>(begin); f < end; ++f) {
+      const Eigen::Vector3d x0 = mesh.V.row(mesh.F(f, 0)), x1 = mesh.V.row(mesh.F(f, 1)),
+                            x2 = mesh.V.row(mesh.F(f, 2));
+      const double twice_area = (x1 - x0).cross(x2 - x0).norm();
+      const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(),
+                                       (x0 - x2).squaredNorm()});
+      if (!(twice_area > options.degenerate_ratio * longest)) {
+        int seen = first_degenerate.load();
+        while (f < seen && !first_degenerate.compare_exchange_weak(seen, f)) {
+        }
+        return;
+      }
+    }
+  });
+  if (first_degenerate < m)
+    throw_input(where(mesh) + mesh.describe_face(first_degenerate) +
+                " is degenerate (zero area: its vertices are coincident or collinear)");
 }
 
 }  // namespace

@@ -4,11 +4,13 @@
 // costs two linear passes and finds each twin among a handful of candidates
 // (no global sort of edges).
 #include <algorithm>
+#include <mutex>
 #include <numeric>
 #include <queue>
 #include <sstream>
 
 #include "intrinsic/error.h"
+#include "core/parallel_for.h"
 #include "mesh/topology_build.h"
 
 namespace intrinsic::detail {
@@ -48,22 +50,39 @@ int orient_faces(Mesh& mesh) {
   // For every half-edge, the one other half-edge on the same undirected edge
   // (either direction), or -1. More than one other means a non-manifold edge.
   std::vector<int> mate(3 * static_cast<size_t>(m), -1);
-  for (int h = 0; h < 3 * m; ++h) {
+  // In parallel; each piece remembers its first non-manifold half-edge, and
+  // the smallest is reported (the same message as a serial scan).
+  std::vector<int> first_bad;
+  std::mutex bad_mutex;
+  parallel_for(3 * static_cast<std::int64_t>(m), [&](std::int64_t begin, std::int64_t end) {
+    for (int h = static_cast<int>(begin); h < end; ++h) {
+      const int a = mesh.source(h), b = mesh.target(h);
+      int count = 0, other = -1;
+      for (int k = out.begin[b]; k < out.begin[b + 1]; ++k) {
+        const int g = out.halfedges[k];
+        if (mesh.target(g) == a) { ++count; other = g; }
+      }
+      for (int k = out.begin[a]; k < out.begin[a + 1]; ++k) {
+        const int g = out.halfedges[k];
+        if (g != h && mesh.target(g) == b) { ++count; other = g; }
+      }
+      if (count > 1) {
+        const std::lock_guard<std::mutex> lock(bad_mutex);
+        first_bad.push_back(h);
+        return;
+      }
+      mate[h] = other;
+    }
+  });
+  if (!first_bad.empty()) {
+    const int h = *std::min_element(first_bad.begin(), first_bad.end());
     const int a = mesh.source(h), b = mesh.target(h);
-    int count = 0, other = -1;
-    for (int k = out.begin[b]; k < out.begin[b + 1]; ++k) {
-      const int g = out.halfedges[k];
-      if (mesh.target(g) == a) { ++count; other = g; }
-    }
-    for (int k = out.begin[a]; k < out.begin[a + 1]; ++k) {
-      const int g = out.halfedges[k];
-      if (g != h && mesh.target(g) == b) { ++count; other = g; }
-    }
-    if (count > 1)
-      throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") + edge_name(a, b) + " has " +
-                  std::to_string(count + 1) + " faces (non-manifold edge; e.g. " +
-                  mesh.describe_face(h / 3) + ")");
-    mate[h] = other;
+    int count = 0;
+    for (int k = out.begin[b]; k < out.begin[b + 1]; ++k) count += mesh.target(out.halfedges[k]) == a;
+    for (int k = out.begin[a]; k < out.begin[a + 1]; ++k)
+      count += out.halfedges[k] != h && mesh.target(out.halfedges[k]) == b;
+    throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") + edge_name(a, b) + " has " +
+                std::to_string(count + 1) + " faces (non-manifold edge; e.g. " + mesh.describe_face(h / 3) + ")");
   }
 
   std::vector<signed char> flip(m, -1);  // -1 unvisited, 0 keep, 1 flip
@@ -116,13 +135,15 @@ void build_topology(Mesh& mesh) {
   const OutgoingLists out = outgoing_lists(mesh);
 
   t.twin.assign(3 * static_cast<size_t>(m), -1);
-  for (int h = 0; h < 3 * m; ++h) {
-    const int a = mesh.source(h), b = mesh.target(h);
-    for (int k = out.begin[b]; k < out.begin[b + 1]; ++k) {
-      const int g = out.halfedges[k];
-      if (mesh.target(g) == a) { t.twin[h] = g; break; }
+  parallel_for(3 * static_cast<std::int64_t>(m), [&](std::int64_t begin, std::int64_t end) {
+    for (int h = static_cast<int>(begin); h < end; ++h) {
+      const int a = mesh.source(h), b = mesh.target(h);
+      for (int k = out.begin[b]; k < out.begin[b + 1]; ++k) {
+        const int g = out.halfedges[k];
+        if (mesh.target(g) == a) { t.twin[h] = g; break; }
+      }
     }
-  }
+  });
 
   t.is_used.assign(n, 0);
   t.is_boundary.assign(n, 0);

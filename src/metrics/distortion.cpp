@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "intrinsic/metrics.h"
+#include "core/parallel_for.h"
 
 namespace intrinsic {
 namespace {
@@ -75,40 +76,60 @@ FaceDistortion face_distortion(const MatrixX3d& V, const MatrixX3i& F, const Mat
   d.stretch_l2.resize(m);
   d.stretch_linf.resize(m);
   d.area_3d.resize(m);
-  d.flipped.assign(m, false);
-  for (int f = 0; f < m; ++f) {
-    double area3d = 0;
-    const Eigen::Matrix2d J = k * jacobian(V, F, UV, f, area3d);
-    d.area_3d[f] = area3d;
-    double s1 = 0, s2 = 0;
-    singular_values(J, s1, s2);
-    d.flipped[f] = !(J.determinant() > 0);
-    // Symmetric in growth and shrinkage: the area-weighted mean of s1*s2
-    // itself is 1 by construction once total areas are normalised.
-    const double ratio = s1 * s2;
-    d.area[f] = ratio > 0 ? std::max(ratio, 1 / ratio) : inf;
-    d.stretch_l2[f] = s2 > 0 ? std::sqrt(0.5 * (1 / (s1 * s1) + 1 / (s2 * s2))) : inf;
-    d.stretch_linf[f] = s2 > 0 ? 1 / s2 : inf;
-    d.angle[f] = s2 > 0 ? s1 / s2 : inf;
-  }
+  // vector<bool> packs bits: threads write a byte array, copied after.
+  std::vector<char> flipped(m, 0);
+  detail::parallel_for(m, [&](std::int64_t begin, std::int64_t end) {
+    for (int f = static_cast<int>(begin); f < end; ++f) {
+      double area3d = 0;
+      const Eigen::Matrix2d J = k * jacobian(V, F, UV, f, area3d);
+      d.area_3d[f] = area3d;
+      double s1 = 0, s2 = 0;
+      singular_values(J, s1, s2);
+      flipped[f] = !(J.determinant() > 0);
+      // Symmetric in growth and shrinkage: the area-weighted mean of s1*s2
+      // itself is 1 by construction once total areas are normalised.
+      const double ratio = s1 * s2;
+      d.area[f] = ratio > 0 ? std::max(ratio, 1 / ratio) : inf;
+      d.stretch_l2[f] = s2 > 0 ? std::sqrt(0.5 * (1 / (s1 * s1) + 1 / (s2 * s2))) : inf;
+      d.stretch_linf[f] = s2 > 0 ? 1 / s2 : inf;
+      d.angle[f] = s2 > 0 ? s1 / s2 : inf;
+    }
+  });
+  d.flipped.assign(flipped.begin(), flipped.end());
   return d;
 }
 
+// Sorted by (smaller, larger) vertex: a counting sort on the smaller vertex,
+// then a tiny sort per vertex (a handful of neighbours), instead of sorting
+// all 3m edge keys at once (0.4 s at 1M vertices).
 Eigen::MatrixX2i unique_edges(const MatrixX3i& F) {
-  std::vector<std::uint64_t> keys;
-  keys.reserve(3 * F.rows());
-  for (int f = 0; f < F.rows(); ++f)
+  int n = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) n = std::max(n, F(f, c) + 1);
+  std::vector<int> begin(static_cast<size_t>(n) + 1, 0);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) ++begin[std::min(F(f, c), F(f, (c + 1) % 3)) + 1];
+  for (int v = 0; v < n; ++v) begin[v + 1] += begin[v];
+  std::vector<int> other(begin[n]), fill(begin.begin(), begin.end() - 1);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int c = 0; c < 3; ++c) {
-      const std::uint64_t i = static_cast<std::uint32_t>(F(f, c)), j = static_cast<std::uint32_t>(F(f, (c + 1) % 3));
-      keys.push_back(std::min(i, j) << 32 | std::max(i, j));
+      const int i = F(f, c), j = F(f, (c + 1) % 3);
+      other[fill[std::min(i, j)]++] = std::max(i, j);
     }
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  Eigen::MatrixX2i E(keys.size(), 2);
-  for (size_t k = 0; k < keys.size(); ++k) {
-    E(k, 0) = static_cast<int>(keys[k] >> 32);
-    E(k, 1) = static_cast<int>(keys[k] & 0xffffffffu);
+  std::vector<int> last(n);  // end of each vertex's distinct neighbours
+  int count = 0;
+  for (int v = 0; v < n; ++v) {
+    std::sort(other.begin() + begin[v], other.begin() + begin[v + 1]);
+    last[v] = static_cast<int>(std::unique(other.begin() + begin[v], other.begin() + begin[v + 1]) - other.begin());
+    count += last[v] - begin[v];
   }
+  Eigen::MatrixX2i E(count, 2);
+  int k = 0;
+  for (int v = 0; v < n; ++v)
+    for (int q = begin[v]; q < last[v]; ++q, ++k) {
+      E(k, 0) = v;
+      E(k, 1) = other[q];
+    }
   return E;
 }
 

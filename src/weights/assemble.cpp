@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <thread>
 
+#include "core/parallel_for.h"
+
 namespace intrinsic {
 namespace {
 
@@ -67,10 +69,12 @@ SparseMatrix assemble_weight_matrix(const MatrixX3d& V, const MatrixX3i& F, cons
       row[fill[j]++] = F(f, (c + 2) % 3);
     }
   std::vector<int> diag(n);
+  detail::parallel_for(n, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t v = first; v < last; ++v) std::sort(row.begin() + begin[v], row.begin() + begin[v + 1]);
+  });
   int out = 0;
   for (int v = 0; v < n; ++v) {
     const int b = begin[v], e = begin[v + 1];
-    std::sort(row.begin() + b, row.begin() + e);
     begin[v] = out;
     for (int k = b; k < e; ++k)
       if (k == b || row[k] != row[k - 1]) {
