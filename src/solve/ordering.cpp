@@ -4,6 +4,7 @@
 #include "solve/ordering.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace intrinsic::detail {
 namespace {
@@ -25,7 +26,6 @@ class Dissection {
         begin_(A.outerIndexPtr()),
         end_(A.innerNonZeroPtr()),
         index_(A.innerIndexPtr()),
-        retry_above_(n_ / 8),
         owner_(n_, 0),
         level_(n_, -1) {}
 
@@ -118,14 +118,16 @@ class Dissection {
         continue;
       }
       int cut = choose_cut(order, levels, size, count);
-      // Large pieces: also cut from a vertex of the chosen level and keep the
-      // thinner separator. A peripheral start is right on a disk, but on the
-      // natural map's system (two copies of the mesh joined along the
-      // boundary: a sphere) it is a pole, and its half-way level is the
-      // whole boundary, twice; from a boundary vertex the half-way level is
-      // a great circle through both copies instead (1M vertices: 222 -> 163
-      // Gflop; METIS 92, but its ordering alone takes 16 s there).
-      if (size >= kRetryAbove && size >= retry_above_) {
+      // Large pieces whose separator is long for their size (a planar piece
+      // of s vertices has one of 1.1-1.4 sqrt(s) here): also cut from a
+      // vertex of the chosen level and keep the thinner separator. A
+      // peripheral start is right on a disk, but on the natural map's system
+      // (two copies of the mesh joined along the boundary: a sphere) it is a
+      // pole, and its half-way levels run around the boundary (2.2 sqrt(s));
+      // from a boundary vertex they are great circles through both copies
+      // (1M vertices: 222 -> 168 Gflop; METIS 92, but its ordering alone
+      // takes 16 s there).
+      if (size >= std::max(kRetryAbove, n_ / 32) && count[cut] > 1.8 * std::sqrt(static_cast<double>(size))) {
         const long first_separator = count[cut];
         int mid = -1;  // the middle vertex of the level, in search order
         long seen = 0;
@@ -169,7 +171,6 @@ class Dissection {
   const int* begin_;
   const int* end_;  // non-null for uncompressed matrices
   const int* index_;
-  int retry_above_;  // only the top levels retry: below, the second search costs more than it saves
   std::vector<int> owner_, level_;
 };
 
