@@ -193,7 +193,7 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& B, bool refine_alway
       double omega = 0;
       for (Eigen::Index k = 0; k < R.size(); ++k)
         if (scale.data()[k] > 0) omega = std::max(omega, std::abs(R.data()[k]) / scale.data()[k]);
-      if (!(omega > 8 * std::numeric_limits<double>::epsilon())) break;
+      if (!(omega > 16 * std::numeric_limits<double>::epsilon())) break;
     }
     const Eigen::MatrixXd D = cholmod_solve(s.L, s.c, R);
     X += D;
