@@ -131,13 +131,6 @@ double similarity_residual(const MatrixX2d& A, const MatrixX2d& B, const std::ve
   return worst;
 }
 
-Mesh wavy(int rings, double jitter = 0.4) {
-  GenerateOptions g;
-  g.rings = rings;
-  g.jitter = jitter;
-  return make_mesh(generate_wavy_patch(g));
-}
-
 void expect_matches_lscm(const Mesh& mesh, const std::string& label) {
   // Default pins, placed by the library; then the same pins for LSCM.
   ParamOptions o = natural();
@@ -163,7 +156,7 @@ void expect_matches_lscm(const Mesh& mesh, const std::string& label) {
 }
 
 TEST(Natural, EqualsLscmOnCurvedIrregularMesh) {
-  expect_matches_lscm(wavy(12, 0.6), "wavy patch");
+  expect_matches_lscm(test::wavy(12, 0.6), "wavy patch");
   GenerateOptions g;
   g.rings = 10;
   g.jitter = 0.5;
@@ -302,7 +295,7 @@ MatrixX2d energy_gradient(const Mesh& mesh, const MatrixX2d& UV, Eigen::VectorXd
 }
 
 TEST(Natural, GradientOfConformalEnergyVanishesAtFreeVertices) {
-  const Mesh mesh = wavy(14, 0.5);
+  const Mesh mesh = test::wavy(14, 0.5);
   const ParamResult r = parameterize(mesh, natural());
   Eigen::VectorXd mag;
   const MatrixX2d G = energy_gradient(mesh, r.UV, mag);
@@ -372,7 +365,7 @@ TEST(Natural, OrientationPreservedOnSmoothIrregularCap) {
 }
 
 TEST(Natural, DefaultPinsAndScale) {
-  const Mesh mesh = wavy(10);
+  const Mesh mesh = test::wavy(10, 0.4);
   const auto [a, b] = default_pin_pair(mesh);
   ASSERT_EQ(mesh.topology.boundary_loops.size(), 1u);
   double best = 0;
@@ -461,7 +454,7 @@ TEST(Natural, PinChoiceChangesOnlyASimilarityOnFlatInputAndLittleOnCurved) {
 }
 
 TEST(Natural, RefusesBadOptions) {
-  const Mesh mesh = wavy(6);
+  const Mesh mesh = test::wavy(6, 0.4);
   auto kind = [&](const ParamOptions& o) {
     try {
       parameterize(mesh, o);
