@@ -224,6 +224,33 @@ TEST(Constraints, BadInputsAreRefused) {
   EXPECT_EQ(p.constraints().size(), 1u);
 }
 
+// Found while writing fuzz_constraints: the walk looked up the faces around a
+// path's next point before checking it, so a line to an out-of-range vertex
+// read past the end of an array (a crash) instead of being refused.
+TEST(Constraints, LinePointsAreCheckedBeforeTheWalk) {
+  const Mesh mesh = wavy();
+  const int nv = static_cast<int>(mesh.V.rows()), nf = static_cast<int>(mesh.F.rows());
+  int interior = 0;
+  while (mesh.topology.is_boundary[interior]) ++interior;
+  const auto line_to = [&](const SurfacePoint& end) {
+    LineConstraint l;
+    l.path = {SurfacePoint::at_vertex(interior), end};
+    l.to = {Eigen::Vector2d(0.2, 0.3), Eigen::Vector2d(0.8, 0.3)};
+    return Constraints{{}, {l}};
+  };
+  for (int v : {nv, 999999})
+    expect_input_error([&] { resolve_constraints(mesh, line_to(SurfacePoint::at_vertex(v))); },
+                       "lines[0].path[1]: vertex " + std::to_string(v) + " is out of range");
+  expect_input_error([&] { resolve_constraints(mesh, line_to(SurfacePoint::in_face(nf, Eigen::Vector3d(1, 0, 0)))); },
+                     "lines[0].path[1]: face " + std::to_string(nf) + " is out of range");
+  expect_input_error([&] { resolve_constraints(mesh, line_to(SurfacePoint{})); }, "lines[0].path[1]: no vertex or face");
+  // The same through the file parser, as `param --constraints` reads it.
+  const std::string text = R"({"lines": [{"path": [{"vertex": )" + std::to_string(interior) +
+                           R"(}, {"vertex": 999999}], "to": [[0, 0], [1, 1]]}]})";
+  expect_input_error([&] { resolve_constraints(mesh, parse_constraints_json(text, "c.json")); },
+                     "lines[0].path[1]: vertex 999999 is out of range");
+}
+
 TEST(Constraints, FaceCornersFollowReorientation) {
   const Mesh mesh = wavy(4);
   MatrixX3i file_faces = mesh.F;
