@@ -11,6 +11,7 @@
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
 #include "report.h"
+#include "weight_args.h"
 
 namespace intrinsic::app {
 namespace {
@@ -18,9 +19,8 @@ namespace {
 struct EditArgs {
   std::string input, output, boundary, report, constraints;
   std::vector<std::string> moves;
-  std::string method = "conformal", basis = "lazy", holes = "fill", solver = "auto";
-  double lambda = 1, mu = 0;
-  bool lambda_set = false, mu_set = false;
+  std::shared_ptr<WeightArgs> weights = std::make_shared<WeightArgs>();
+  std::string basis = "lazy", holes = "fill", solver = "auto";
   double memory_budget_gib = 2.0;
   int resolve_above = 64;
   bool binary = false, quiet = false;
@@ -55,13 +55,7 @@ void register_edit(CLI::App& app, Runner& run) {
   cmd->add_option("--resolve-above", a->resolve_above,
                   "Re-solve with the kept factorization when more vertices than this move at once")
       ->capture_default_str();
-  cmd->add_option("--method", a->method, "conformal | authalic | mixed | tutte | floater")
-      ->check(CLI::IsMember({"conformal", "authalic", "mixed", "tutte", "floater"}))
-      ->capture_default_str();
-  cmd->add_option_function<double>("--lambda", [a](double v) { a->lambda = v; a->lambda_set = true; },
-                                   "Weight of the conformal energy (mixed)");
-  cmd->add_option_function<double>("--mu", [a](double v) { a->mu = v; a->mu_set = true; },
-                                   "Weight of the authalic energy (mixed)");
+  add_weight_options(*cmd, a->weights);
   cmd->add_option("--holes", a->holes, "Holes without given positions: fill | free")
       ->check(CLI::IsMember({"fill", "free"}))
       ->capture_default_str();
@@ -81,7 +75,7 @@ void register_edit(CLI::App& app, Runner& run) {
       }
       if (!(a->memory_budget_gib > 0)) throw_usage("--memory-budget must be positive");
       ParamOptions options;
-      options.weights = weight_options(a->method, a->lambda_set, a->lambda, a->mu_set, a->mu);
+      options.weights = a->weights->options();
       options.holes = a->holes == "free" ? HoleRule::Free : HoleRule::Fill;
       options.solver = parse_solver(a->solver);
       ReadOptions ro;
@@ -160,7 +154,7 @@ void register_edit(CLI::App& app, Runner& run) {
         if (!a->report.empty()) {
           nlohmann::json report = mesh_json(mesh);
           report["command"] = "edit";
-          report["method"] = a->method;
+          report["method"] = a->weights->method;
           report["lambda"] = options.weights.lambda;
           report["mu"] = options.weights.mu;
           report["boundary"] = a->boundary;

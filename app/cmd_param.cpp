@@ -19,6 +19,7 @@
 #include "intrinsic/parameterize.h"
 #include "pictures.h"
 #include "report.h"
+#include "weight_args.h"
 
 namespace intrinsic::app {
 namespace {
@@ -26,9 +27,7 @@ namespace {
 struct ParamArgs {
   std::string input, output, report, constraints;
   std::string render, render_all, render_size = "1024,1024", view = "auto";
-  std::string method = "conformal";
-  double lambda = 1, mu = 0;
-  bool lambda_set = false, mu_set = false;
+  std::shared_ptr<WeightArgs> weights = std::make_shared<WeightArgs>();
   std::string boundary = "circle", spacing = "arclength", scale = "unit", holes = "fill", solver = "auto";
   std::vector<std::string> pins;  // "V:U,V"
   bool binary = false, quiet = false, largest_component = false;
@@ -68,7 +67,7 @@ FixedVertex parse_pin(const std::string& text) {
 
 ParamOptions to_options(const ParamArgs& a, int num_vertices) {
   ParamOptions o;
-  o.weights = weight_options(a.method, a.lambda_set, a.lambda, a.mu_set, a.mu);
+  o.weights = a.weights->options();
   if (a.boundary == "circle") o.boundary = BoundaryShape::Circle;
   else if (a.boundary == "square") o.boundary = BoundaryShape::Square;
   else if (a.boundary == "natural") o.boundary = BoundaryShape::Natural;
@@ -94,19 +93,6 @@ std::string boundary_label(const ParamArgs& a) {
 
 }  // namespace
 
-WeightOptions weight_options(const std::string& method, bool lambda_set, double lambda, bool mu_set, double mu) {
-  WeightOptions w;
-  w.method = parse_method(method);
-  if ((lambda_set || mu_set) && w.method != Method::Mixed) throw_usage("--lambda and --mu apply to --method mixed only");
-  if (w.method == Method::Mixed) {
-    if (!lambda_set && !mu_set) throw_usage("--method mixed needs --lambda and/or --mu");
-    w.lambda = lambda_set ? lambda : 0.0;
-    w.mu = mu_set ? mu : 0.0;
-    if (w.lambda == 0 && w.mu == 0) throw_usage("--lambda and --mu cannot both be zero");
-  }
-  return w;
-}
-
 void register_param(CLI::App& app, Runner& run) {
   auto a = std::make_shared<ParamArgs>();
   CLI::App* cmd = app.add_subcommand(
@@ -114,13 +100,7 @@ void register_param(CLI::App& app, Runner& run) {
                "several components become charts laid out side by side");
   cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
   cmd->add_option("-o,--output", a->output, "Output mesh with UVs (.obj or .ply)")->required();
-  cmd->add_option("--method", a->method, "conformal | authalic | mixed | tutte | floater")
-      ->check(CLI::IsMember({"conformal", "authalic", "mixed", "tutte", "floater"}))
-      ->capture_default_str();
-  cmd->add_option_function<double>("--lambda", [a](double v) { a->lambda = v; a->lambda_set = true; },
-                                   "Weight of the conformal energy (mixed)");
-  cmd->add_option_function<double>("--mu", [a](double v) { a->mu = v; a->mu_set = true; },
-                                   "Weight of the authalic energy (mixed)");
+  add_weight_options(*cmd, a->weights);
   cmd->add_option("--boundary", a->boundary,
                   "circle | square | natural (natural conformal map, no fixed boundary; conformal only) | "
                   "FILE with lines 'vertex u v'")
@@ -191,7 +171,7 @@ void register_param(CLI::App& app, Runner& run) {
     run = [a] {
       const auto t0 = std::chrono::steady_clock::now();
       check_output_mesh_path(a->output);
-      parse_method(a->method);
+      parse_method(a->weights->method);
       parse_solver(a->solver);
       if (!(a->max_residual > 0)) throw_usage("--max-residual must be a positive number");
       for (const std::string& p : a->pins) parse_pin(p);  // syntax first: a usage error whatever the file
@@ -243,7 +223,7 @@ void register_param(CLI::App& app, Runner& run) {
       } else if (!a->optimize_lambda.empty()) {
         if (!a->optimize_boundary.empty())
           throw_usage("--optimize-lambda and --optimize-boundary cannot be combined");
-        if (a->method != "conformal" || a->lambda_set || a->mu_set)
+        if (a->weights->method != "conformal" || a->weights->lambda_set || a->weights->mu_set)
           throw_usage("--optimize-lambda chooses the blend itself; do not give --method, --lambda or --mu");
         OptimalLambdaOptions lo;
         lo.base = options;
@@ -336,7 +316,7 @@ void register_param(CLI::App& app, Runner& run) {
 
       nlohmann::json report = mesh_json(mesh);
       report["output"] = a->output;
-      report["method"] = a->optimize_lambda.empty() ? a->method : "optimal-lambda";
+      report["method"] = a->optimize_lambda.empty() ? a->weights->method : "optimal-lambda";
       if (!a->optimize_lambda.empty()) report["optimal_lambda"] = optimal;
       if (!a->optimize_boundary.empty()) report["boundary_optimization"] = optimal;
       report["lambda"] = !a->optimize_lambda.empty() ? optimal["lambda"].get<double>()

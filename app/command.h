@@ -9,8 +9,6 @@
 #include <functional>
 #include <string>
 
-#include "intrinsic/weights.h"
-
 namespace intrinsic::app {
 
 using Runner = std::function<int()>;
@@ -20,9 +18,6 @@ void register_metrics(CLI::App& app, Runner& run);
 void register_generate(CLI::App& app, Runner& run);
 void register_edit(CLI::App& app, Runner& run);
 
-// --method, --lambda, --mu as weight options; throws Error(Usage) for
-// inconsistent combinations (shared by param and edit).
-WeightOptions weight_options(const std::string& method, bool lambda_set, double lambda, bool mu_set, double mu);
 void register_render(CLI::App& app, Runner& run);
 void register_compare(CLI::App& app, Runner& run);
 

@@ -137,6 +137,38 @@ def main():
     }
     for k, v in b.items():
         write("boundary", k, v)
+    # Constraint files for fuzz_constraints' mesh: the 5 x 5 grid without the
+    # quad at (1, 1) (vertex y * 5 + x, 30 faces; vertices 6, 7, 11, 12 on the
+    # hole, the rest of rows and columns 1-3 interior).
+    c = {
+        "empty.json": "{}",
+        "points.json": '{"points": [{"face": 0, "bary": [0.2, 0.3, 0.5], "uv": [0.4, 0.55]},\n'
+                       '  {"vertex": 13, "uv": [0.6, 0.5]}, {"vertex": 17, "uv": [0.5, 0.7]}]}',
+        "line_segment.json": '{"lines": [{"path": [{"face": 14, "bary": [0.3, 0.3, 0.4]}, '
+                             '{"face": 27, "bary": [0.3, 0.3, 0.4]}], "to": [[0.2, 0.3], [0.8, 0.3]]}]}',
+        "line_polyline.json": '{"lines": [{"path": [{"face": 10, "bary": [0.3, 0.3, 0.4]}, {"vertex": 18}, '
+                              '{"face": 28, "bary": [0.1, 0.1, 0.8]}], "to": [[0.2, 0.3], [0.5, 0.5], [0.8, 0.9]]}],'
+                              ' "points": [{"vertex": 8, "uv": [0.7, 0.2]}]}',
+        "line_through_hole.json": '{"lines": [{"path": [{"face": 6, "bary": [0.3, 0.3, 0.4]}, '
+                                  '{"face": 10, "bary": [0.3, 0.3, 0.4]}], "to": [[0.2, 0.3], [0.8, 0.3]]}]}',
+        "on_boundary.json": '{"points": [{"vertex": 0, "uv": [0.5, 0.5]}, {"vertex": 1, "uv": [0.9, 0.1]}]}',
+        "contradiction.json": '{"points": [{"vertex": 13, "uv": [0.1, 0.1]}, {"vertex": 13, "uv": [0.2, 0.1]}]}',
+        "dependent.json": '{"points": [{"face": 20, "bary": [0.5, 0.5, 0], "uv": [0.1, 0.1]}, '
+                          '{"face": 20, "bary": [0.25, 0.75, 0], "uv": [0.2, 0.1]}, '
+                          '{"face": 20, "bary": [0.75, 0.25, 0], "uv": [0.3, 0.1]}]}',
+        "unknown_key.json": '{"points": [{"vertex": 13, "uvw": [0, 0]}]}',
+        "malformed.json": '{"points": [{"vertex": 13, "uv": [0, ',
+        "bad_bary.json": '{"points": [{"face": 3, "bary": [0.2, 0.3, 0.4], "uv": [0, 0]}, '
+                         '{"face": 4, "bary": [1.5, -0.5, 0], "uv": [0, 0]}]}',
+        "out_of_range.json": '{"points": [{"vertex": 99, "uv": [0, 0]}, {"face": 30, "bary": [1, 0, 0], "uv": [0, 0]}]}',
+        "line_to_missing_vertex.json": '{"lines": [{"path": [{"vertex": 13}, {"vertex": 999999}], '
+                                       '"to": [[0, 0], [1, 1]]}]}',
+        "huge_numbers.json": '{"points": [{"vertex": 18446744073709551615, "uv": [1e308, -1e308]}, '
+                             '{"face": -1, "bary": [1e999, 0, 0], "uv": [0, 0]}]}',
+        "wrong_types.json": '{"points": {"vertex": 1}, "lines": [{"path": "x", "to": [[0, 0]]}, 7, null]}',
+    }
+    for k, v in c.items():
+        write("constraints", k, v)
     # Pipeline: one option byte, the mesh, optionally "\n===\n" + boundary file.
     pl = {
         "square_obj": b"\x00" + o["square.obj"].encode(),

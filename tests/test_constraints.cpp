@@ -17,52 +17,16 @@
 namespace intrinsic {
 namespace {
 
-struct MethodCase {
-  Method m;
-  double lambda, mu;
-};
-const MethodCase kMethods[] = {{Method::Conformal, 1, 0}, {Method::Authalic, 0, 1}, {Method::Mixed, 0.3, 0.7}};
-
-ParamOptions options_for(const MethodCase& c) {
-  ParamOptions o;
-  o.weights.method = c.m;
-  o.weights.lambda = c.lambda;
-  o.weights.mu = c.mu;
-  return o;
-}
-
-Mesh wavy(int rings = 10) {
-  GenerateOptions g;
-  g.rings = rings;
-  return make_mesh(generate_wavy_patch(g));
-}
-
-Eigen::Vector2d value_at(const MatrixX2d& UV, const Mesh& mesh, const SurfacePoint& p) {
-  if (p.vertex >= 0) return UV.row(p.vertex).transpose();
-  Eigen::Vector2d x = Eigen::Vector2d::Zero();
-  for (int c = 0; c < 3; ++c) x += p.bary[c] * UV.row(mesh.F(p.face, c)).transpose();
-  return x;
-}
-
-// A few interior points: face points and one interior vertex.
-std::vector<SurfacePoint> some_points(const Mesh& mesh) {
-  std::vector<SurfacePoint> pts;
-  for (int f : {3, static_cast<int>(mesh.F.rows()) / 2, static_cast<int>(mesh.F.rows()) - 20})
-    pts.push_back(SurfacePoint::in_face(f, Eigen::Vector3d(0.2, 0.5, 0.3)));
-  for (int v = 0; v < mesh.V.rows(); ++v)
-    if (!mesh.topology.is_boundary[v]) { pts.push_back(SurfacePoint::at_vertex(v)); break; }
-  return pts;
-}
+using test::kMethods;
+using test::MethodCase;
+using test::options_for;
+using test::some_points;
+using test::value_at;
+using test::wavy;
 
 template <class F>
 void expect_input_error(F&& f, const std::string& fragment) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected one containing '" << fragment << "'";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::Input) << e.what();
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
+  test::expect_error(std::forward<F>(f), ErrorKind::Input, fragment);
 }
 
 TEST(Constraints, MetInEveryMethod) {
@@ -258,6 +222,33 @@ TEST(Constraints, BadInputsAreRefused) {
   // Duplicates with equal targets are merged, not refused.
   set(R"({"points": [{"vertex": 20, "uv": [0.5, 0.5]}, {"vertex": 20, "uv": [0.5, 0.5]}]})");
   EXPECT_EQ(p.constraints().size(), 1u);
+}
+
+// Found while writing fuzz_constraints: the walk looked up the faces around a
+// path's next point before checking it, so a line to an out-of-range vertex
+// read past the end of an array (a crash) instead of being refused.
+TEST(Constraints, LinePointsAreCheckedBeforeTheWalk) {
+  const Mesh mesh = wavy();
+  const int nv = static_cast<int>(mesh.V.rows()), nf = static_cast<int>(mesh.F.rows());
+  int interior = 0;
+  while (mesh.topology.is_boundary[interior]) ++interior;
+  const auto line_to = [&](const SurfacePoint& end) {
+    LineConstraint l;
+    l.path = {SurfacePoint::at_vertex(interior), end};
+    l.to = {Eigen::Vector2d(0.2, 0.3), Eigen::Vector2d(0.8, 0.3)};
+    return Constraints{{}, {l}};
+  };
+  for (int v : {nv, 999999})
+    expect_input_error([&] { resolve_constraints(mesh, line_to(SurfacePoint::at_vertex(v))); },
+                       "lines[0].path[1]: vertex " + std::to_string(v) + " is out of range");
+  expect_input_error([&] { resolve_constraints(mesh, line_to(SurfacePoint::in_face(nf, Eigen::Vector3d(1, 0, 0)))); },
+                     "lines[0].path[1]: face " + std::to_string(nf) + " is out of range");
+  expect_input_error([&] { resolve_constraints(mesh, line_to(SurfacePoint{})); }, "lines[0].path[1]: no vertex or face");
+  // The same through the file parser, as `param --constraints` reads it.
+  const std::string text = R"({"lines": [{"path": [{"vertex": )" + std::to_string(interior) +
+                           R"(}, {"vertex": 999999}], "to": [[0, 0], [1, 1]]}]})";
+  expect_input_error([&] { resolve_constraints(mesh, parse_constraints_json(text, "c.json")); },
+                     "lines[0].path[1]: vertex 999999 is out of range");
 }
 
 TEST(Constraints, FaceCornersFollowReorientation) {

@@ -5,12 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <algorithm>
 #include <complex>
 
 #include <nlohmann/json.hpp>
 
 #include "cli_support.h"
 #include "core/natural_map.h"
+#include "intrinsic/assemble.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
@@ -128,13 +131,6 @@ double similarity_residual(const MatrixX2d& A, const MatrixX2d& B, const std::ve
   return worst;
 }
 
-Mesh wavy(int rings, double jitter = 0.4) {
-  GenerateOptions g;
-  g.rings = rings;
-  g.jitter = jitter;
-  return make_mesh(generate_wavy_patch(g));
-}
-
 void expect_matches_lscm(const Mesh& mesh, const std::string& label) {
   // Default pins, placed by the library; then the same pins for LSCM.
   ParamOptions o = natural();
@@ -160,7 +156,7 @@ void expect_matches_lscm(const Mesh& mesh, const std::string& label) {
 }
 
 TEST(Natural, EqualsLscmOnCurvedIrregularMesh) {
-  expect_matches_lscm(wavy(12, 0.6), "wavy patch");
+  expect_matches_lscm(test::wavy(12, 0.6), "wavy patch");
   GenerateOptions g;
   g.rings = 10;
   g.jitter = 0.5;
@@ -171,6 +167,110 @@ TEST(Natural, EqualsLscmOnSharedMeshes) {
   for (const char* name : {"cat_head.obj", "snail.obj"}) {
     const Mesh mesh = make_mesh(read_mesh(test::shared_mesh(name)));
     expect_matches_lscm(mesh, name);
+  }
+}
+
+// Natural holes behind a fixed outer loop, computed without the library's
+// natural-system code. The outer loop is fixed, so its enclosed area does not
+// depend on the free unknowns: minimising E_D - A(hole loops) is minimising
+// E_D - A(all loops) = |M x|^2 (lscm_rows) with the whole outer loop pinned.
+// The library's rows are lambda * 2 * Hessian(E_D - A_holes) + mu *
+// blockdiag(K_authalic) = lambda * 4 M^T M + mu * blockdiag(K_authalic) on the
+// free unknowns (K_authalic is checked against hand values in test_weights; a
+// wrong factor 4 would show in the mixed case). Outer-loop positions are those
+// of boundary_positions(), before any scaling.
+MatrixX2d natural_holes_reference(const Mesh& mesh, const WeightOptions& w) {
+  const int n = static_cast<int>(mesh.V.rows());
+  ParamOptions circle;
+  circle.weights = w;
+  const std::vector<FixedVertex> outer = boundary_positions(mesh, circle);
+  const double lambda = w.method == Method::Conformal ? 1.0 : w.lambda;
+  const double mu = w.method == Method::Conformal ? 0.0 : w.mu;
+  const SparseMatrix M = lscm_rows(mesh.V, mesh.F);
+  SparseMatrix N = 4 * lambda * SparseMatrix(M.transpose() * M);
+  if (mu != 0) {
+    WeightOptions authalic;
+    authalic.method = Method::Authalic;
+    const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, authalic);
+    std::vector<Eigen::Triplet<double>> t;
+    for (int j = 0; j < K.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(K, j); it; ++it)
+        for (int c = 0; c < 2; ++c) t.emplace_back(c * n + it.row(), c * n + j, mu * it.value());
+    SparseMatrix B(2 * n, 2 * n);
+    B.setFromTriplets(t.begin(), t.end());
+    N += B;
+  }
+  std::vector<char> fixed(n, 0);
+  Eigen::VectorXd xB = Eigen::VectorXd::Zero(2 * n);
+  for (const FixedVertex& f : outer) {
+    fixed[f.vertex] = 1;
+    xB(f.vertex) = f.uv.x();
+    xB(n + f.vertex) = f.uv.y();
+  }
+  std::vector<int> index(2 * n, -1);
+  int m = 0;
+  for (int c = 0; c < 2; ++c)
+    for (int v = 0; v < n; ++v)
+      if (mesh.topology.is_used[v] && !fixed[v]) index[c * n + v] = m++;
+  const Eigen::VectorXd full_rhs = -(N * xB);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < N.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(N, j); it; ++it)
+      if (index[it.row()] >= 0 && index[j] >= 0) t.emplace_back(index[it.row()], index[j], it.value());
+  SparseMatrix A(m, m);
+  A.setFromTriplets(t.begin(), t.end());
+  Eigen::VectorXd rhs(m);
+  for (int k = 0; k < 2 * n; ++k)
+    if (index[k] >= 0) rhs(index[k]) = full_rhs(k);
+  Eigen::SparseLU<SparseMatrix> lu(A);
+  EXPECT_EQ(lu.info(), Eigen::Success);
+  const Eigen::VectorXd x = lu.solve(rhs);
+  MatrixX2d UV = MatrixX2d::Zero(n, 2);
+  for (int c = 0; c < 2; ++c)
+    for (int v = 0; v < n; ++v) UV(v, c) = index[c * n + v] >= 0 ? x(index[c * n + v]) : xB(c * n + v);
+  return UV;
+}
+
+TEST(Natural, NaturalHolesEqualLscmWithOuterLoopFixed) {
+  for (const char* name : {"fairing-cross.off", "inverted-triangles.obj"}) {
+    SCOPED_TRACE(name);
+    const Mesh mesh = make_mesh(read_mesh(test::shared_mesh(name)));
+    const Topology& top = mesh.topology;
+    ASSERT_GT(top.component_loops[0].size(), 1u);
+    const int outer = static_cast<int>(top.boundary_loops[top.component_loops[0][0]].size());
+    const int used = static_cast<int>(std::count(top.is_used.begin(), top.is_used.end(), 1));
+    WeightOptions mixed;
+    mixed.method = Method::Mixed;
+    mixed.lambda = 0.6;
+    mixed.mu = 0.4;
+    for (const WeightOptions& w : {WeightOptions{}, mixed})
+      for (ScaleMode scale : {ScaleMode::Unit, ScaleMode::Surface}) {
+        SCOPED_TRACE(method_name(w.method) + (scale == ScaleMode::Unit ? " unit" : " surface"));
+        ParamOptions o;
+        o.weights = w;
+        o.holes = HoleRule::Natural;
+        o.scale = scale;
+        const ParamResult r = parameterize(mesh, o);
+        MatrixX2d ref = natural_holes_reference(mesh, w);
+        if (scale == ScaleMode::Unit) {  // the circle's box [-1, 1]^2 onto [0, 1]^2
+          for (int v = 0; v < ref.rows(); ++v)
+            if (top.is_used[v]) ref.row(v) = 0.5 * ref.row(v) + Eigen::RowVector2d(0.5, 0.5);
+        } else {
+          ref *= std::sqrt(surface_area(mesh.V, mesh.F) / std::abs(parameter_area(mesh.F, ref)));
+        }
+        EXPECT_LT((r.UV - ref).cwiseAbs().maxCoeff(), 1e-10 * diameter(ref));
+        EXPECT_EQ(r.holes, "natural");
+        EXPECT_EQ(r.scale, scale == ScaleMode::Unit ? "unit" : "surface");
+        EXPECT_EQ(r.fixed_vertices, outer);
+        EXPECT_EQ(r.free_vertices, used - outer);
+        EXPECT_EQ(r.filled_holes, 0);
+        EXPECT_EQ(r.factorizations, 1);
+        EXPECT_TRUE(r.pins.empty());
+        EXPECT_GT(r.residual, 0);
+        EXPECT_LT(r.residual, 1e-10);
+        EXPECT_GT(r.timings.factor_ms, 0);
+        EXPECT_GT(r.timings.solve_ms, 0);
+      }
   }
 }
 
@@ -195,7 +295,7 @@ MatrixX2d energy_gradient(const Mesh& mesh, const MatrixX2d& UV, Eigen::VectorXd
 }
 
 TEST(Natural, GradientOfConformalEnergyVanishesAtFreeVertices) {
-  const Mesh mesh = wavy(14, 0.5);
+  const Mesh mesh = test::wavy(14, 0.5);
   const ParamResult r = parameterize(mesh, natural());
   Eigen::VectorXd mag;
   const MatrixX2d G = energy_gradient(mesh, r.UV, mag);
@@ -265,7 +365,7 @@ TEST(Natural, OrientationPreservedOnSmoothIrregularCap) {
 }
 
 TEST(Natural, DefaultPinsAndScale) {
-  const Mesh mesh = wavy(10);
+  const Mesh mesh = test::wavy(10, 0.4);
   const auto [a, b] = default_pin_pair(mesh);
   ASSERT_EQ(mesh.topology.boundary_loops.size(), 1u);
   double best = 0;
@@ -354,7 +454,7 @@ TEST(Natural, PinChoiceChangesOnlyASimilarityOnFlatInputAndLittleOnCurved) {
 }
 
 TEST(Natural, RefusesBadOptions) {
-  const Mesh mesh = wavy(6);
+  const Mesh mesh = test::wavy(6, 0.4);
   auto kind = [&](const ParamOptions& o) {
     try {
       parameterize(mesh, o);

@@ -19,31 +19,11 @@
 namespace intrinsic {
 namespace {
 
-Mesh wavy(int rings = 10) {
-  GenerateOptions g;
-  g.rings = rings;
-  return make_mesh(generate_wavy_patch(g));
-}
+using test::expect_error;
+using test::some_points;
+using test::value_at;
+using test::wavy;
 
-Eigen::Vector2d value_at(const MatrixX2d& UV, const Mesh& mesh, const SurfacePoint& p) {
-  if (p.vertex >= 0) return UV.row(p.vertex).transpose();
-  Eigen::Vector2d x = Eigen::Vector2d::Zero();
-  for (int c = 0; c < 3; ++c) x += p.bary[c] * UV.row(mesh.F(p.face, c)).transpose();
-  return x;
-}
-
-// Face points spread over the mesh and one interior vertex.
-std::vector<SurfacePoint> some_points(const Mesh& mesh) {
-  std::vector<SurfacePoint> pts;
-  for (int f : {3, static_cast<int>(mesh.F.rows()) / 2, static_cast<int>(mesh.F.rows()) - 20})
-    pts.push_back(SurfacePoint::in_face(f, Eigen::Vector3d(0.2, 0.5, 0.3)));
-  for (int v = static_cast<int>(mesh.V.rows()) / 3; v < mesh.V.rows(); ++v)
-    if (!mesh.topology.is_boundary[v] && mesh.topology.is_used[v]) {
-      pts.push_back(SurfacePoint::at_vertex(v));
-      break;
-    }
-  return pts;
-}
 
 struct Case {
   std::string name;
@@ -80,17 +60,6 @@ double tol(const MatrixX2d& UV) { return 1e-10 * std::max(1.0, UV.cwiseAbs().max
 const Mesh& holed_mesh() {
   static const Mesh mesh = make_mesh(read_mesh(test::shared_mesh("fairing-cross.off")));
   return mesh;
-}
-
-template <class F>
-void expect_error(F&& f, ErrorKind kind, const std::string& fragment) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected one containing '" << fragment << "'";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), kind) << e.what();
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
 }
 
 TEST(NaturalConstraints, MetToTolerance) {

@@ -114,9 +114,7 @@ TEST(Parameterize, SphericalCapTendsToStereographicProjection) {
 }
 
 TEST(Parameterize, MixedFamilyEndpointsAndScaleOfCoefficients) {
-  GenerateOptions g;
-  g.rings = 10;
-  const Mesh mesh = make_mesh(generate_wavy_patch(g));
+  const Mesh mesh = test::wavy(10);
   const MatrixX2d conformal = parameterize(mesh, with_method(Method::Conformal)).UV;
   const MatrixX2d authalic = parameterize(mesh, with_method(Method::Authalic)).UV;
   EXPECT_LT((parameterize(mesh, with_method(Method::Mixed, 3, 0)).UV - conformal).cwiseAbs().maxCoeff(), 1e-12);
@@ -128,9 +126,7 @@ TEST(Parameterize, MixedFamilyEndpointsAndScaleOfCoefficients) {
 }
 
 TEST(Parameterize, SolversAgree) {
-  GenerateOptions g;
-  g.rings = 12;
-  const Mesh mesh = make_mesh(generate_wavy_patch(g));
+  const Mesh mesh = test::wavy(12);
   for (Method m : {Method::Conformal, Method::Authalic}) {
     ParamOptions o = with_method(m, 0, 1);
     const MatrixX2d ref = parameterize(mesh, o).UV;
@@ -152,9 +148,7 @@ TEST(Parameterize, SolversAgree) {
 }
 
 TEST(Parameterize, BoundaryShapesAndScale) {
-  GenerateOptions g;
-  g.rings = 10;
-  const Mesh mesh = make_mesh(generate_wavy_patch(g));
+  const Mesh mesh = test::wavy(10);
   ParamOptions o;
   o.boundary = BoundaryShape::Square;
   const ParamResult sq = parameterize(mesh, o);
@@ -181,9 +175,7 @@ TEST(Parameterize, BoundaryShapesAndScale) {
 }
 
 TEST(Parameterize, UniformAndArcLengthSpacing) {
-  GenerateOptions g;
-  g.rings = 8;
-  const Mesh mesh = make_mesh(generate_wavy_patch(g));
+  const Mesh mesh = test::wavy(8);
   const std::vector<int>& loop = mesh.topology.boundary_loops[0];
   const auto uniform = loop_parameters(mesh.V, loop, Spacing::Uniform);
   const auto arc = loop_parameters(mesh.V, loop, Spacing::ArcLength);
@@ -203,13 +195,7 @@ TEST(Parameterize, GivenBoundaryMustCoverOuterLoop) {
   o.given = own_positions(mesh, mesh.topology.boundary_loops[0]);
   const int dropped = o.given.back().vertex;
   o.given.pop_back();
-  try {
-    parameterize(mesh, o);
-    FAIL() << "expected an error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::Input);
-    EXPECT_NE(std::string(e.what()).find("vertex " + std::to_string(dropped)), std::string::npos) << e.what();
-  }
+  test::expect_error([&] { parameterize(mesh, o); }, ErrorKind::Input, "vertex " + std::to_string(dropped));
 }
 
 // A disk with holes: faces around a few interior vertices removed.

@@ -1,5 +1,7 @@
 // Shared helpers for the tests: small meshes built in code, rigid motions,
-// and access to the shared real meshes (a missing mesh fails the test).
+// access to the shared real meshes (a missing mesh fails the test), the
+// intrinsic methods the constraint and editing tests loop over, surface
+// points, and the check that a call is refused with a given error.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -8,7 +10,10 @@
 #include <cmath>
 #include <string>
 
+#include "intrinsic/constraints.h"
+#include "intrinsic/error.h"
 #include "intrinsic/generate.h"
+#include "intrinsic/parameterize.h"
 #include "intrinsic/topology.h"
 
 namespace intrinsic::test {
@@ -29,6 +34,64 @@ inline double diameter(const MatrixX2d& UV) {
 
 inline double diameter3(const MatrixX3d& V) {
   return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+}
+
+// The generated curved, irregular disk most tests use.
+inline Mesh wavy(int rings = 10, double jitter = GenerateOptions().jitter) {
+  GenerateOptions g;
+  g.rings = rings;
+  g.jitter = jitter;
+  return make_mesh(generate_wavy_patch(g));
+}
+
+// The intrinsic family at its two ends and one mix.
+struct MethodCase {
+  Method m;
+  double lambda, mu;
+};
+inline const MethodCase kMethods[] = {{Method::Conformal, 1, 0}, {Method::Authalic, 0, 1}, {Method::Mixed, 0.3, 0.7}};
+
+inline ParamOptions options_for(const MethodCase& c) {
+  ParamOptions o;
+  o.weights.method = c.m;
+  o.weights.lambda = c.lambda;
+  o.weights.mu = c.mu;
+  return o;
+}
+
+// The parameter position of a surface point, interpolated from UV.
+inline Eigen::Vector2d value_at(const MatrixX2d& UV, const Mesh& mesh, const SurfacePoint& p) {
+  if (p.vertex >= 0) return UV.row(p.vertex).transpose();
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  for (int c = 0; c < 3; ++c) x += p.bary[c] * UV.row(mesh.F(p.face, c)).transpose();
+  return x;
+}
+
+// Three face points spread over the mesh and one used interior vertex from
+// the middle of the vertex list.
+inline std::vector<SurfacePoint> some_points(const Mesh& mesh) {
+  std::vector<SurfacePoint> pts;
+  for (int f : {3, static_cast<int>(mesh.F.rows()) / 2, static_cast<int>(mesh.F.rows()) - 20})
+    pts.push_back(SurfacePoint::in_face(f, Eigen::Vector3d(0.2, 0.5, 0.3)));
+  for (int v = static_cast<int>(mesh.V.rows()) / 3; v < mesh.V.rows(); ++v)
+    if (!mesh.topology.is_boundary[v] && mesh.topology.is_used[v]) {
+      pts.push_back(SurfacePoint::at_vertex(v));
+      break;
+    }
+  return pts;
+}
+
+// `f()` must throw an intrinsic::Error of `kind` whose message contains
+// `fragment`.
+template <class F>
+void expect_error(F&& f, ErrorKind kind, const std::string& fragment) {
+  try {
+    f();
+    ADD_FAILURE() << "no error; expected one containing '" << fragment << "'";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), kind) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace intrinsic::test

@@ -9,13 +9,7 @@ namespace intrinsic {
 namespace {
 
 void expect_refused(const MatrixX3d& V, const MatrixX3i& F, const std::string& fragment) {
-  try {
-    make_mesh(V, F);
-    FAIL() << "expected refusal with '" << fragment << "'";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::Input);
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
+  test::expect_error([&] { make_mesh(V, F); }, ErrorKind::Input, fragment);
 }
 
 MatrixX3d grid_vertices(int n) {

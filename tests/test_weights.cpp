@@ -60,9 +60,7 @@ TEST(Weights, RegularHexagonOneRing) {
 }
 
 TEST(Weights, RowsSumToZeroAndSymmetry) {
-  GenerateOptions g;
-  g.rings = 10;
-  const Mesh mesh = make_mesh(generate_wavy_patch(g));
+  const Mesh mesh = test::wavy(10);
   for (Method m : {Method::Conformal, Method::Authalic, Method::Mixed, Method::Tutte, Method::Floater}) {
     WeightOptions w;
     w.method = m;

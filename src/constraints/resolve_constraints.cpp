@@ -83,10 +83,11 @@ struct Resolver {
 
   // Edge crossings of the cut from a to b, in walking order.
   std::vector<Crossing> walk(const SurfacePoint& a, const SurfacePoint& b, const std::string& label) {
+    // terms() first: it checks the indices faces_of() relies on.
+    const Eigen::Vector3d pa = position(terms(a, label)), pb = position(terms(b, label));
     const std::vector<int> fa = faces_of(a), fb = faces_of(b);
     for (int f : fa)
       if (std::find(fb.begin(), fb.end(), f) != fb.end()) return {};  // same face: no edge in between
-    const Eigen::Vector3d pa = position(terms(a, label)), pb = position(terms(b, label));
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     for (int f : fa) normal += face_normal(f);
     for (int f : fb) normal += face_normal(f);
@@ -143,6 +144,9 @@ struct Resolver {
                   std::to_string(m) + " (one per path point)");
     for (const Eigen::Vector2d& t : l.to)
       if (!t.allFinite()) throw_input(label + ": non-finite target");
+    // Every point checked before any walk, so a bad point is named by its
+    // place in the path rather than by the piece that reaches it.
+    for (size_t k = 0; k < m; ++k) terms(l.path[k], label + ".path[" + std::to_string(k) + "]");
     // Rows in order along the line, with their 3D arc length and piece index.
     struct Row { LinearConstraint c; double s; size_t piece; };
     std::vector<Row> rows;

@@ -182,6 +182,19 @@ void check_natural_method(const WeightOptions& w) {
                 "energy E_D - A, and the authalic weights derive from no known energy (paper section 4.2)");
 }
 
+double natural_hole_weight(const WeightOptions& w) {
+  switch (w.method) {
+    case Method::Conformal: return 1.0;
+    case Method::Mixed: return w.lambda;
+    default: return 0.0;
+  }
+}
+
+bool solves_natural_holes(const Mesh& mesh, const ParamOptions& o) {
+  return o.holes == HoleRule::Natural && mesh.topology.component_loops.at(0).size() > 1 &&
+         natural_hole_weight(o.weights) != 0;
+}
+
 std::vector<FixedVertex> natural_pins(const Mesh& mesh, const ParamOptions& o) {
   std::vector<FixedVertex> pins = o.pins;
   if (pins.empty()) {

@@ -89,6 +89,15 @@ void check_natural_method(const WeightOptions& weights);
 // pair (default_pin_pair) at (0, 0) and (d, 0), d their 3D distance.
 std::vector<FixedVertex> natural_pins(const Mesh& mesh, const ParamOptions& options);
 
+// The factor of the area term HoleRule::Natural adds on hole loops: the weight
+// of the conformal energy in the method's rows. 0 for methods with no
+// conformal part (authalic, Tutte, Floater), whose holes stay free.
+double natural_hole_weight(const WeightOptions& weights);
+
+// True when HoleRule::Natural changes the system: the mesh's first component
+// has holes and the method a conformal part.
+bool solves_natural_holes(const Mesh& mesh, const ParamOptions& options);
+
 // The natural conformal map of a one-component mesh with a boundary
 // (called by parameterize for BoundaryShape::Natural).
 ParamResult natural_map(const Mesh& mesh, const ParamOptions& options);

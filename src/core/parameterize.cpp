@@ -4,7 +4,6 @@
 #include "intrinsic/parameterize.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -109,35 +108,6 @@ std::vector<FixedVertex> boundary_positions(const Mesh& mesh, const ParamOptions
   return o.given;
 }
 
-namespace {
-
-// The weight of the conformal energy in the method's interior rows: the
-// factor of the area term under HoleRule::Natural (0: no such term).
-double conformal_part(const WeightOptions& w) {
-  switch (w.method) {
-    case Method::Conformal: return 1.0;
-    case Method::Mixed: return w.lambda;
-    default: return 0.0;
-  }
-}
-
-void finish_scale(ParamResult& result, const Mesh& mesh, const ParamOptions& o) {
-  if (o.boundary == BoundaryShape::Given) {
-    result.scale = "given";
-  } else if (o.scale == ScaleMode::Unit) {
-    // The circle and square live in [-1, 1]^2: map that box onto [0, 1]^2
-    // exactly (a bounding-box fit would depend on where the vertices fall).
-    for (int v = 0; v < mesh.V.rows(); ++v)
-      if (mesh.topology.is_used[v]) result.UV.row(v) = 0.5 * result.UV.row(v) + Eigen::RowVector2d(0.5, 0.5);
-    result.scale = "unit";
-  } else {
-    scale_to_surface_area(result.UV, mesh);
-    result.scale = "surface";
-  }
-}
-
-}  // namespace
-
 std::string hole_rule_name(HoleRule r) {
   switch (r) {
     case HoleRule::Fill: return "fill";
@@ -187,32 +157,6 @@ void scale_to_surface_area(MatrixX2d& UV, const Mesh& mesh) {
   UV *= std::sqrt(a_surface / a_param);
 }
 
-namespace {
-
-// Fixed outer loop, natural condition (E_D - A terms scaled by the conformal
-// part of the weights) on the hole loops: the 2n x 2n pinned system.
-ParamResult natural_holes_map(const Mesh& mesh, const ParamOptions& o, const std::vector<FixedVertex>& fixed,
-                              double area_weight) {
-  const auto t_assemble = std::chrono::steady_clock::now();
-  const Topology& t = mesh.topology;
-  const int n = static_cast<int>(mesh.V.rows());
-  ParamResult result;
-  result.holes = "natural";
-  std::vector<char> is_used(t.is_used.begin(), t.is_used.end());
-  const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, o.weights);
-  std::vector<std::vector<int>> holes;
-  for (size_t k = 1; k < t.component_loops[0].size(); ++k) holes.push_back(t.boundary_loops[t.component_loops[0][k]]);
-  const SparseMatrix Q = block_diagonal2(K) - area_weight * area_hessian(n, holes);
-  result.timings.assemble_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_assemble).count();
-  const PinnedSolution s = solve_pinned(Q, fixed, is_used, o.solver, is_symmetric(o.weights), o.max_residual);
-  s.fill(result);
-  finish_scale(result, mesh, o);
-  return result;
-}
-
-}  // namespace
-
 ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
   const Topology& t = mesh.topology;
   if (t.num_components != 1)
@@ -220,12 +164,6 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
   if (t.component_loops[0].empty()) throw_input("the surface is closed (no boundary)");
   if (o.boundary == BoundaryShape::Natural) return natural_map(mesh, o);
   if (!o.pins.empty()) throw_usage("pins apply to the natural boundary only (use given boundary positions instead)");
-  const bool has_holes = t.component_loops[0].size() > 1;
-  const double area_weight = conformal_part(o.weights);
-  if (has_holes && o.holes == HoleRule::Natural && area_weight != 0)
-    return natural_holes_map(mesh, o, boundary_positions(mesh, o), area_weight);
-  // Fill and free holes (and natural holes without a conformal term, which
-  // are free) go through the Parameterizer.
   ParamResult r;
   try {
     r = Parameterizer(mesh, o).solve();
@@ -238,9 +176,10 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) {
                                   std::vector<char>(t.is_used.begin(), t.is_used.end()));
     throw_numerical(e.what() + likely_cause(mesh, assemble_weight_matrix(mesh.V, mesh.F, o.weights), p));
   }
-  r.holes = !has_holes ? "none"
-            : o.holes == HoleRule::Natural ? "free (method has no conformal term)"
-                                           : hole_rule_name(o.holes);
+  r.holes = t.component_loops[0].size() == 1 ? "none"
+            : solves_natural_holes(mesh, o)   ? "natural"
+            : o.holes == HoleRule::Natural    ? "free (method has no conformal term)"
+                                              : hole_rule_name(o.holes);
   return r;
 }
 

@@ -43,10 +43,8 @@ Parameterizer::Parameterizer(const Mesh& mesh, const ParamOptions& o) : impl_(st
   Impl& s = *impl_;
   s.mesh = &mesh;
   s.o = o;
-  const bool has_holes = t.component_loops[0].size() > 1;
   s.natural_boundary = o.boundary == BoundaryShape::Natural;
-  s.natural = s.natural_boundary ||
-              (has_holes && o.holes == HoleRule::Natural && detail::conformal_weight(o.weights) != 0);
+  s.natural = s.natural_boundary || solves_natural_holes(mesh, o);
   if (s.natural_boundary) {
     check_natural_method(o.weights);
     s.pins = natural_pins(mesh, o);

@@ -17,16 +17,6 @@ namespace detail {
 inline double elapsed_ms(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
-
-// The weight of the conformal energy in the method's rows: the factor of the
-// area term on natural hole loops (0: no such term, the holes are free).
-inline double conformal_weight(const WeightOptions& w) {
-  switch (w.method) {
-    case Method::Conformal: return 1.0;
-    case Method::Mixed: return w.lambda;
-    default: return 0.0;
-  }
-}
 }  // namespace detail
 
 struct Parameterizer::Impl {
@@ -75,7 +65,7 @@ struct Parameterizer::Impl {
       const SparseMatrix K = assemble_weight_matrix(mesh->V, mesh->F, o.weights);
       std::vector<std::vector<int>> holes;
       for (size_t k = 1; k < t.component_loops[0].size(); ++k) holes.push_back(t.boundary_loops[t.component_loops[0][k]]);
-      Q = block_diagonal2(K) - detail::conformal_weight(o.weights) * area_hessian(n, holes);
+      Q = block_diagonal2(K) - natural_hole_weight(o.weights) * area_hessian(n, holes);
       symmetric = is_symmetric(o.weights);
     }
     std::vector<char> fixed2(2 * n, 0), used2(2 * n, 0);
