@@ -369,21 +369,15 @@ int orderings(const std::string& what) {
     const Eigen::MatrixXd rhs = Eigen::MatrixXd::Random(A.rows(), 2);
     for (detail::Ordering ord : {detail::Ordering::NestedDissection, detail::Ordering::AMD, detail::Ordering::METIS}) {
       double analyse = 0, factor = 0, solve = 0, nnz = 0;
-      if (is_symmetric(o.weights)) {
-        detail::CholmodFactor f(ord);
+      auto measure = [&](auto&& f) {
         f.factor(A);
         const auto t = Clock::now();
         f.solve(rhs);
         solve = ms_since(t);
         analyse = f.analyse_ms, factor = f.factor_ms, nnz = f.factor_nonzeros();
-      } else {
-        detail::UmfpackFactor f(ord);
-        f.factor(A);
-        const auto t = Clock::now();
-        f.solve(rhs);
-        solve = ms_since(t);
-        analyse = f.analyse_ms, factor = f.factor_ms, nnz = f.factor_nonzeros();
-      }
+      };
+      if (is_symmetric(o.weights)) measure(detail::CholmodFactor(ord));
+      else measure(detail::UmfpackFactor(ord));
       std::cout << "| " << method << " (" << (is_symmetric(o.weights) ? "CHOLMOD" : "UMFPACK") << ", n = " << A.rows()
                 << ") | " << detail::ordering_name(ord) << " | " << fmt(analyse) << " | " << fmt(factor) << " | "
                 << fmt(solve) << " | " << static_cast<long>(nnz) << " |" << std::endl;
