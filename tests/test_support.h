@@ -10,6 +10,8 @@
 #include <cmath>
 #include <string>
 
+#include <zlib.h>
+
 #include "intrinsic/constraints.h"
 #include "intrinsic/error.h"
 #include "intrinsic/generate.h"
@@ -17,6 +19,21 @@
 #include "intrinsic/topology.h"
 
 namespace intrinsic::test {
+
+// A gzip member holding `data`, for the readers' transparent decompression.
+inline std::string gzip(const std::string& data, int level = 6, int mem_level = 8) {
+  z_stream zs{};
+  EXPECT_EQ(deflateInit2(&zs, level, Z_DEFLATED, 15 + 16, mem_level, Z_DEFAULT_STRATEGY), Z_OK);
+  std::string out(deflateBound(&zs, data.size()) + 64, '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  zs.avail_in = static_cast<uInt>(data.size());
+  zs.next_out = reinterpret_cast<Bytef*>(&out[0]);
+  zs.avail_out = static_cast<uInt>(out.size());
+  EXPECT_EQ(deflate(&zs, Z_FINISH), Z_STREAM_END);
+  out.resize(zs.total_out);
+  deflateEnd(&zs);
+  return out;
+}
 
 inline std::string shared_mesh(const std::string& name) { return std::string(INTRINSIC_SHARED_MESHES) + "/" + name; }
 
