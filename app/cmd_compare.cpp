@@ -127,7 +127,7 @@ void register_compare(CLI::App& app, Runner& run) {
         captions.push_back(names[i] + "\n" + std::to_string(d.flipped_triangles) + " flipped\nangle mean " +
                            fixed(d.angle_distortion.mean, 3) + "\nangle max " + fixed(d.angle_distortion.max, 2) +
                            "\narea mean " + fixed(d.area_distortion.mean, 3) + "\n" + fixed(ms, 0) + " ms");
-        nlohmann::json j = {{"method", names[i]}, {"solver", r.solver}, {"time_ms", ms}};
+        nlohmann::json j = {{"method", names[i]}, {"solver", solvers_name(r.solvers)}, {"time_ms", ms}};
         add_distortion(j, d);
         results.push_back(j);
       }

@@ -1,9 +1,40 @@
-// JSON report construction and writing.
+// JSON report construction and writing (README "Report").
 #include "report.h"
 
 #include "intrinsic/io.h"
 
 namespace intrinsic::app {
+namespace {
+
+nlohmann::json chart_json(const ChartSummary& c) {
+  nlohmann::json j = {{"component", c.component},
+                      {"vertices", c.vertices},
+                      {"faces", c.faces},
+                      {"method", method_name(c.weights.method)},
+                      {"boundary", boundary_shape_name(c.boundary)},
+                      {"holes", holes_applied_name(c.holes)},
+                      {"packed", c.packed},
+                      {"residual", c.residual},
+                      {"free_vertices", c.free_vertices},
+                      {"fixed_vertices", c.fixed_vertices},
+                      {"flipped_triangles", c.flipped_triangles},
+                      {"angle_distortion_mean", c.angle_distortion_mean},
+                      {"uv_box", {{"min", {c.box_min.x(), c.box_min.y()}}, {"max", {c.box_max.x(), c.box_max.y()}}}}};
+  if (c.fallback != ChartFallback::None) j["fallback"] = chart_fallback_name(c.fallback);
+  return j;
+}
+
+// The blend lambda * conformal + mu * authalic that was solved.
+std::pair<double, double> lambda_mu(const WeightOptions& w) {
+  switch (w.method) {
+    case Method::Mixed: return {w.lambda, w.mu};
+    case Method::Conformal: return {1.0, 0.0};
+    case Method::Authalic: return {0.0, 1.0};
+    default: return {0.0, 0.0};
+  }
+}
+
+}  // namespace
 
 nlohmann::json stat_json(const Stat& s) { return {{"min", s.min}, {"mean", s.mean}, {"max", s.max}}; }
 
@@ -49,6 +80,71 @@ nlohmann::json constraints_json(const std::vector<ConstraintResidual>& residuals
 
 void write_report(const std::string& path, const nlohmann::json& report) {
   write_file_atomically(path, report.dump(2) + "\n");
+}
+
+std::string boundary_label(BoundaryShape shape, const std::string& boundary_file) {
+  return shape == BoundaryShape::Given ? "file:" + boundary_file : boundary_shape_name(shape);
+}
+
+void add_solution(nlohmann::json& report, const ParamResult& r, const std::string& boundary_file) {
+  const auto [lambda, mu] = lambda_mu(r.weights);
+  report["method"] = method_name(r.weights.method);
+  report["lambda"] = lambda;
+  report["mu"] = mu;
+  report["boundary"] = boundary_label(r.boundary, boundary_file);
+  report["spacing"] = spacing_name(r.spacing);
+  report["scale"] = placement_name(r.placement);
+  report["holes"] = holes_applied_name(r.holes);
+  report["filled_holes"] = r.filled_holes;
+  if (!r.pins.empty()) {
+    nlohmann::json pins = nlohmann::json::array();
+    for (const FixedVertex& p : r.pins) pins.push_back({{"vertex", p.vertex}, {"u", p.uv.x()}, {"v", p.uv.y()}});
+    report["pins"] = pins;  // as solved, before any --scale unit fit
+  }
+  if (!r.charts.empty()) {
+    report["charts"] = nlohmann::json::array();
+    for (const ChartSummary& c : r.charts) report["charts"].push_back(chart_json(c));
+  }
+  report["solver"] = solvers_name(r.solvers);
+  report["residual"] = r.residual;
+  report["free_vertices"] = r.free_vertices;
+  report["fixed_vertices"] = r.fixed_vertices;
+  report["factorizations"] = r.factorizations;
+  if (r.iterations > 0) report["iterations"] = r.iterations;
+  if (!r.constraints.empty()) report["constraints"] = constraints_json(r.constraints);
+}
+
+nlohmann::json optimal_lambda_json(const OptimalLambdaResult& best, const OptimalLambdaOptions& o) {
+  return {{"energy", lambda_energy_name(o.energy)},
+          {"lambda", best.lambda},
+          {"range", {o.lo, o.hi}},
+          {"energy_at_lambda", best.energy},
+          {"energy_at_0_authalic", best.energy_at_0},
+          {"energy_at_1_conformal", best.energy_at_1},
+          {"polynomial", best.coefficients},
+          {"boundary_scale", best.boundary_scale},
+          {"note", "map = lambda*conformal + (1-lambda)*authalic with a common fixed boundary; energies "
+                   "evaluated with the boundary scaled so that parameter area = 3D area"},
+          {"timings_ms", {{"conformal", best.conformal_ms}, {"authalic", best.authalic_ms},
+                          {"polynomial", best.polynomial_ms}}}};
+}
+
+nlohmann::json boundary_optimization_json(const BoundaryOptimizationResult& best,
+                                          const BoundaryOptimizationOptions& o) {
+  return {{"boundary_energy", boundary_energy_name(o.energy)},
+          {"gradient", gradient_route_name(o.route)},
+          {"descent", descent_name(o.descent)},
+          {"iterations", best.iterations},
+          {"stop_reason", best.stop_reason},
+          {"energy_initial", best.energy_history.front()},
+          {"energy_final", best.energy_history.back()},
+          {"energy_history", best.energy_history},
+          {"solves", best.solves},
+          {"response_solves", best.response_solves},
+          {"factorizations", best.factorizations},
+          {"flipped_initial", best.flipped_initial},
+          {"flipped_final", best.flipped_final},
+          {"timings_ms", {{"setup", best.setup_ms}, {"optimize", best.optimize_ms}}}};
 }
 
 }  // namespace intrinsic::app

@@ -1,12 +1,16 @@
-// The JSON distortion report shared by `param` and `metrics` (keys listed in
-// README "Report").
+// The JSON reports of `param` and `metrics` (keys listed in README
+// "Report"), built from the library's result structs only: what was solved
+// is read from the result, never rebuilt from the command line. The only
+// other inputs are names the results cannot know (file paths).
 #pragma once
 
 #include <nlohmann/json.hpp>
 
+#include "intrinsic/boundary_optimization.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/metrics.h"
-#include "intrinsic/topology.h"
+#include "intrinsic/optimal_lambda.h"
+#include "intrinsic/parameterize.h"
 
 namespace intrinsic::app {
 
@@ -19,5 +23,16 @@ void add_distortion(nlohmann::json& report, const DistortionSummary& d);
 nlohmann::json constraints_json(const std::vector<ConstraintResidual>& residuals);
 // Writes the report atomically (pretty-printed).
 void write_report(const std::string& path, const nlohmann::json& report);
+
+// "circle", "square", "natural", or "file:PATH" for given positions.
+std::string boundary_label(BoundaryShape shape, const std::string& boundary_file);
+
+// Adds what the map was and how it was solved: method, lambda, mu, boundary,
+// spacing, scale, holes, filled_holes, pins, charts, solver, residual,
+// free_vertices, fixed_vertices, iterations, constraints.
+void add_solution(nlohmann::json& report, const ParamResult& r, const std::string& boundary_file);
+nlohmann::json optimal_lambda_json(const OptimalLambdaResult& best, const OptimalLambdaOptions& options);
+nlohmann::json boundary_optimization_json(const BoundaryOptimizationResult& best,
+                                          const BoundaryOptimizationOptions& options);
 
 }  // namespace intrinsic::app

@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
   t0 = std::chrono::steady_clock::now();
   Parameterizer p(mesh, o);
   std::printf("construct (assemble + factor + first solve) %.1f ms, solver %s\n", ms_since(t0),
-              p.solve().solver.c_str());
+              solvers_name(p.solve().solvers).c_str());
   // A fresh full solve with the kept factorization, for reference.
   {
     std::vector<double> t;

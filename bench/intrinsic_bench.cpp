@@ -39,7 +39,7 @@
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
 #include "intrinsic/parameterize.h"
-#include "core/natural_map.h"  // assemble_natural_system
+#include "core/natural_system.h"  // assemble_natural_system
 #if __has_include("solve/suitesparse.h")  // absent when measuring older trees
 #include "solve/suitesparse.h"
 #define INTRINSIC_BENCH_ORDERINGS 1
@@ -236,7 +236,7 @@ CaseResult run_case(const std::string& path, const std::string& method, int runs
     (void)d;
     times["metrics"].push_back(ms_since(t));
     times["total"].push_back(ms_since(t0));
-    r.solver = p.solver;
+    r.solver = solvers_name(p.solvers);
     UV = p.UV;
     last = p;
   }

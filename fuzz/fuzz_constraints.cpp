@@ -10,7 +10,7 @@
 #include "fuzz_support.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/parameterizer.h"
-#include "intrinsic/topology.h"
+#include "intrinsic/mesh.h"
 
 namespace {
 

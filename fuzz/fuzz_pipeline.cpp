@@ -9,7 +9,7 @@
 #include "fuzz_support.h"
 #include "intrinsic/metrics.h"
 #include "intrinsic/parameterize.h"
-#include "intrinsic/topology.h"
+#include "intrinsic/mesh.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace intrinsic;

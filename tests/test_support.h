@@ -16,7 +16,7 @@
 #include "intrinsic/error.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/parameterize.h"
-#include "intrinsic/topology.h"
+#include "intrinsic/mesh.h"
 
 namespace intrinsic::test {
 

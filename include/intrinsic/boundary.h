@@ -1,4 +1,4 @@
-// Fixed boundary positions (paper section 4.1; SPEC section 3): the outer
+// Fixed boundary positions (paper section 4.1; docs/maths.md §2.2): the outer
 // loop mapped to a circle or a square, spaced by 3D arc length or uniformly,
 // or positions the user gives for any vertices (outer loop, holes'
 // "additional boundary vertices", even interior points). BoundaryShape::Natural
@@ -10,12 +10,15 @@
 #include <utility>
 #include <vector>
 
-#include "intrinsic/topology.h"
+#include "intrinsic/mesh.h"
 
 namespace intrinsic {
 
 enum class BoundaryShape { Circle, Square, Given, Natural };
 enum class Spacing { ArcLength, Uniform };
+
+std::string boundary_shape_name(BoundaryShape s);  // "circle", "square", "given", "natural"
+std::string spacing_name(Spacing s);               // "arclength", "uniform"
 
 struct FixedVertex {
   int vertex;

@@ -1,4 +1,4 @@
-// Realtime boundary manipulation (paper section 4.2; SPEC section 5). The
+// Realtime boundary manipulation (paper section 4.2; docs/maths.md §6). The
 // map is linear in the fixed positions, so moving fixed vertex p by d_p
 // changes every UV by d_p * b_p, where b_p (the impulse response, a "Green
 // function") is the map for p at 1 and every other fixed vertex at 0, with
@@ -45,7 +45,8 @@ class BoundaryEditor {
  public:
   // Starts from the Parameterizer's current boundary, constraints and map
   // (solving it if needed); keeps a reference to it, which must outlive the
-  // editor and not change while the editor is used. Throws Error(Usage) when
+  // editor and not be changed by others while the editor is used. Each move
+  // updates the Parameterizer's boundary() too. Throws Error(Usage) when
   // the full basis exceeds the memory budget.
   BoundaryEditor(Parameterizer& parameterizer, const EditOptions& options = {});
 
@@ -66,6 +67,7 @@ class BoundaryEditor {
  private:
   void compute_responses(const std::vector<int>& fixed_columns, Eigen::MatrixXd& out) const;
   void resolve();
+  void sync_parameterizer();
 
   Parameterizer& p_;
   EditOptions options_;

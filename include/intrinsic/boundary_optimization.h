@@ -1,4 +1,4 @@
-// Boundary optimization (paper section 5.2; SPEC section 7): move the
+// Boundary optimization (paper section 5.2; docs/maths.md §8): move the
 // boundary vertices (every loop, outer and holes) to minimise a distortion
 // energy while the interior follows the chosen intrinsic map of that boundary.
 //
@@ -13,14 +13,13 @@
 // (Armijo), add no flipped triangle and make no boundary segments cross.
 #pragma once
 
+#include <array>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include <array>
-
-#include "intrinsic/assemble.h"
-#include "intrinsic/parameterize.h"
+#include "intrinsic/parameterizer.h"
 
 namespace intrinsic {
 
@@ -31,6 +30,9 @@ enum class Descent { LBFGS, GradientDescent };
 BoundaryEnergy parse_boundary_energy(const std::string& name);  // edge | area | dirichlet
 GradientRoute parse_gradient_route(const std::string& name);    // adjoint | responses
 Descent parse_descent(const std::string& name);                 // lbfgs | gradient
+std::string boundary_energy_name(BoundaryEnergy e);  // the names the parse functions take
+std::string gradient_route_name(GradientRoute r);
+std::string descent_name(Descent d);
 
 struct BoundaryOptimizationOptions {
   ParamOptions base;  // weights of the interior map, starting boundary, holes rule for the start, solver
@@ -46,11 +48,14 @@ struct BoundaryOptimizationOptions {
 
 struct BoundaryOptimizationResult {
   MatrixX2d UV;  // #V x 2, at the scale the energy chose (the surface's own scale)
+  // The final map as a Parameterizer result (residual, free vertices, ...),
+  // placed as base.scale says (Unit: fitted into [0,1]^2; Surface: as UV).
+  ParamResult map;
   std::vector<double> energy_history;  // initial energy, then one per iteration
   int iterations = 0;
   int solves = 0;           // linear solves (each with 2 right-hand sides), responses excluded
   int response_solves = 0;  // right-hand sides solved to build the responses
-  int factorizations = 0;
+  int factorizations = 0;   // the start map's and the objective's (1 when they share one)
   int flipped_initial = 0, flipped_final = 0;
   std::string stop_reason;
   double setup_ms = 0, optimize_ms = 0;
@@ -68,30 +73,39 @@ double boundary_energy(const MatrixX3d& V, const MatrixX3i& F, const Eigen::Matr
 BoundaryOptimizationResult optimize_boundary(const Mesh& mesh, const BoundaryOptimizationOptions& options);
 
 // The objective as a function of the boundary positions x (u, v of each
-// boundary vertex in turn): the map it induces and the energy with its
-// gradient by the chosen route. Factors A once; optimize_boundary uses it,
-// and tool builders can drive their own descent with it.
+// boundary vertex in turn, every loop): the map it induces and the energy
+// with its gradient by the chosen route. It solves through a Parameterizer
+// whose fixed vertices are all the loops (one factorization, kept);
+// optimize_boundary uses it, and tool builders can drive their own descent
+// with it.
 class BoundaryObjective {
  public:
-  // `stats` receives the solve and factorization counts.
-  BoundaryObjective(const Mesh& mesh, const BoundaryOptimizationOptions& options, BoundaryOptimizationResult& stats);
-  int boundary_size() const { return static_cast<int>(p_.fixed_vertices.size()); }
-  const std::vector<int>& boundary_vertices() const { return p_.fixed_vertices; }
-  const std::vector<std::array<int, 2>>& segments() const { return segments_; }
+  // `start` (#V x 2) gives the first positions of the boundary. The options
+  // are copied. Throws Error(Usage) when the responses would exceed their
+  // memory budget.
+  BoundaryObjective(const Mesh& mesh, const BoundaryOptimizationOptions& options, const MatrixX2d& start);
+  // Takes over a Parameterizer whose fixed vertices are already every loop
+  // vertex (no second factorization).
+  BoundaryObjective(Parameterizer&& parameterizer, const BoundaryOptimizationOptions& options);
+  ~BoundaryObjective();
+  BoundaryObjective(BoundaryObjective&&) noexcept;
+
+  int boundary_size() const;
+  const std::vector<int>& boundary_vertices() const;
+  const std::vector<std::array<int, 2>>& segments() const;
   Eigen::VectorXd boundary_of(const MatrixX2d& UV) const;
   MatrixX2d map(const Eigen::VectorXd& x);
   double energy(const MatrixX2d& UV, Eigen::VectorXd* gradient);
+  // The Parameterizer's result for boundary x (one solve), placed by `scale`.
+  ParamResult final_map(const Eigen::VectorXd& x, ScaleMode scale);
+
+  int solves() const;           // linear solves so far (2 right-hand sides each), responses excluded
+  int response_solves() const;  // right-hand sides solved to build the responses
+  int factorizations() const;   // of the Parameterizer it solves with
 
  private:
-  const Mesh& mesh_;
-  const BoundaryOptimizationOptions& o_;
-  BoundaryOptimizationResult& stats_;
-  Partition p_;
-  SparseMatrix A_, K_IB_;
-  LinearSolver solver_;
-  Eigen::MatrixXd R_;  // responses, for GradientRoute::Responses
-  std::vector<std::array<int, 2>> segments_;
-  Eigen::MatrixX2i edges_;  // unique_edges(F), once
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 // True when two boundary segments that share no vertex cross in the plane.

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "intrinsic/topology.h"
+#include "intrinsic/mesh.h"
 
 namespace intrinsic {
 

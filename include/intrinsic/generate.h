@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "intrinsic/mesh.h"
+#include "intrinsic/mesh_data.h"
 
 namespace intrinsic {
 

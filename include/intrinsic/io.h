@@ -9,7 +9,7 @@
 #include <string>
 
 #include "intrinsic/error.h"
-#include "intrinsic/mesh.h"
+#include "intrinsic/mesh_data.h"
 
 namespace intrinsic {
 

@@ -37,13 +37,18 @@ class LinearSolver {
   // Solves A^T X = B (adjoint gradients); same factorization.
   Eigen::MatrixXd solve_transposed(const Eigen::MatrixXd& B) const;
 
-  // Declares the system ill-conditioned (the natural map's, with only two
-  // pinned vertices): direct solves then refine iteratively until the
-  // correction is below 1e-13 of the solution, instead of only when the
-  // residual is above rounding level.
+  // Iterative refinement (CHOLMOD only; docs/maths.md §10). By default a
+  // CHOLMOD solve refines, at most 5 steps, only while the componentwise
+  // backward error max_i |B - A X|_i / (|A| |X| + |B|)_i exceeds 16 ulps.
+  // Declaring the system ill-conditioned (the natural map's, with only two
+  // pinned vertices) makes every solve refine with residuals accumulated in
+  // long double, at least one step and at most 5, stopping when the
+  // correction is below 1e-13 of the solution or no longer halves.
+  // UMFPACK, Eigen's solvers and the iterative ones do not refine.
   void set_ill_conditioned(bool on);
 
-  std::string name() const;       // the backend actually used
+  SolverKind kind() const;        // the backend actually used (never Auto after factor)
+  std::string name() const;       // solver_name(kind())
   int factorizations() const;     // how many numeric factorizations so far
   int iterations() const;         // last iterative solve, 0 for direct
   const SparseMatrix& matrix() const;

@@ -1,31 +1,53 @@
-// Plain mesh data as read from a file: libigl-style Eigen matrices.
-// V is #V x 3 positions, F is #F x 3 zero-based vertex indices (polygons
-// already fan-triangulated). Optional texture coordinates TC (#TC x 2) with
-// per-corner indices FTC (#F x 3), as OBJ stores them; for PLY u,v vertex
-// properties FTC equals F.
+// The validated surface every algorithm takes: positions, consistently
+// oriented triangles and their adjacency (topology.h), built from raw file
+// data (mesh_data.h) by make_mesh, which refuses what the maps cannot take.
 #pragma once
 
-#include <Eigen/Core>
-#include <Eigen/Geometry>  // cross products, 2x2 inverses
 #include <string>
 #include <vector>
 
+#include "intrinsic/mesh_data.h"
+#include "intrinsic/topology.h"
+
 namespace intrinsic {
 
-using Eigen::MatrixX2d;
-using Eigen::MatrixX3d;
-using Eigen::MatrixX3i;
-
-struct MeshData {
-  MatrixX3d V;
-  MatrixX3i F;
-  MatrixX2d TC;   // empty when the file has no texture coordinates
-  MatrixX3i FTC;  // #F x 3 when TC is present, else empty
-  // For error messages: the 1-based source line of each face in text formats
-  // (several triangles share the line of their polygon), or 0 for binary files.
-  std::vector<int> face_line;
-  std::string path;  // the file it came from, for messages
-  bool has_uv() const { return TC.rows() > 0 && FTC.rows() == F.rows(); }
+// What validation found and fixed, for the report.
+struct ValidationReport {
+  int reoriented_faces = 0;
+  int unreferenced_vertices = 0;
 };
+
+struct Mesh {
+  MatrixX3d V;
+  MatrixX3i F;  // consistently oriented
+  Topology topology;
+  ValidationReport validation;
+  std::vector<int> face_line;  // source line per face for messages (may be empty)
+  std::string path;            // source file for messages (may be empty)
+
+  int source(int h) const { return F(h / 3, h % 3); }
+  int target(int h) const { return F(h / 3, (h % 3 + 1) % 3); }
+  // "face 12 (mesh.obj line 40)" or "face 12": how messages name a face.
+  std::string describe_face(int f) const;
+};
+
+struct ValidateOptions {
+  // A triangle whose area is below this fraction of its longest edge squared
+  // is refused as degenerate: its cotangents would be meaningless.
+  double degenerate_ratio = 1e-12;
+  // Several components and closed components are normally refused here;
+  // chart-based callers allow them and handle each component themselves.
+  bool allow_several_components = false;
+  bool allow_closed = false;
+};
+
+// Validates and builds the adjacency. Throws Error(Input) naming the first
+// offending element: out-of-range index, repeated vertex in a face,
+// non-finite coordinate, degenerate face, edge with more than two faces,
+// non-manifold vertex, non-orientable surface, closed surface, several
+// components. Faces listed against the majority orientation of their
+// component are flipped (counted in validation.reoriented_faces).
+Mesh make_mesh(const MeshData& data, const ValidateOptions& options = {});
+Mesh make_mesh(const MatrixX3d& V, const MatrixX3i& F, const ValidateOptions& options = {});
 
 }  // namespace intrinsic

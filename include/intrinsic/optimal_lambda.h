@@ -1,4 +1,4 @@
-// Near-optimal maps (paper section 5.1; SPEC section 6): within the line of
+// Near-optimal maps (paper section 5.1; docs/maths.md §7): within the line of
 // maps U(lambda) = lambda U_A + (1 - lambda) U_chi sharing one fixed boundary,
 // the lambda that minimises the edge-length or the area distortion, found
 // exactly: both energies are quartic polynomials in lambda, so the minimum is
@@ -43,10 +43,11 @@ struct OptimalLambdaResult {
 
 // Two solves (conformal and authalic with the same boundary), then O(edges)
 // work. The energies are evaluated with the boundary scaled so that the
-// parameter area equals the 3D area (SPEC section 6); the returned map is
+// parameter area equals the 3D area (docs/maths.md §7); the returned map is
 // then scaled as base.scale says (or kept as given for a boundary file).
 OptimalLambdaResult optimal_lambda(const Mesh& mesh, const OptimalLambdaOptions& options);
 
 LambdaEnergy parse_lambda_energy(const std::string& name);  // "edge" | "area"
+std::string lambda_energy_name(LambdaEnergy e);             // "edge" | "area"
 
 }  // namespace intrinsic

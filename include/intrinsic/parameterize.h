@@ -1,8 +1,10 @@
 // One call for the common case: a member of the intrinsic family
 // lambda*DCP + mu*DAP (or Tutte/Floater for comparison) with a fixed outer
 // boundary (paper sections 3 and 4.1), or the natural conformal map with two
-// pinned vertices (section 4.2, eq. 7). Fixed vertices are eliminated, the
-// remaining system is factored once and solved for u and v together.
+// pinned vertices (section 4.2, eq. 7). parameterize(mesh, options) is
+// exactly Parameterizer(mesh, options).solve() (parameterizer.h); this
+// header holds the options and the result every mode shares
+// (docs/maths.md §2-§4).
 #pragma once
 
 #include <string>
@@ -11,13 +13,19 @@
 #include "intrinsic/boundary.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/linear_solver.h"
+#include "intrinsic/mesh.h"
 #include "intrinsic/metrics.h"
-#include "intrinsic/topology.h"
 #include "intrinsic/weights.h"
 
 namespace intrinsic {
 
+// The scale asked for (options).
 enum class ScaleMode { Unit, Surface };
+
+// Where the result was placed (result): fitted into [0,1]^2, at the
+// surface's own scale, or exactly where given positions or pins put it.
+enum class Placement { Unit, Surface, Given };
+std::string placement_name(Placement p);  // "unit", "surface", "given"
 
 // What happens to boundary loops other than the outer one (holes) when their
 // positions are not given.
@@ -31,7 +39,13 @@ enum class HoleRule {
   Natural,
 };
 
-std::string hole_rule_name(HoleRule r);
+std::string hole_rule_name(HoleRule r);  // "fill", "free", "natural"
+
+// The hole rule that was applied (result). FreeNoConformalTerm: HoleRule::Natural
+// asked for with a method that has no conformal part, so the holes were free.
+enum class HolesApplied { None, Fill, Free, Natural, FreeNoConformalTerm };
+// "none", "fill", "free", "natural", "free (method has no conformal term)".
+std::string holes_applied_name(HolesApplied h);
 
 struct ParamOptions {
   WeightOptions weights;
@@ -54,27 +68,60 @@ struct StageTimings {
   double assemble_ms = 0, factor_ms = 0, solve_ms = 0;
 };
 
+// A chart of a mesh in several pieces (charts.h): one per component.
+enum class ChartFallback {
+  None,
+  NoGivenPositions,  // the boundary file gives no position on this component
+  LoopTooShort,      // a square needs at least 4 vertices on the outer loop
+};
+std::string chart_fallback_name(ChartFallback f);  // "", "no given boundary positions on this chart", ...
+
+struct ChartSummary {
+  int component = 0;            // index in mesh.topology
+  int vertices = 0, faces = 0;  // used vertices and faces of the chart
+  BoundaryShape boundary = BoundaryShape::Circle;  // what this chart was solved with
+  WeightOptions weights;        // what this chart was solved with
+  ChartFallback fallback = ChartFallback::None;  // why it got the natural map instead of the options'
+  HolesApplied holes = HolesApplied::None;
+  bool packed = true;           // false: kept where given positions or pins put it
+  int flipped_triangles = 0;
+  double angle_distortion_mean = 0;
+  double residual = 0;
+  int free_vertices = 0, fixed_vertices = 0;
+  Eigen::Vector2d box_min = Eigen::Vector2d::Zero(), box_max = Eigen::Vector2d::Zero();  // in the final layout
+};
+
 struct ParamResult {
   MatrixX2d UV;  // #V x 2, unused vertices at (0, 0)
-  std::string solver;       // backend used
-  double residual = 0;      // max over u, v of |A x - b| / |b|; with constraints |A x + C^T l - b| / |b|
-  int free_vertices = 0;    // unknowns per coordinate
+  // What was solved (not what was asked: optimal lambda solves a mixed map,
+  // a chart may fall back to the natural map).
+  WeightOptions weights;
+  BoundaryShape boundary = BoundaryShape::Circle;
+  Spacing spacing = Spacing::ArcLength;
+  Placement placement = Placement::Unit;
+  HolesApplied holes = HolesApplied::None;
+  std::vector<SolverKind> solvers;  // backends used, in order of first use; empty when every vertex is fixed
+  double residual = 0;      // max over u, v (and charts) of |A x - b| / |b|; with constraints |A x + C^T l - b| / |b|
+  int free_vertices = 0;    // unknowns per coordinate (summed over charts)
   int fixed_vertices = 0;
   int filled_holes = 0;
   int factorizations = 0;
   int iterations = 0;       // iterative solvers only
-  std::string scale;        // "unit", "surface" or "given"
-  std::string holes;        // the hole rule applied: "fill", "free", "natural", "none" (no holes)
-  std::vector<FixedVertex> pins;  // natural map: the pins used, at their solved positions before scaling
-  std::vector<ConstraintResidual> constraints;  // one per resolved constraint row (Parameterizer only)
+  std::vector<FixedVertex> pins;  // natural map: the pins used, before any placement
+  std::vector<ConstraintResidual> constraints;  // one per resolved constraint row
+  std::vector<ChartSummary> charts;  // several components only (charts.h); empty otherwise
   StageTimings timings;
 };
 
-// Throws Error(Usage) for inconsistent options (natural boundary with a
-// non-conformal method, fewer than two pins, pins without natural boundary),
-// Error(Input) when the mesh cannot take them (missing outer-loop vertex in
-// `given`, pin on a vertex that does not exist), Error(Numerical) when the
-// solve fails or the residual is too large.
+// "cholmod", "cholmod, umfpack", or "none (every vertex is fixed)".
+std::string solvers_name(const std::vector<SolverKind>& solvers);
+
+// Parameterizer(mesh, options).solve(). Throws Error(Usage) for
+// inconsistent options (natural boundary with a non-conformal method, fewer
+// than two pins, pins without natural boundary), Error(Input) when the mesh
+// cannot take them (missing outer-loop vertex in `given`, pin on a vertex
+// that does not exist), Error(Numerical) when the solve fails or the
+// residual is too large (the message then names the likely cause).
 ParamResult parameterize(const Mesh& mesh, const ParamOptions& options);
 
 // Positions of the fixed vertices before any scaling: the outer loop on the
@@ -83,7 +130,8 @@ ParamResult parameterize(const Mesh& mesh, const ParamOptions& options);
 std::vector<FixedVertex> boundary_positions(const Mesh& mesh, const ParamOptions& options);
 
 // Similarity that moves UV into [0,1]^2 (centred, aspect kept), or scaling
-// about the origin so the parameter area equals the 3D area.
+// about the origin so the parameter area equals the 3D area. Both are the
+// one placement function of docs/maths.md §2.4.
 void fit_unit_square(MatrixX2d& UV, const std::vector<char>& used);
 void scale_to_surface_area(MatrixX2d& UV, const Mesh& mesh);
 

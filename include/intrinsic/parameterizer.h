@@ -1,7 +1,8 @@
-// The intrinsic family (fixed boundary, or the natural conformal map) as an object that keeps
-// its factorization (paper sections 4.1 and 4.2; SPEC sections 2, 4, 5): for
-// constraints, boundary editing and optimization loops. parameterize() is a
-// thin wrapper over it.
+// The intrinsic family (fixed boundary, or the natural conformal map) as an
+// object that keeps its factorization (paper sections 4.1 and 4.2;
+// docs/maths.md §2-§5): the one solve path of every mode. parameterize() is
+// Parameterizer(mesh, options).solve(); charts, optimal lambda, boundary
+// optimization and the boundary editor all solve through it.
 //
 // What is kept and what each call costs:
 //   construction           assemble K, eliminate the fixed vertices, factor
@@ -28,16 +29,16 @@
 // in the same coordinates as the output UVs, and the result with constraints
 // is not rescaled (its area may differ from the surface's).
 //
-// Natural layout (SPEC section 3): with BoundaryShape::Natural (every loop
+// Natural layout (docs/maths.md §3): with BoundaryShape::Natural (every loop
 // natural, the pins fixed) or HoleRule::Natural on a mesh with holes and a
 // method with a conformal term (the outer loop fixed), the factored system is
-// the 2n x 2n one of natural_map.h, unknowns (u_0..u_n, v_0..v_n), one
+// the 2n x 2n one of docs/maths.md §3, unknowns (u_0..u_n, v_0..v_n), one
 // right-hand-side column. Each constraint gives a u row and a v row with the
 // same weights (C = blockdiag(C, C)) handed to the same detail::SaddleSolve;
 // resolve_constraints is shared unchanged, and terms on pins or fixed
 // vertices move to the target. Scale: with default pins the unconstrained
 // natural map is placed in output coordinates first (ScaleMode::Unit: fitted
-// into [0, 1]^2 by a similarity, as natural_map does; Surface: pins at their
+// into [0, 1]^2 by a similarity; Surface: pins at their
 // 3D distance); given pins are output coordinates. The constrained result is
 // not rescaled. solve_with_boundary() takes new pin positions (same pins: no
 // refactorization). BoundaryEditor refuses this layout (Error(Usage)).
@@ -80,7 +81,8 @@ class Parameterizer {
   const std::vector<LinearConstraint>& constraints() const;
   std::vector<ConstraintResidual> residuals(const MatrixX2d& UV) const;
 
-  // Current fixed vertices and positions, in output coordinates.
+  // Current fixed vertices and positions, in output coordinates (kept up to
+  // date by solve_with_boundary and by a BoundaryEditor's moves).
   const std::vector<FixedVertex>& boundary() const;
   const Mesh& mesh() const;
   const ParamOptions& options() const;
@@ -90,6 +92,7 @@ class Parameterizer {
 
  private:
   friend class BoundaryEditor;
+  friend class BoundaryObjective;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -15,7 +15,7 @@
 
 #include <string>
 
-#include "intrinsic/topology.h"
+#include "intrinsic/mesh.h"
 
 namespace intrinsic {
 

@@ -6,6 +6,18 @@
 
 namespace intrinsic {
 
+std::string boundary_shape_name(BoundaryShape s) {
+  switch (s) {
+    case BoundaryShape::Circle: return "circle";
+    case BoundaryShape::Square: return "square";
+    case BoundaryShape::Given: return "given";
+    case BoundaryShape::Natural: return "natural";
+  }
+  return "?";
+}
+
+std::string spacing_name(Spacing s) { return s == Spacing::Uniform ? "uniform" : "arclength"; }
+
 std::vector<double> loop_parameters(const MatrixX3d& V, const std::vector<int>& loop, Spacing spacing) {
   const size_t n = loop.size();
   std::vector<double> t(n, 0.0);

@@ -1,5 +1,5 @@
 // Impulse responses and superposition for realtime boundary editing (paper
-// section 4.2); see boundary_editor.h for the choices.
+// section 4.2; docs/maths.md §6); see boundary_editor.h for the choices.
 #include "intrinsic/boundary_editor.h"
 
 #include <algorithm>
@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "intrinsic/error.h"
-#include "parameterizer_impl.h"
+#include "core/parameterizer_impl.h"
 
 namespace intrinsic {
 namespace {
@@ -57,14 +57,14 @@ void BoundaryEditor::compute_responses(const std::vector<int>& cols, Eigen::Matr
     Eigen::MatrixXd R = Eigen::MatrixXd::Zero(N, kb), T = Eigen::MatrixXd::Zero(m, kb);
     for (int j = 0; j < kb; ++j) {
       const int c = cols[j0 + j];
-      for (SparseMatrix::InnerIterator it(s.K_IB, c); it; ++it) R(it.row(), j) = -it.value();
+      for (SparseMatrix::InnerIterator it(s.sys->K_IB(), c); it; ++it) R(it.row(), j) = -it.value();
       if (m > 0)
         for (SparseMatrix::InnerIterator it(s.CB, c); it; ++it) T(it.row(), j) = -it.value();
     }
     const Eigen::MatrixXd X = s.solve_linear(R, T);
     for (int v = 0; v < n; ++v)
-      if (s.p.free_index[v] >= 0) out.row(v).segment(j0, kb) = X.row(s.p.free_index[v]);
-    for (int j = 0; j < kb; ++j) out(s.p.fixed_vertices[cols[j0 + j]], j0 + j) = 1.0;
+      if (s.p().free_index[v] >= 0) out.row(v).segment(j0, kb) = X.row(s.p().free_index[v]);
+    for (int j = 0; j < kb; ++j) out(s.p().fixed_vertices[cols[j0 + j]], j0 + j) = 1.0;
   }
 }
 
@@ -80,7 +80,7 @@ const MatrixX2d& BoundaryEditor::move(const std::vector<FixedVertex>& positions)
   std::vector<std::pair<int, Eigen::Vector2d>> deltas;  // fixed column, displacement
   std::vector<char> seen(UB_.rows(), 0);
   for (const FixedVertex& fv : positions) {
-    const int j = fv.vertex >= 0 && fv.vertex < uv_.rows() ? s.p.fixed_index[fv.vertex] : -1;
+    const int j = fv.vertex >= 0 && fv.vertex < uv_.rows() ? s.p().fixed_index[fv.vertex] : -1;
     if (j < 0)
       throw_input("vertex " + std::to_string(fv.vertex) + " is not a fixed (boundary) vertex, so it cannot be moved");
     if (!fv.uv.allFinite()) throw_input("non-finite position for vertex " + std::to_string(fv.vertex));
@@ -93,6 +93,7 @@ const MatrixX2d& BoundaryEditor::move(const std::vector<FixedVertex>& positions)
   }
   s.check_fixed_only(ub);
   UB_ = ub;
+  sync_parameterizer();
   last_ = EditStats{};
   last_.moved = static_cast<int>(deltas.size());
 
@@ -139,15 +140,24 @@ const MatrixX2d& BoundaryEditor::move(const std::vector<FixedVertex>& positions)
     }
   }
   // The moved vertices themselves sit exactly where they were put.
-  for (const auto& [j, d] : deltas) uv_.row(s.p.fixed_vertices[j]) = UB_.row(j);
+  for (const auto& [j, d] : deltas) uv_.row(s.p().fixed_vertices[j]) = UB_.row(j);
   last_.ms = detail::elapsed_ms(t0);
   return uv_;
+}
+
+// The Parameterizer's boundary follows the editor's: boundary() reports the
+// moved positions and a later solve() solves for them.
+void BoundaryEditor::sync_parameterizer() {
+  Parameterizer::Impl& s = *p_.impl_;
+  s.UB = UB_;
+  s.update_fixed_list();
+  s.have_X = false;
 }
 
 std::vector<FixedVertex> BoundaryEditor::boundary() const {
   const Parameterizer::Impl& s = *p_.impl_;
   std::vector<FixedVertex> out(UB_.rows());
-  for (int j = 0; j < UB_.rows(); ++j) out[j] = {s.p.fixed_vertices[j], UB_.row(j).transpose()};
+  for (int j = 0; j < UB_.rows(); ++j) out[j] = {s.p().fixed_vertices[j], UB_.row(j).transpose()};
   return out;
 }
 

@@ -1,14 +1,15 @@
-// The kept-factorization parameterizer (paper sections 4.1, 4.2): choose the
-// fixed vertices, close or free the holes, eliminate, factor once; then any
-// number of solves for new boundary positions and constraint targets.
+// The kept-factorization parameterizer (paper sections 4.1, 4.2;
+// docs/maths.md §2-§5), the one solve path of every mode: the public calls.
+// Construction is in parameterizer_build.cpp, the solves in
+// parameterizer_impl.cpp.
 #include "intrinsic/parameterizer.h"
 
 #include <chrono>
 #include <cmath>
 
-#include "intrinsic/assemble.h"
+#include "core/natural_system.h"
+#include "core/parameterizer_impl.h"
 #include "intrinsic/error.h"
-#include "parameterizer_impl.h"
 
 namespace intrinsic {
 namespace {
@@ -28,87 +29,41 @@ std::vector<FixedVertex> fixed_positions(const Mesh& mesh, const ParamOptions& o
   return boundary_positions(mesh, o);
 }
 
-}  // namespace
-
-
-Parameterizer::Parameterizer(const Mesh& mesh, const ParamOptions& o) : impl_(std::make_unique<Impl>()) {
+// The checks every mode shares; the mode's own ones follow in the helpers.
+void check_options(const Mesh& mesh, const ParamOptions& o) {
   const Topology& t = mesh.topology;
   if (t.num_components != 1)
-    throw_usage("parameterize takes one connected component; this mesh has " + std::to_string(t.num_components));
-  if (t.component_loops[0].empty()) throw_input("the surface is closed (no boundary)");
+    throw_usage("parameterize takes one connected component; this mesh has " + std::to_string(t.num_components) +
+                " (use parameterize_charts, or keep the largest component)");
+  if (t.component_loops[0].empty())
+    throw_input((mesh.path.empty() ? "" : mesh.path + ": ") +
+                "the surface is closed (no boundary): cut it open to a disk before parameterizing");
   if (o.weights.method == Method::Mixed && o.weights.lambda == 0 && o.weights.mu == 0)
     throw_usage("mixed method needs lambda and mu not both zero");
   if (!std::isfinite(o.weights.lambda) || !std::isfinite(o.weights.mu))
     throw_usage("lambda and mu must be finite");
+  if (o.boundary == BoundaryShape::Natural) check_natural_method(o.weights);
+  else if (!o.pins.empty())
+    throw_usage("pins apply to the natural boundary only (use given boundary positions instead)");
+}
+
+}  // namespace
+
+Parameterizer::Parameterizer(const Mesh& mesh, const ParamOptions& o) : impl_(std::make_unique<Impl>()) {
+  check_options(mesh, o);
   Impl& s = *impl_;
   s.mesh = &mesh;
   s.o = o;
   s.natural_boundary = o.boundary == BoundaryShape::Natural;
   s.natural = s.natural_boundary || solves_natural_holes(mesh, o);
-  if (s.natural_boundary) {
-    check_natural_method(o.weights);
-    s.pins = natural_pins(mesh, o);
-    s.build(s.pins);
-    if (!o.pins.empty()) {  // the user's pins are output coordinates
-      s.scale = "given";
-      return;
-    }
-  } else {
-    if (!o.pins.empty()) throw_usage("pins apply to the natural boundary only (use given boundary positions instead)");
-    s.build(fixed_positions(mesh, o));
-    if (o.boundary == BoundaryShape::Given) {
-      s.scale = "given";
-      return;
-    }
+  s.holes = s.holes_applied();
+  if (s.natural_boundary) s.pins = natural_pins(mesh, o);
+  s.build(s.natural_boundary ? s.pins : fixed_positions(mesh, o));
+  try {
+    s.place_initially();
+  } catch (const Error& e) {
+    s.throw_diagnosed(e);
   }
-  // Place the shape in output coordinates now, so constraints (set later)
-  // and the result share one frame. The map commutes with similarities of
-  // the boundary (rows of K sum to zero), so the unconstrained result equals
-  // solving first and scaling after.
-  double scale = 0.5;
-  Eigen::RowVector2d offset(0.5, 0.5);
-  const auto t_solve = std::chrono::steady_clock::now();
-  s.X = s.solve_for(s.UB);
-  s.timings.solve_ms = detail::elapsed_ms(t_solve);
-  if (s.natural_boundary) {
-    // Default pins: as natural_map, fit [0, 1]^2 by a similarity (Unit) or
-    // keep the pins at their 3D distance (Surface). The natural map commutes
-    // with similarities of the pins (E_D - A is invariant under them), so
-    // moving the pins now gives the unconstrained natural_map result.
-    scale = 1.0;
-    offset.setZero();
-    s.scale = "surface";
-    if (o.scale == ScaleMode::Unit) {
-      s.scale = "unit";
-      const MatrixX2d UV = s.full_uv(s.X, s.UB);
-      Eigen::RowVector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-      for (int v = 0; v < UV.rows(); ++v)
-        if (t.is_used[v]) {
-          lo = lo.cwiseMin(UV.row(v));
-          hi = hi.cwiseMax(UV.row(v));
-        }
-      const double extent = (hi - lo).maxCoeff();
-      if (extent > 0) {
-        scale = 1.0 / extent;
-        offset = Eigen::RowVector2d(0.5, 0.5) - 0.5 * (lo + hi) / extent;
-      }
-    }
-  } else if (o.scale == ScaleMode::Unit) {
-    // The circle and square live in [-1, 1]^2: that box goes onto [0, 1]^2
-    // exactly (a bounding-box fit would depend on where the vertices fall).
-    s.scale = "unit";
-  } else {
-    s.scale = "surface";
-    // About the origin, as scale_to_surface_area does, so that maps sharing
-    // a fixed boundary still share it.
-    const MatrixX2d UV = s.full_uv(s.X, s.UB);
-    const double a_param = std::abs(parameter_area(mesh.F, UV));
-    scale = a_param > 0 ? std::sqrt(surface_area(mesh.V, mesh.F) / a_param) : 1.0;
-    offset.setZero();
-  }
-  s.place(scale, offset);
-  s.update_fixed_list();
-  s.have_X = true;
 }
 
 Parameterizer::~Parameterizer() = default;
@@ -117,48 +72,31 @@ Parameterizer& Parameterizer::operator=(Parameterizer&&) noexcept = default;
 
 ParamResult Parameterizer::solve() {
   Impl& s = *impl_;
-  if (!s.have_X) {
-    const auto t_solve = std::chrono::steady_clock::now();
-    s.X = s.solve_for(s.UB, &s.lambda);
-    s.timings.solve_ms = detail::elapsed_ms(t_solve);
-    s.have_X = true;
-  }
-  ParamResult r;
-  r.free_vertices = s.free_vertex_count();
-  r.fixed_vertices = s.fixed_vertex_count();
-  r.filled_holes = s.filled_holes;
-  r.factorizations = s.factorizations;
-  r.scale = s.scale;
-  r.timings = s.timings;
-  if (s.natural_boundary) {
-    r.pins = s.pins;
-    r.holes = s.mesh->topology.component_loops[0].size() > 1 ? "natural" : "none";
-  } else if (s.natural) {
-    r.holes = "natural";
-  }
-  if (r.free_vertices > 0) {
-    r.solver = s.solver->name();
-    r.iterations = s.solver->iterations();
-    if (!s.X.allFinite())
-      throw_numerical("the solution has non-finite values: the system is singular or nearly so "
-                      "(look for coincident boundary positions or nearly degenerate faces)");
-    const Eigen::MatrixXd rhs = -(s.K_IB * s.UB);
-    Eigen::MatrixXd res = s.A * s.X - rhs;
-    if (s.saddle.rows() > 0 && s.lambda.rows() == s.saddle.rows()) res += s.saddle.C().transpose() * s.lambda;
-    for (int c = 0; c < res.cols(); ++c) {
-      const double b = rhs.col(c).norm(), e = res.col(c).norm();
-      r.residual = std::max(r.residual, b > 0 ? e / b : e);
+  try {
+    if (!s.have_X) {
+      const auto t_solve = std::chrono::steady_clock::now();
+      s.X = s.solve_for(s.UB, &s.lambda);
+      s.timings.solve_ms = detail::elapsed_ms(t_solve);
+      s.have_X = true;
     }
-    if (!(r.residual <= s.o.max_residual))
-      throw_numerical("the relative residual " + short_number(r.residual) + " of solver " + r.solver +
-                      " exceeds " + short_number(s.o.max_residual) +
-                      " (an iterative solver may not have converged; try --solver auto)");
-  } else {
-    r.solver = "none (every vertex is fixed)";
+    ParamResult r = s.result();
+    if (r.free_vertices > 0) {
+      if (!s.X.allFinite())
+        throw_numerical(std::string("the solution has non-finite values: the system is singular or nearly so "
+                                    "(look for coincident ") +
+                        (s.natural_boundary ? "pins" : "boundary positions") + " or nearly degenerate faces)");
+      r.residual = s.residual();
+      if (!(r.residual <= s.o.max_residual))
+        throw_numerical("the relative residual " + short_number(r.residual) + " of solver " + solvers_name(r.solvers) +
+                        " exceeds " + short_number(s.o.max_residual) +
+                        " (an iterative solver may not have converged; try --solver auto)");
+    }
+    r.UV = s.full_uv(s.X, s.UB);
+    r.constraints = residuals(r.UV);
+    return r;
+  } catch (const Error& e) {
+    s.throw_diagnosed(e);
   }
-  r.UV = s.full_uv(s.X, s.UB);
-  r.constraints = residuals(r.UV);
-  return r;
 }
 
 ParamResult Parameterizer::solve_with_boundary(const std::vector<FixedVertex>& fixed) {
@@ -171,7 +109,7 @@ ParamResult Parameterizer::solve_with_boundary(const std::vector<FixedVertex>& f
     if (seen[fv.vertex]) throw_input("two boundary positions for vertex " + std::to_string(fv.vertex));
     if (!fv.uv.allFinite()) throw_input("non-finite boundary position for vertex " + std::to_string(fv.vertex));
     seen[fv.vertex] = 1;
-    same_set = same_set && s.p.fixed_index[fv.vertex] >= 0;
+    same_set = same_set && s.p().fixed_index[fv.vertex] >= 0;
   }
   if (same_set) {
     Eigen::MatrixXd ub(s.UB.rows(), s.UB.cols());
@@ -191,7 +129,7 @@ ParamResult Parameterizer::solve_with_boundary(const std::vector<FixedVertex>& f
       s.o.given = fixed;
       s.build(fixed_positions(*s.mesh, s.o));
     }
-    s.scale = "given";
+    s.placement = Placement::Given;
     s.setup_constraints();
   }
   return solve();

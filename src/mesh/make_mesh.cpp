@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "intrinsic/error.h"
-#include "intrinsic/topology.h"
-#include "core/parallel_for.h"
+#include "intrinsic/mesh.h"
+#include "util/parallel_for.h"
 #include "mesh/topology_build.h"
 
 namespace intrinsic {

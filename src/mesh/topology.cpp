@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "intrinsic/error.h"
-#include "core/parallel_for.h"
+#include "util/parallel_for.h"
 #include "mesh/topology_build.h"
 
 namespace intrinsic::detail {

@@ -1,7 +1,7 @@
 // Internal: the steps of building the adjacency, used by make_mesh.
 #pragma once
 
-#include "intrinsic/topology.h"
+#include "intrinsic/mesh.h"
 
 namespace intrinsic::detail {
 

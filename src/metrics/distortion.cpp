@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "intrinsic/metrics.h"
-#include "core/parallel_for.h"
+#include "util/parallel_for.h"
 
 namespace intrinsic {
 namespace {

@@ -30,6 +30,19 @@ Descent parse_descent(const std::string& name) {
   throw_usage("unknown descent '" + name + "' (use lbfgs or gradient)");
 }
 
+std::string boundary_energy_name(BoundaryEnergy e) {
+  switch (e) {
+    case BoundaryEnergy::EdgeLength: return "edge";
+    case BoundaryEnergy::Area: return "area";
+    case BoundaryEnergy::SymmetricDirichlet: return "dirichlet";
+  }
+  return "?";
+}
+
+std::string gradient_route_name(GradientRoute r) { return r == GradientRoute::Adjoint ? "adjoint" : "responses"; }
+
+std::string descent_name(Descent d) { return d == Descent::LBFGS ? "lbfgs" : "gradient"; }
+
 namespace {
 
 double edge_energy(const MatrixX3d& V, const Eigen::MatrixX2i& E, const MatrixX2d& UV, MatrixX2d* g) {

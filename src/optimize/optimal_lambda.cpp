@@ -1,11 +1,15 @@
 // Exact minimisation of the quartic edge-length and area energies along
-// U(lambda) = lambda U_A + (1 - lambda) U_chi (paper section 5.1).
+// U(lambda) = lambda U_A + (1 - lambda) U_chi (paper section 5.1;
+// docs/maths.md §7). Both maps come from the one Parameterizer
+// (parameterize with the common boundary given).
 #include "intrinsic/optimal_lambda.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
 
+#include "core/placement.h"
 #include "intrinsic/error.h"
 #include "intrinsic/metrics.h"
 
@@ -68,6 +72,35 @@ std::vector<double> real_roots_cubic(double a, double b, double c, double d) {
   return roots;
 }
 
+// U(lambda*) with the diagnostics of both solves, placed as base.scale says
+// (docs/maths.md §2.4): the circle and square live in [-1, 1]^2 as in
+// parameterize(); a boundary file is kept as given.
+ParamResult blended_map(const Mesh& mesh, const OptimalLambdaOptions& o, const ParamResult& conformal,
+                        const ParamResult& authalic, const OptimalLambdaResult& best) {
+  ParamResult map = conformal;
+  map.UV = best.lambda * conformal.UV + (1 - best.lambda) * authalic.UV;
+  map.weights = {Method::Mixed, best.lambda, 1 - best.lambda};
+  map.boundary = o.base.boundary;
+  map.residual = std::max(conformal.residual, authalic.residual);
+  for (SolverKind k : authalic.solvers)
+    if (std::find(map.solvers.begin(), map.solvers.end(), k) == map.solvers.end()) map.solvers.push_back(k);
+  map.factorizations += authalic.factorizations;
+  map.timings.assemble_ms += authalic.timings.assemble_ms;
+  map.timings.factor_ms += authalic.timings.factor_ms;
+  map.timings.solve_ms += authalic.timings.solve_ms + best.polynomial_ms;
+  const std::vector<char> used(mesh.topology.is_used.begin(), mesh.topology.is_used.end());
+  detail::PlacementRule rule = detail::PlacementRule::AsSolved;
+  map.placement = Placement::Given;
+  if (o.base.boundary != BoundaryShape::Given) {
+    map.placement = o.base.scale == ScaleMode::Unit ? Placement::Unit : Placement::Surface;
+    rule = o.base.scale == ScaleMode::Unit ? detail::PlacementRule::UnitBox : detail::PlacementRule::AsSolved;
+  }
+  detail::Similarity s = detail::placement(rule, mesh.V, mesh.F, map.UV, used);
+  if (map.placement == Placement::Surface) s.scale = best.boundary_scale;  // the boundary the energies used
+  detail::apply(s, map.UV, used);
+  return map;
+}
+
 }  // namespace
 
 double evaluate(const Quartic& c, double x) { return (((c[4] * x + c[3]) * x + c[2]) * x + c[1]) * x + c[0]; }
@@ -77,6 +110,8 @@ LambdaEnergy parse_lambda_energy(const std::string& name) {
   if (name == "area") return LambdaEnergy::Area;
   throw_usage("unknown energy '" + name + "' for --optimize-lambda (use edge or area)");
 }
+
+std::string lambda_energy_name(LambdaEnergy e) { return e == LambdaEnergy::EdgeLength ? "edge" : "area"; }
 
 Quartic lambda_energy_polynomial(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UA, const MatrixX2d& UX,
                                  LambdaEnergy energy) {
@@ -126,7 +161,6 @@ OptimalLambdaResult optimal_lambda(const Mesh& mesh, const OptimalLambdaOptions&
   // Both maps share one fixed boundary: the positions are computed once and
   // passed as given, so neither solve rescales its result.
   ParamOptions p = o.base;
-  const bool given = p.boundary == BoundaryShape::Given;
   p.given = boundary_positions(mesh, p);
   p.boundary = BoundaryShape::Given;
   auto t0 = std::chrono::steady_clock::now();
@@ -152,24 +186,7 @@ OptimalLambdaResult optimal_lambda(const Mesh& mesh, const OptimalLambdaOptions&
   result.energy_at_1 = evaluate(result.coefficients, 1);
   result.polynomial_ms = ms_since(t0);
 
-  result.map = conformal;
-  result.map.UV = result.lambda * conformal.UV + (1 - result.lambda) * authalic.UV;
-  result.map.residual = std::max(conformal.residual, authalic.residual);
-  result.map.solver = conformal.solver + " + " + authalic.solver;
-  result.map.timings.assemble_ms += authalic.timings.assemble_ms;
-  result.map.timings.factor_ms += authalic.timings.factor_ms;
-  result.map.timings.solve_ms += authalic.timings.solve_ms + result.polynomial_ms;
-  if (given) {
-    result.map.scale = "given";
-  } else if (o.base.scale == ScaleMode::Unit) {
-    // Circle and square live in [-1, 1]^2, as in parameterize().
-    for (int v = 0; v < result.map.UV.rows(); ++v)
-      if (mesh.topology.is_used[v]) result.map.UV.row(v) = 0.5 * result.map.UV.row(v) + Eigen::RowVector2d(0.5, 0.5);
-    result.map.scale = "unit";
-  } else {
-    result.map.UV *= result.boundary_scale;
-    result.map.scale = "surface";
-  }
+  result.map = blended_map(mesh, o, conformal, authalic, result);
   return result;
 }
 

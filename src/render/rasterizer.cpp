@@ -3,7 +3,7 @@
 #include "render/rasterizer.h"
 
 #include <algorithm>
-#include <thread>
+#include "util/parallel_for.h"
 
 namespace intrinsic::render {
 
@@ -31,17 +31,8 @@ Image resolve(const SampleBuffer& buf, int ss) {
 }
 
 void for_each_band(int height, const std::function<void(int, int)>& fn) {
-  const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 16);
-  if (threads == 1 || height < 64) {
-    fn(0, height);
-    return;
-  }
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back(fn, static_cast<int>(static_cast<long>(height) * t / threads),
-                      static_cast<int>(static_cast<long>(height) * (t + 1) / threads));
-  fn(0, height / threads);
-  for (auto& th : pool) th.join();
+  intrinsic::detail::parallel_for(height, [&fn](std::int64_t y0, std::int64_t y1) { fn(static_cast<int>(y0), static_cast<int>(y1)); },
+                       32);
 }
 
 void draw_line(SampleBuffer& buf, double x0, double y0, double x1, double y1, double width, Rgb colour,

@@ -69,7 +69,7 @@ struct LinearSolver::Impl {
   double tolerance;
   bool ill_conditioned = false;
   SparseMatrix A;
-  std::string used;
+  SolverKind used = SolverKind::Auto;
   int factorizations = 0;
   mutable int iterations = 0;
   mutable std::unique_ptr<LinearSolver> transposed;  // lazily, for adjoint solves
@@ -86,14 +86,14 @@ struct LinearSolver::Impl {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
     if (requested != SolverKind::EigenLLT) {
       cholmod = std::make_unique<Cholmod>();
-      if (cholmod->factor(A)) { used = "cholmod"; return true; }
+      if (cholmod->factor(A)) { used = SolverKind::Cholmod; return true; }
       cholmod.reset();
       return false;
     }
 #endif
     llt = std::make_unique<EigenLLT>();
     llt->compute(A);
-    if (llt->info() == Eigen::Success) { used = "eigen-llt"; return true; }
+    if (llt->info() == Eigen::Success) { used = SolverKind::EigenLLT; return true; }
     llt.reset();
     return false;
   }
@@ -102,14 +102,14 @@ struct LinearSolver::Impl {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
     if (requested != SolverKind::EigenLU) {
       umfpack = std::make_unique<Umfpack>();
-      if (umfpack->factor(A)) { used = "umfpack"; return true; }
+      if (umfpack->factor(A)) { used = SolverKind::Umfpack; return true; }
       umfpack.reset();
       return false;
     }
 #endif
     lu = std::make_unique<EigenLU>();
     lu->compute(A);
-    if (lu->info() == Eigen::Success) { used = "eigen-lu"; return true; }
+    if (lu->info() == Eigen::Success) { used = SolverKind::EigenLU; return true; }
     lu.reset();
     return false;
   }
@@ -159,14 +159,14 @@ void LinearSolver::factor(const SparseMatrix& A) {
       s.cg->setTolerance(s.tolerance);
       s.cg->setMaxIterations(std::max<int>(1000, 10 * static_cast<int>(A.rows())));
       s.cg->compute(s.A);
-      s.used = "cg";
+      s.used = SolverKind::CG;
       return;
     case SolverKind::BiCGSTAB:
       s.bicg = std::make_unique<BiCG>();
       s.bicg->setTolerance(s.tolerance);
       s.bicg->setMaxIterations(std::max<int>(1000, 10 * static_cast<int>(A.rows())));
       s.bicg->compute(s.A);
-      s.used = "bicgstab";
+      s.used = SolverKind::BiCGSTAB;
       return;
   }
 }
@@ -214,7 +214,8 @@ Eigen::MatrixXd LinearSolver::solve_transposed(const Eigen::MatrixXd& B) const {
 
 void LinearSolver::set_ill_conditioned(bool on) { impl_->ill_conditioned = on; }
 
-std::string LinearSolver::name() const { return impl_->used; }
+SolverKind LinearSolver::kind() const { return impl_->used; }
+std::string LinearSolver::name() const { return solver_name(impl_->used); }
 int LinearSolver::factorizations() const { return impl_->factorizations; }
 int LinearSolver::iterations() const { return impl_->iterations; }
 const SparseMatrix& LinearSolver::matrix() const { return impl_->A; }

@@ -10,9 +10,8 @@
 #include "intrinsic/assemble.h"
 
 #include <algorithm>
-#include <thread>
 
-#include "core/parallel_for.h"
+#include "util/parallel_for.h"
 
 namespace intrinsic {
 namespace {
@@ -84,20 +83,16 @@ SparseMatrix assemble_weight_matrix(const MatrixX3d& V, const MatrixX3i& F, cons
   }
   begin[n] = out;
 
-  // Values: the two halves of the faces on two threads, into separate
-  // arrays (faces share vertices), summed after.
-  std::vector<double> value(out, 0.0);
-  const unsigned threads = m >= 100000 && std::thread::hardware_concurrency() > 1 ? 2 : 1;
-  if (threads == 1) {
-    add_faces(V, F, w, 0, m, begin, row, diag, value.data());
-  } else {
-    std::vector<double> second(out, 0.0);
-    std::thread t(add_faces, std::cref(V), std::cref(F), std::cref(w), m / 2, m, std::cref(begin),
-                  std::cref(row), std::cref(diag), second.data());
-    add_faces(V, F, w, 0, m / 2, begin, row, diag, value.data());
-    t.join();
-    for (int k = 0; k < out; ++k) value[k] += second[k];
-  }
+  // Values: each part of the faces adds into its own array (faces share
+  // vertices), summed after in part order.
+  const int parts = detail::parallel_parts(m, 50000);
+  std::vector<std::vector<double>> values(parts, std::vector<double>(out, 0.0));
+  detail::parallel_for_parts(m, parts, [&](int part, std::int64_t f0, std::int64_t f1) {
+    add_faces(V, F, w, static_cast<int>(f0), static_cast<int>(f1), begin, row, diag, values[part].data());
+  });
+  std::vector<double> value = std::move(values[0]);
+  for (int part = 1; part < parts; ++part)
+    for (int k = 0; k < out; ++k) value[k] += values[part][k];
   return make_csc(n, n, begin, std::move(row), std::move(value));
 }
 

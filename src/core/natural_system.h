@@ -1,11 +1,11 @@
-// The natural conformal map (paper section 4.2, eq. 7; SPEC section 3) and
-// the pieces other solvers reuse: the 2n x 2n system of the conformal energy
-// E_D - A, the default pins, and the elimination of pinned unknowns.
+// The natural conformal map's system (paper section 4.2, eq. 7;
+// docs/maths.md §3): the 2n x 2n matrix of the conformal energy E_D - A, the
+// area term natural holes add, and the default pins. The Parameterizer
+// solves it; nothing else does.
 //
 // Unknown ordering of every 2n x 2n matrix here ("blocked"): index v is u_v,
 // index n + v is v_v, for v = 0 .. n-1 (n = V.rows(), used or not; unused
-// vertices have empty rows and columns). A caller adding Lagrange point
-// constraints (SPEC section 4) appends its rows and columns after index 2n.
+// vertices have empty rows and columns).
 #pragma once
 
 #include <utility>
@@ -50,36 +50,6 @@ std::pair<int, int> farthest_pair(const MatrixX3d& V, std::vector<int> vertices)
 // outer-loop pins) and stanford-bunny.obj (11 vs 3); see docs/holes.md.
 std::pair<int, int> default_pin_pair(const Mesh& mesh);
 
-// Result of eliminating fixed vertices from a 2n x 2n system Q U = 0.
-struct PinnedSolution {
-  MatrixX2d UV;  // #V x 2, unused vertices at (0, 0)
-  std::string solver;
-  double residual = 0;
-  int free_vertices = 0, fixed_vertices = 0, factorizations = 0, iterations = 0;
-  double factor_ms = 0, solve_ms = 0;
-
-  // Copies the solution and its diagnostics into a result (scale, pins and
-  // holes are the caller's).
-  void fill(ParamResult& r) const {
-    r.UV = UV;
-    r.solver = solver;
-    r.residual = residual;
-    r.free_vertices = free_vertices;
-    r.fixed_vertices = fixed_vertices;
-    r.factorizations = factorizations;
-    r.iterations = iterations;
-    r.timings.factor_ms = factor_ms;
-    r.timings.solve_ms = solve_ms;
-  }
-};
-
-// Solves Q U = 0 (blocked ordering) with the vertices in `fixed` held at
-// their positions (both coordinates): the fixed unknowns move to the right-hand
-// side, the remaining block is factored once. `symmetric` selects Cholesky.
-// Throws Error(Numerical) on a singular system or a residual above max_residual.
-PinnedSolution solve_pinned(const SparseMatrix& Q, const std::vector<FixedVertex>& fixed,
-                            const std::vector<char>& is_used, SolverKind kind, bool symmetric, double max_residual);
-
 // Throws Error(Usage) unless the weights are conformal (mixed with mu = 0
 // counts): eq. 7 comes from the conformal energy.
 void check_natural_method(const WeightOptions& weights);
@@ -97,9 +67,5 @@ double natural_hole_weight(const WeightOptions& weights);
 // True when HoleRule::Natural changes the system: the mesh's first component
 // has holes and the method a conformal part.
 bool solves_natural_holes(const Mesh& mesh, const ParamOptions& options);
-
-// The natural conformal map of a one-component mesh with a boundary
-// (called by parameterize for BoundaryShape::Natural).
-ParamResult natural_map(const Mesh& mesh, const ParamOptions& options);
 
 }  // namespace intrinsic

@@ -1,10 +1,9 @@
-// The natural conformal map (paper section 4.2, eq. 7; SPEC section 3): no
-// boundary is fixed; the minimiser of E_D - A with two pinned vertices, which
-// equals LSCM (Levy et al. 2002) with the same pins.
-#include "core/natural_map.h"
+// The natural conformal map's system (paper section 4.2, eq. 7;
+// docs/maths.md §3): no boundary is fixed; the minimiser of E_D - A with two
+// pinned vertices, which equals LSCM (Levy et al. 2002) with the same pins.
+#include "core/natural_system.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <set>
@@ -14,10 +13,6 @@
 
 namespace intrinsic {
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // The user's pins, checked: at least two, existing used vertices, each once,
 // finite, not all at one point (the minimiser would then be the constant map).
@@ -121,59 +116,6 @@ std::pair<int, int> farthest_pair(const MatrixX3d& V, std::vector<int> b) {
   return pair;
 }
 
-PinnedSolution solve_pinned(const SparseMatrix& Q, const std::vector<FixedVertex>& fixed,
-                            const std::vector<char>& is_used, SolverKind kind, bool symmetric, double max_residual) {
-  const int n = static_cast<int>(is_used.size());
-  std::vector<char> fixed2(2 * n, 0), used2(2 * n, 0);
-  for (int v = 0; v < n; ++v) used2[v] = used2[n + v] = is_used[v];
-  for (const FixedVertex& f : fixed) fixed2[f.vertex] = fixed2[n + f.vertex] = 1;
-  const Partition p = partition(2 * n, fixed2, used2);
-  SparseMatrix A, Q_IB;
-  split_matrix(Q, p, A, Q_IB);
-  Eigen::VectorXd xB(p.fixed_vertices.size());
-  for (const FixedVertex& f : fixed) {
-    xB(p.fixed_index[f.vertex]) = f.uv.x();
-    xB(p.fixed_index[n + f.vertex]) = f.uv.y();
-  }
-  const Eigen::VectorXd rhs = -(Q_IB * xB);
-
-  PinnedSolution s;
-  s.free_vertices = static_cast<int>(p.free_vertices.size()) / 2;
-  s.fixed_vertices = static_cast<int>(fixed.size());
-  Eigen::VectorXd x(0);
-  if (A.rows() > 0) {
-    const auto t_factor = std::chrono::steady_clock::now();
-    LinearSolver solver(kind, symmetric);
-    solver.set_ill_conditioned(true);
-    solver.factor(A);
-    s.factor_ms = ms_since(t_factor);
-    const auto t_solve = std::chrono::steady_clock::now();
-    x = solver.solve(rhs);
-    s.solve_ms = ms_since(t_solve);
-    s.solver = solver.name();
-    s.factorizations = solver.factorizations();
-    s.iterations = solver.iterations();
-    if (!x.allFinite())
-      throw_numerical("the solution has non-finite values: the system is singular or nearly so "
-                      "(look for coincident pins or nearly degenerate faces)");
-    const double b = rhs.norm(), r = (A * x - rhs).norm();
-    s.residual = b > 0 ? r / b : r;
-    if (!(s.residual <= max_residual))
-      throw_numerical("the relative residual " + short_number(s.residual) + " of solver " + s.solver + " exceeds " +
-                      short_number(max_residual) + " (an iterative solver may not have converged; try --solver auto)");
-  } else {
-    s.solver = "none (every vertex is fixed)";
-  }
-  s.UV = MatrixX2d::Zero(n, 2);
-  for (int v = 0; v < n; ++v)
-    for (int c = 0; c < 2; ++c) {
-      const int k = c * n + v;
-      if (p.free_index[k] >= 0) s.UV(v, c) = x(p.free_index[k]);
-      else if (p.fixed_index[k] >= 0) s.UV(v, c) = xB(p.fixed_index[k]);
-    }
-  return s;
-}
-
 void check_natural_method(const WeightOptions& w) {
   const bool conformal =
       w.method == Method::Conformal || (w.method == Method::Mixed && w.mu == 0 && w.lambda != 0);
@@ -205,29 +147,6 @@ std::vector<FixedVertex> natural_pins(const Mesh& mesh, const ParamOptions& o) {
     check_pins(mesh, pins);
   }
   return pins;
-}
-
-ParamResult natural_map(const Mesh& mesh, const ParamOptions& o) {
-  check_natural_method(o.weights);
-  ParamResult result;
-  const auto t_assemble = std::chrono::steady_clock::now();
-  const std::vector<FixedVertex> pins = natural_pins(mesh, o);
-  const SparseMatrix Q = assemble_natural_system(mesh);
-  result.timings.assemble_ms = ms_since(t_assemble);
-
-  const PinnedSolution s = solve_pinned(Q, pins, mesh.topology.is_used, o.solver, true, o.max_residual);
-  s.fill(result);
-  result.pins = pins;
-  result.holes = mesh.topology.boundary_loops.size() > 1 ? "natural" : "none";
-  if (!o.pins.empty()) {
-    result.scale = "given";
-  } else if (o.scale == ScaleMode::Unit) {
-    fit_unit_square(result.UV, mesh.topology.is_used);
-    result.scale = "unit";
-  } else {
-    result.scale = "surface";  // pins at their 3D distance: the surface's own scale
-  }
-  return result;
 }
 
 }  // namespace intrinsic

@@ -1,0 +1,44 @@
+// Elimination of known unknowns and the kept factorization (docs/maths.md
+// §2.3): K_II x = -K_IB x_B.
+#include "solve/eliminated_system.h"
+
+#include <algorithm>
+
+namespace intrinsic::detail {
+
+EliminatedSystem::EliminatedSystem(const SparseMatrix& K, const std::vector<char>& is_known,
+                                   const std::vector<char>& is_used, SolverKind kind, bool symmetric,
+                                   bool ill_conditioned)
+    : solver_(kind, symmetric) {
+  p_ = intrinsic::partition(static_cast<int>(K.rows()), is_known, is_used);
+  split_matrix(K, p_, A_, K_IB_);
+  solver_.set_ill_conditioned(ill_conditioned);
+  if (A_.rows() > 0) {
+    solver_.factor(A_);
+    factored_ = true;
+  }
+}
+
+Eigen::MatrixXd EliminatedSystem::solve(const Eigen::MatrixXd& B) const {
+  if (B.rows() == 0) return B;
+  return solver_.solve(B);
+}
+
+Eigen::MatrixXd EliminatedSystem::solve_transposed(const Eigen::MatrixXd& B) const {
+  if (B.rows() == 0) return B;
+  return solver_.solve_transposed(B);
+}
+
+double EliminatedSystem::relative_residual(const Eigen::MatrixXd& X, const Eigen::MatrixXd& B,
+                                           const Eigen::MatrixXd& extra) const {
+  Eigen::MatrixXd res = A_ * X - B;
+  if (extra.size() > 0) res += extra;
+  double worst = 0;
+  for (int c = 0; c < res.cols(); ++c) {
+    const double b = B.col(c).norm(), e = res.col(c).norm();
+    worst = std::max(worst, b > 0 ? e / b : e);
+  }
+  return worst;
+}
+
+}  // namespace intrinsic::detail
