@@ -28,7 +28,7 @@ bool disjoint(const ChartSummary& a, const ChartSummary& b) {
 }
 
 // The bounding box of a chart's vertices, recomputed from the UVs.
-void check_boxes(const Mesh& mesh, const ChartsResult& r) {
+void check_boxes(const Mesh& mesh, const ParamResult& r) {
   for (const ChartSummary& c : r.charts) {
     Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
     for (int f = 0; f < mesh.F.rows(); ++f)
@@ -48,7 +48,7 @@ TEST(Charts, TwoDisksGiveTwoDisjointChartsWithoutFlips) {
   for (BoundaryShape s : {BoundaryShape::Circle, BoundaryShape::Square, BoundaryShape::Natural}) {
     ParamOptions o;
     o.boundary = s;
-    const ChartsResult r = parameterize_charts(mesh, o);
+    const ParamResult r = parameterize_charts(mesh, o);
     ASSERT_EQ(r.charts.size(), 2u);
     check_boxes(mesh, r);
     EXPECT_TRUE(disjoint(r.charts[0], r.charts[1]));
@@ -61,7 +61,7 @@ TEST(Charts, TwoDisksGiveTwoDisjointChartsWithoutFlips) {
       faces += c.faces;
     }
     EXPECT_EQ(faces, mesh.F.rows());
-    EXPECT_EQ(r.scale, "unit");
+    EXPECT_EQ(r.placement, Placement::Unit);
     EXPECT_GE(r.UV.minCoeff(), -1e-12);
     EXPECT_LE(r.UV.maxCoeff(), 1 + 1e-12);
   }
@@ -74,11 +74,11 @@ TEST(Charts, CommonScaleAndNaturalChartsAreExactCopies) {
   ParamOptions o;
   o.boundary = BoundaryShape::Natural;
   o.scale = ScaleMode::Surface;
-  const ChartsResult r = parameterize_charts(mesh, o);
-  EXPECT_EQ(r.scale, "surface");
+  const ParamResult r = parameterize_charts(mesh, o);
+  EXPECT_EQ(r.placement, Placement::Surface);
   EXPECT_NEAR(parameter_area(mesh.F, r.UV), surface_area(mesh.V, mesh.F), 1e-9 * surface_area(mesh.V, mesh.F));
   for (const ChartSummary& c : r.charts) {
-    EXPECT_EQ(c.boundary, "natural");
+    EXPECT_EQ(c.boundary, BoundaryShape::Natural);
     EXPECT_NEAR(c.angle_distortion_mean, 1.0, 1e-9);  // a flat disk maps by a similarity
   }
 }
@@ -89,12 +89,12 @@ TEST(Charts, PinnedChartStaysWhereThePinsPutIt) {
   ParamOptions o;
   o.boundary = BoundaryShape::Natural;
   o.pins = {{a, Eigen::Vector2d(5, 5)}, {b, Eigen::Vector2d(5, 6)}};
-  const ChartsResult r = parameterize_charts(mesh, o);
+  const ParamResult r = parameterize_charts(mesh, o);
   EXPECT_EQ(r.UV.row(a), Eigen::RowVector2d(5, 5));
   EXPECT_EQ(r.UV.row(b), Eigen::RowVector2d(5, 6));
   EXPECT_FALSE(r.charts[mesh.topology.face_component[0]].packed);
   EXPECT_TRUE(disjoint(r.charts[0], r.charts[1]));
-  EXPECT_EQ(r.scale, "given");
+  EXPECT_EQ(r.placement, Placement::Given);
   // One pin in a chart is refused, naming the chart.
   o.pins.pop_back();
   o.pins.push_back({mesh.F(mesh.F.rows() - 1, 0), Eigen::Vector2d(0, 0)});

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.h"
-#include "core/natural_map.h"
+#include "core/natural_system.h"
 #include "intrinsic/assemble.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
@@ -152,7 +152,7 @@ void expect_matches_lscm(const Mesh& mesh, const std::string& label) {
   const ParamResult r2 = parameterize(mesh, natural(pins));
   const MatrixX2d ref2 = lscm(mesh, pins);
   EXPECT_LT((r2.UV - ref2).cwiseAbs().maxCoeff(), 1e-9 * diameter(ref2)) << label;
-  EXPECT_EQ(r2.scale, "given");
+  EXPECT_EQ(r2.placement, Placement::Given);
 }
 
 TEST(Natural, EqualsLscmOnCurvedIrregularMesh) {
@@ -259,8 +259,8 @@ TEST(Natural, NaturalHolesEqualLscmWithOuterLoopFixed) {
           ref *= std::sqrt(surface_area(mesh.V, mesh.F) / std::abs(parameter_area(mesh.F, ref)));
         }
         EXPECT_LT((r.UV - ref).cwiseAbs().maxCoeff(), 1e-10 * diameter(ref));
-        EXPECT_EQ(r.holes, "natural");
-        EXPECT_EQ(r.scale, scale == ScaleMode::Unit ? "unit" : "surface");
+        EXPECT_EQ(r.holes, HolesApplied::Natural);
+        EXPECT_EQ(r.placement, scale == ScaleMode::Unit ? Placement::Unit : Placement::Surface);
         EXPECT_EQ(r.fixed_vertices, outer);
         EXPECT_EQ(r.free_vertices, used - outer);
         EXPECT_EQ(r.filled_holes, 0);
@@ -383,15 +383,16 @@ TEST(Natural, DefaultPinsAndScale) {
   ParamOptions o = natural();
   o.scale = ScaleMode::Surface;
   const ParamResult surface = parameterize(mesh, o);
-  EXPECT_EQ(surface.scale, "surface");
+  EXPECT_EQ(surface.placement, Placement::Surface);
   EXPECT_EQ(surface.UV.row(a), Eigen::RowVector2d(0, 0));
   EXPECT_EQ(surface.UV.row(b), Eigen::RowVector2d(best, 0));
   const ParamResult unit = parameterize(mesh, natural());
-  EXPECT_EQ(unit.scale, "unit");
+  EXPECT_EQ(unit.placement, Placement::Unit);
   EXPECT_NEAR(unit.UV.minCoeff(), 0.0, 1e-12);
   EXPECT_NEAR(unit.UV.maxCoeff(), 1.0, 1e-12);
   EXPECT_LT(similarity_residual(surface.UV, unit.UV, mesh.topology.is_used), 1e-12);
-  EXPECT_EQ(unit.solver.rfind("cholmod", 0) == 0 || unit.solver == "eigen-llt", true) << unit.solver;
+  ASSERT_FALSE(unit.solvers.empty());
+  EXPECT_TRUE(unit.solvers[0] == SolverKind::Cholmod || unit.solvers[0] == SolverKind::EigenLLT) << solvers_name(unit.solvers);
 }
 
 TEST(Natural, RigidMotionLeavesUVsUnchanged) {

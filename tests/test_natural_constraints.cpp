@@ -94,7 +94,7 @@ TEST(NaturalConstraints, MetToTolerance) {
     EXPECT_GT((r.UV - free_uv).cwiseAbs().maxCoeff(), 1e-3 * size) << "the constraints must move the map";
     EXPECT_LT(r.residual, 1e-8);
     EXPECT_EQ(p.factorizations(), 1) << "constraints must not refactor the sparse system";
-    EXPECT_EQ(r.holes, mesh.topology.boundary_loops.size() > 1 ? "natural" : "none");
+    EXPECT_EQ(r.holes, mesh.topology.boundary_loops.size() > 1 ? HolesApplied::Natural : HolesApplied::None);
     // New targets: a new right-hand side only.
     std::vector<Eigen::Vector2d> targets;
     for (const LinearConstraint& row : p.constraints()) targets.push_back(row.target + Eigen::Vector2d(0.01, 0) * size);
@@ -114,7 +114,7 @@ TEST(NaturalConstraints, NoneEqualsNaturalMapAndOwnValuesChangeNothing) {
     Parameterizer p(mesh, c.o);
     const ParamResult none = p.solve();
     EXPECT_LT((none.UV - plain.UV).cwiseAbs().maxCoeff(), tol(plain.UV));
-    EXPECT_EQ(none.scale, plain.scale);
+    EXPECT_EQ(none.placement, plain.placement);
     EXPECT_EQ(none.holes, plain.holes);
     EXPECT_EQ(none.free_vertices, plain.free_vertices);
     EXPECT_EQ(none.fixed_vertices, plain.fixed_vertices);

@@ -85,7 +85,7 @@ TEST(OptimalLambda, ReturnedMapIsTheBlend) {
   const OptimalLambdaResult r = optimal_lambda(m.mesh, o);
   const MatrixX2d expected = r.lambda * m.UA + (1 - r.lambda) * m.UX;
   EXPECT_LT((r.map.UV - expected).cwiseAbs().maxCoeff(), 1e-10);
-  EXPECT_EQ(r.map.scale, "surface");
+  EXPECT_EQ(r.map.placement, Placement::Surface);
   EXPECT_NEAR(parameter_area(m.mesh.F, r.map.UV), surface_area(m.mesh.V, m.mesh.F), 1e-9);
 }
 

@@ -46,7 +46,7 @@ TEST(Parameterize, FlatMeshReproducesItself) {
     const double err = (r.UV - XY).cwiseAbs().maxCoeff();
     if (c.reproduces) EXPECT_LT(err, 1e-10 * d) << method_name(c.m) << " lambda " << c.lambda;
     else EXPECT_GT(err, 1e-4 * d) << "uniform weights must not reproduce an irregular mesh";
-    EXPECT_EQ(r.scale, "given");
+    EXPECT_EQ(r.placement, Placement::Given);
   }
 }
 
@@ -171,7 +171,7 @@ TEST(Parameterize, BoundaryShapesAndScale) {
   o.scale = ScaleMode::Surface;
   const ParamResult surf = parameterize(mesh, o);
   EXPECT_NEAR(parameter_area(mesh.F, surf.UV), surface_area(mesh.V, mesh.F), 1e-9 * surface_area(mesh.V, mesh.F));
-  EXPECT_EQ(surf.scale, "surface");
+  EXPECT_EQ(surf.placement, Placement::Surface);
 }
 
 TEST(Parameterize, UniformAndArcLengthSpacing) {
