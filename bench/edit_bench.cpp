@@ -1,4 +1,4 @@
-// Timing of the design tools (paper section 4; SPEC sections 4, 5):
+// Timing of the design tools (paper section 4; docs/maths.md §5, §6):
 // factorization, response precompute (full and lazy bases), update time for
 // 1, 10 and all boundary vertices moved, and the cost of adding constraints
 // by block elimination against factoring the augmented matrix with LU.

@@ -1,4 +1,4 @@
-// Point and line constraints (SPEC section 4): met exactly, neutral when
+// Point and line constraints (docs/maths.md §5): met exactly, neutral when
 // placed at the free map's own values, lines constrained at their edge
 // crossings, and bad inputs refused with messages that say what and where.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Realtime boundary editing (SPEC section 5): superposing impulse responses
+// Realtime boundary editing (docs/maths.md §6): superposing impulse responses
 // equals a fresh solve, in every method and both bases, with the one kept
 // factorization; the memory budget and the re-solve fallback.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The natural conformal map (paper section 4.2, eq. 7; SPEC section 3)
+// The natural conformal map (paper section 4.2, eq. 7; docs/maths.md §3)
 // against independent computations: LSCM assembled per triangle as Levy et
 // al. 2002 do, the gradient of E_D - A from cotangents and signed areas, flat
 // patches reproduced up to a similarity, orientation, invariances.

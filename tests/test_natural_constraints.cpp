@@ -1,5 +1,5 @@
 // Point and line constraints on the natural conformal map (paper sections
-// 4.1 and 4.2; SPEC sections 3 and 4): the natural boundary with default or
+// 4.1 and 4.2; docs/maths.md §3 and §5): the natural boundary with default or
 // given pins, and natural holes behind a fixed outer loop. Each constraint is
 // a u row and a v row of the 2n x 2n system, eliminated with the kept
 // factorization as in the fixed-boundary case.

@@ -1,5 +1,5 @@
 // The fixed-boundary family against analytic answers: flat meshes reproduce
-// themselves (SPEC section 2), rigid motions change nothing, the spherical
+// themselves (docs/maths.md §1.7), rigid motions change nothing, the spherical
 // cap tends to the stereographic projection, backends agree.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Assembly of the weight matrix K of a method: K_ij = -w_ij, K_ii = sum_j w_ij
-// (so K u = 0 is SPEC's "M u = 0" up to sign, and the conformal K is positive
+// (so K u = 0 is docs/maths.md §1.4's "M u = 0" up to sign, and the conformal K is positive
 // semi-definite), and its split into free and fixed blocks for elimination.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Point and line constraints (paper section 4.1; SPEC section 4): surface
+// Point and line constraints (paper section 4.1; docs/maths.md §5): surface
 // points mapped to chosen texture positions. A point is a vertex or a face with
 // barycentric coordinates; a line is a polyline of surface points mapped to a
 // segment or polyline in the plane, constrained at its points and at every

@@ -1,4 +1,4 @@
-// Distortion measures of a parameterization (SPEC section 8; paper 5.1 for
+// Distortion measures of a parameterization (docs/maths.md §9; paper 5.1 for
 // the edge-length distortion). Per triangle, J is the 2x2 Jacobian of the map
 // from the triangle's own 2D frame to the parameter plane, s1 >= s2 its
 // singular values. Areas are normalised so that total parameter area equals

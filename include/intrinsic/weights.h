@@ -1,4 +1,4 @@
-// The weight sets of the intrinsic family (paper section 3; SPEC section 1)
+// The weight sets of the intrinsic family (paper section 3; docs/maths.md §1)
 // and the two earlier methods the paper compares against (Tutte's uniform
 // weights, Floater's mean-value coordinates), as per-face contributions.
 //

@@ -1,5 +1,5 @@
 // Lagrange-multiplier constraints on an already factored system (paper
-// section 4.1, SPEC section 4). The augmented system
+// section 4.1, docs/maths.md §5). The augmented system
 //
 //   [ A  C^T ] [x]   [r]
 //   [ C   0  ] [l] = [t]

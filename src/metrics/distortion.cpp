@@ -1,4 +1,4 @@
-// Distortion measures (SPEC section 8): per-triangle Jacobian singular values,
+// Distortion measures (docs/maths.md §9): per-triangle Jacobian singular values,
 // area-weighted summaries, and the paper's section 5.1 energies.
 #include <algorithm>
 #include <cmath>

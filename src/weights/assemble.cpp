@@ -1,5 +1,5 @@
 // Assembly of the weight matrix from per-face contributions, and the split
-// that eliminates fixed vertices (SPEC section 2: boundary rows are moved to
+// that eliminates fixed vertices (docs/maths.md §2.3: boundary rows are moved to
 // the right-hand side rather than kept as identity rows, so the conformal
 // block stays symmetric).
 //
