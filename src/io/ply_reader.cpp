@@ -173,91 +173,91 @@ struct Layout {
   int indices = -1;  // the vertex index list in the face element
 };
 
+// Skips one property of an element that is not read (a list or a scalar).
+template <class Cursor>
+void skip_property(Cursor& cur, const Property& p, const Where& w) {
+  if (!p.is_list) {
+    cur.skip(p.type, 1, w);
+    return;
+  }
+  const std::int64_t n = integer(cur.value(p.count_type, w), "list length", cur, w);
+  if (!cur.can_hold(p.type, n)) cur.fail(w, "list of " + std::to_string(n) + " values runs past the end of the file");
+  cur.skip(p.type, n, w);
+}
+
+template <class Cursor>
+void read_vertices(Cursor& cur, const Element& e, const Layout& lay, MeshBuilder& b) {
+  const bool want_uv = lay.uv[0] >= 0;
+  std::vector<int> role(e.props.size(), -1);
+  for (int k = 0; k < 3; ++k) role[lay.xyz[k]] = k;
+  if (want_uv) role[lay.uv[0]] = 3, role[lay.uv[1]] = 4;
+  b.xyz.reserve(static_cast<std::size_t>(e.count) * 3);
+  if (want_uv) b.uv.reserve(static_cast<std::size_t>(e.count) * 2);
+  Where w{&e.name, 0};
+  for (w.index = 0; w.index < e.count; ++w.index) {
+    double val[5] = {0, 0, 0, 0, 0};
+    for (std::size_t k = 0; k < e.props.size(); ++k) {
+      const Property& p = e.props[k];
+      if (!p.is_list && role[k] >= 0) val[role[k]] = cur.value(p.type, w);
+      else skip_property(cur, p, w);
+    }
+    for (int k = 0; k < 5; ++k) {
+      if (!std::isfinite(val[k])) cur.fail(w, k < 3 ? "non-finite coordinate" : "non-finite texture coordinate");
+    }
+    b.xyz.insert(b.xyz.end(), val, val + 3);
+    if (want_uv) b.uv.insert(b.uv.end(), val + 3, val + 5);
+  }
+}
+
+// One face's vertex index list, fanned into triangles.
+template <class Cursor>
+void read_face(Cursor& cur, const Property& p, const Where& w, std::int64_t nv, MeshBuilder& b,
+               const ReadOptions& opt, std::vector<int>& poly) {
+  const std::int64_t n = integer(cur.value(p.count_type, w), "vertex count", cur, w);
+  if (n < 3) cur.fail(w, "face has " + std::to_string(n) + " vertices (at least 3 needed)");
+  if (!cur.can_hold(p.type, n)) cur.fail(w, "face of " + std::to_string(n) + " vertices runs past the end of the file");
+  poly.clear();
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int64_t idx = integer(cur.value(p.type, w), "vertex index", cur, w);
+    if (idx < 0 || idx >= nv)
+      cur.fail(w, "face index " + std::to_string(idx) + " out of range (file has " + std::to_string(nv) + " vertices)");
+    poly.push_back(static_cast<int>(idx));
+  }
+  if (b.triangle_count() + n - 2 > face_limit(opt))
+    cur.fail(w, "more than " + std::to_string(face_limit(opt)) + " faces (the limit)");
+  for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
+    b.tri.insert(b.tri.end(), {poly[0], poly[i], poly[i + 1]});
+    b.line.push_back(cur.line());
+  }
+}
+
+template <class Cursor>
+void read_faces(Cursor& cur, const Element& e, const Layout& lay, MeshBuilder& b, const ReadOptions& opt) {
+  b.tri.reserve(static_cast<std::size_t>(e.count) * 3);
+  b.line.reserve(static_cast<std::size_t>(e.count));
+  std::vector<int> poly;
+  Where w{&e.name, 0};
+  for (w.index = 0; w.index < e.count; ++w.index) {
+    for (std::size_t k = 0; k < e.props.size(); ++k) {
+      if (static_cast<int>(k) == lay.indices) read_face(cur, e.props[k], w, lay.vertex->count, b, opt, poly);
+      else skip_property(cur, e.props[k], w);
+    }
+  }
+}
+
 template <class Cursor>
 void read_body(Cursor& cur, const std::vector<Element>& elements, const Layout& lay, MeshBuilder& b,
                const ReadOptions& opt) {
-  const bool want_uv = lay.uv[0] >= 0;
-  const std::int64_t nv = lay.vertex->count;
-  std::vector<int> role;
-  std::vector<int> poly;
   for (const Element& e : elements) {
     if (e.props.empty()) continue;  // nothing to read, however many there are
-    Where w{&e.name, 0};
     if (&e == lay.vertex) {
-      role.assign(e.props.size(), -1);
-      for (int k = 0; k < 3; ++k) role[lay.xyz[k]] = k;
-      if (want_uv) role[lay.uv[0]] = 3, role[lay.uv[1]] = 4;
-      b.xyz.reserve(static_cast<std::size_t>(e.count) * 3);
-      if (want_uv) b.uv.reserve(static_cast<std::size_t>(e.count) * 2);
-      for (w.index = 0; w.index < e.count; ++w.index) {
-        double val[5] = {0, 0, 0, 0, 0};
-        for (std::size_t k = 0; k < e.props.size(); ++k) {
-          const Property& p = e.props[k];
-          if (p.is_list) {
-            std::int64_t n = integer(cur.value(p.count_type, w), "list length", cur, w);
-            if (!cur.can_hold(p.type, n)) cur.fail(w, "list of " + std::to_string(n) + " values runs past the end of the file");
-            cur.skip(p.type, n, w);
-          } else if (role[k] >= 0) {
-            val[role[k]] = cur.value(p.type, w);
-          } else {
-            cur.skip(p.type, 1, w);
-          }
-        }
-        for (int k = 0; k < 5; ++k) {
-          if (!std::isfinite(val[k]))
-            cur.fail(w, k < 3 ? "non-finite coordinate" : "non-finite texture coordinate");
-        }
-        b.xyz.insert(b.xyz.end(), val, val + 3);
-        if (want_uv) b.uv.insert(b.uv.end(), val + 3, val + 5);
-      }
+      read_vertices(cur, e, lay, b);
     } else if (&e == lay.face) {
-      b.tri.reserve(static_cast<std::size_t>(e.count) * 3);
-      b.line.reserve(static_cast<std::size_t>(e.count));
-      for (w.index = 0; w.index < e.count; ++w.index) {
-        for (std::size_t k = 0; k < e.props.size(); ++k) {
-          const Property& p = e.props[k];
-          if (static_cast<int>(k) != lay.indices) {
-            if (p.is_list) {
-              std::int64_t n = integer(cur.value(p.count_type, w), "list length", cur, w);
-              if (!cur.can_hold(p.type, n)) cur.fail(w, "list of " + std::to_string(n) + " values runs past the end of the file");
-              cur.skip(p.type, n, w);
-            } else {
-              cur.skip(p.type, 1, w);
-            }
-            continue;
-          }
-          std::int64_t n = integer(cur.value(p.count_type, w), "vertex count", cur, w);
-          if (n < 3) cur.fail(w, "face has " + std::to_string(n) + " vertices (at least 3 needed)");
-          if (!cur.can_hold(p.type, n))
-            cur.fail(w, "face of " + std::to_string(n) + " vertices runs past the end of the file");
-          poly.clear();
-          for (std::int64_t i = 0; i < n; ++i) {
-            std::int64_t idx = integer(cur.value(p.type, w), "vertex index", cur, w);
-            if (idx < 0 || idx >= nv)
-              cur.fail(w, "face index " + std::to_string(idx) + " out of range (file has " + std::to_string(nv) +
-                              " vertices)");
-            poly.push_back(static_cast<int>(idx));
-          }
-          if (b.triangle_count() + n - 2 > face_limit(opt))
-            cur.fail(w, "more than " + std::to_string(face_limit(opt)) + " faces (the limit)");
-          for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
-            b.tri.insert(b.tri.end(), {poly[0], poly[i], poly[i + 1]});
-            b.line.push_back(cur.line());
-          }
-        }
-      }
+      read_faces(cur, e, lay, b, opt);
     } else {
-      for (w.index = 0; w.index < e.count; ++w.index) {
-        for (const Property& p : e.props) {
-          if (p.is_list) {
-            std::int64_t n = integer(cur.value(p.count_type, w), "list length", cur, w);
-            if (!cur.can_hold(p.type, n)) cur.fail(w, "list of " + std::to_string(n) + " values runs past the end of the file");
-            cur.skip(p.type, n, w);
-          } else {
-            cur.skip(p.type, 1, w);
-          }
-        }
-      }
+      Where w{&e.name, 0};
+      for (w.index = 0; w.index < e.count; ++w.index)
+        for (const Property& p : e.props) skip_property(cur, p, w);
     }
   }
 }
