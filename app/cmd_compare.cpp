@@ -65,17 +65,84 @@ void crop_common_background(std::vector<Image>& panels) {
   }
 }
 
+struct CompareArgs {
+  std::string input, output, report;
+  std::string methods = "tutte,floater,conformal,authalic,natural";
+  std::string boundary = "circle", size = "400,400", view = "auto";
+  int columns = 0, squares = 16;
+  bool quiet = false;
+};
+
+struct Panel {
+  Image image;
+  std::string caption;
+  nlohmann::json figures;
+};
+
+// One method's map, its checker picture, caption and figures.
+Panel compare_panel(const CompareArgs& a, const Mesh& mesh, const std::string& name, const RenderOptions& ro) {
+  ParamOptions o;
+  o.weights.method = compare_method(name);
+  o.boundary = name == "natural"          ? BoundaryShape::Natural
+               : a.boundary == "square" ? BoundaryShape::Square
+                                        : BoundaryShape::Circle;
+  const auto t1 = std::chrono::steady_clock::now();
+  const ParamResult r = parameterize(mesh, o);
+  const double ms = elapsed_ms(t1);
+  const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, r.UV);
+  Panel p;
+  p.image = render_checker(mesh.V, mesh.F, r.UV, ro);
+  // Short lines, so the text can be large in a narrow panel.
+  p.caption = name + "\n" + std::to_string(d.flipped_triangles) + " flipped\nangle mean " +
+              fixed(d.angle_distortion.mean, 3) + "\nangle max " + fixed(d.angle_distortion.max, 2) + "\narea mean " +
+              fixed(d.area_distortion.mean, 3) + "\n" + fixed(ms, 0) + " ms";
+  p.figures = {{"method", name}, {"solver", solvers_name(r.solvers)}, {"time_ms", ms}};
+  add_distortion(p.figures, d);
+  return p;
+}
+
+int run_compare(const CompareArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  check_png_path(a.output, "--output");
+  const std::vector<std::string> names = split_list(a.methods);
+  if (names.empty()) throw_usage("--methods: give at least one method");
+  for (const std::string& n : names) compare_method(n);  // refuse an unknown name before reading
+  RenderOptions ro;
+  parse_size(a.size, "--size", ro.width, ro.height);
+  parse_view(a.view, ro);
+  ro.checker_squares = a.squares;
+  ro.fit_uv = true;
+  const Mesh mesh = make_mesh(read_mesh(a.input));
+  std::vector<Image> panels;
+  std::vector<std::string> captions;
+  nlohmann::json results = nlohmann::json::array();
+  for (const std::string& name : names) {
+    Panel p = compare_panel(a, mesh, name, ro);
+    panels.push_back(std::move(p.image));
+    captions.push_back(p.caption);
+    results.push_back(p.figures);
+  }
+  crop_common_background(panels);
+  const int n = static_cast<int>(panels.size());
+  const int columns = a.columns > 0 ? a.columns : n <= 5 ? n : (n + 1) / 2;
+  std::vector<std::pair<std::string, std::string>> files = {
+      {a.output, encode_png(compose_panels(panels, captions, columns))}};
+  if (!a.report.empty()) {
+    nlohmann::json report = mesh_json(mesh);
+    report["boundary"] = a.boundary;
+    report["methods"] = results;
+    report["timings_ms"] = {{"total", elapsed_ms(t0)}};
+    files.emplace_back(a.report, report.dump(2) + "\n");
+  }
+  write_all(files);
+  if (!a.quiet) std::cout << a.output << ": " << n << " methods, " << static_cast<long>(elapsed_ms(t0)) << " ms\n";
+  return 0;
+}
+
 }  // namespace
 
 void register_compare(CLI::App& app, Runner& run) {
-  struct Args {
-    std::string input, output, report;
-    std::string methods = "tutte,floater,conformal,authalic,natural";
-    std::string boundary = "circle", size = "400,400", view = "auto";
-    int columns = 0, squares = 16;
-    bool quiet = false;
-  };
-  auto a = std::make_shared<Args>();
+  auto a = std::make_shared<CompareArgs>();
   CLI::App* cmd = app.add_subcommand("compare", "One picture comparing methods: checker render and figures per method");
   cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
   cmd->add_option("-o,--output", a->output, "Output picture (.png)")->required();
@@ -93,62 +160,7 @@ void register_compare(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--report", a->report, "Write the figures of every method as JSON");
   cmd->add_flag("-q,--quiet", a->quiet, "Print nothing on success");
-  cmd->callback([&run, a] {
-    run = [a] {
-      const auto t0 = std::chrono::steady_clock::now();
-      check_png_path(a->output, "--output");
-      const std::vector<std::string> names = split_list(a->methods);
-      if (names.empty()) throw_usage("--methods: give at least one method");
-      std::vector<Method> methods;
-      for (const std::string& n : names) methods.push_back(compare_method(n));
-      RenderOptions ro;
-      parse_size(a->size, "--size", ro.width, ro.height);
-      parse_view(a->view, ro);
-      ro.checker_squares = a->squares;
-      ro.fit_uv = true;
-
-      const MeshData data = read_mesh(a->input);
-      const Mesh mesh = make_mesh(data);
-      std::vector<Image> panels;
-      std::vector<std::string> captions;
-      nlohmann::json results = nlohmann::json::array();
-      for (size_t i = 0; i < methods.size(); ++i) {
-        ParamOptions o;
-        o.weights.method = methods[i];
-        o.boundary = names[i] == "natural"      ? BoundaryShape::Natural
-                     : a->boundary == "square" ? BoundaryShape::Square
-                                               : BoundaryShape::Circle;
-        const auto t1 = std::chrono::steady_clock::now();
-        const ParamResult r = parameterize(mesh, o);
-        const double ms = elapsed_ms(t1);
-        const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, r.UV);
-        panels.push_back(render_checker(mesh.V, mesh.F, r.UV, ro));
-        // Short lines, so the text can be large in a narrow panel.
-        captions.push_back(names[i] + "\n" + std::to_string(d.flipped_triangles) + " flipped\nangle mean " +
-                           fixed(d.angle_distortion.mean, 3) + "\nangle max " + fixed(d.angle_distortion.max, 2) +
-                           "\narea mean " + fixed(d.area_distortion.mean, 3) + "\n" + fixed(ms, 0) + " ms");
-        nlohmann::json j = {{"method", names[i]}, {"solver", solvers_name(r.solvers)}, {"time_ms", ms}};
-        add_distortion(j, d);
-        results.push_back(j);
-      }
-      crop_common_background(panels);
-      const int n = static_cast<int>(panels.size());
-      const int columns = a->columns > 0 ? a->columns : n <= 5 ? n : (n + 1) / 2;
-      const std::string png = encode_png(compose_panels(panels, captions, columns));
-      std::vector<std::pair<std::string, std::string>> files = {{a->output, png}};
-      if (!a->report.empty()) {
-        nlohmann::json report = mesh_json(mesh);
-        report["boundary"] = a->boundary;
-        report["methods"] = results;
-        report["timings_ms"] = {{"total", elapsed_ms(t0)}};
-        files.emplace_back(a->report, report.dump(2) + "\n");
-      }
-      write_all(files);
-      if (!a->quiet)
-        std::cout << a->output << ": " << n << " methods, " << static_cast<long>(elapsed_ms(t0)) << " ms\n";
-      return 0;
-    };
-  });
+  cmd->callback([&run, a] { run = [a] { return run_compare(*a); }; });
 }
 
 }  // namespace intrinsic::app

@@ -36,6 +36,145 @@ std::string numbered(const std::string& path, size_t i, size_t count) {
   return path.substr(0, dot) + "_" + std::to_string(i + 1) + path.substr(dot);
 }
 
+ParamOptions edit_options(const EditArgs& a) {
+  if (!(a.memory_budget_gib > 0)) throw_usage("--memory-budget must be positive");
+  ParamOptions options;
+  options.weights = a.weights->options();
+  options.holes = a.holes == "free" ? HoleRule::Free : HoleRule::Fill;
+  options.solver = parse_solver(a.solver);
+  options.boundary = BoundaryShape::Given;
+  return options;
+}
+
+EditOptions editor_options(const EditArgs& a) {
+  EditOptions eo;
+  eo.basis = a.basis == "full" ? BasisMode::Full : BasisMode::Lazy;
+  eo.memory_budget = static_cast<std::size_t>(a.memory_budget_gib * double(1 << 30));
+  eo.resolve_above = a.resolve_above;
+  return eo;
+}
+
+// The move files as positions to hand the editor: each move starts from the
+// base, so vertices moved by the previous file and not by this one go back.
+std::vector<std::vector<FixedVertex>> moves_from_base(const EditArgs& a, const std::vector<FixedVertex>& base,
+                                                      const std::vector<std::vector<FixedVertex>>& files, int n) {
+  std::vector<int> base_index(n, -1);
+  for (size_t k = 0; k < base.size(); ++k) base_index[base[k].vertex] = static_cast<int>(k);
+  std::vector<std::vector<FixedVertex>> out;
+  std::vector<FixedVertex> previous;
+  for (size_t i = 0; i < files.size(); ++i) {
+    const std::vector<FixedVertex>& move = files[i];
+    std::vector<FixedVertex> positions;
+    std::vector<char> listed(n, 0);
+    for (const FixedVertex& fv : move) {
+      if (base_index[fv.vertex] < 0)
+        throw_input(a.moves[i] + ": vertex " + std::to_string(fv.vertex) + " is not in the base boundary " + a.boundary +
+                    ", so it cannot be moved");
+      positions.push_back(fv);
+      listed[fv.vertex] = 1;
+    }
+    for (const FixedVertex& fv : previous)
+      if (!listed[fv.vertex]) positions.push_back(base[base_index[fv.vertex]]);
+    out.push_back(positions);
+    previous = move;
+  }
+  return out;
+}
+
+// Applies move i, writes its mesh, returns its report entry.
+nlohmann::json apply_move(const EditArgs& a, const Mesh& mesh, BoundaryEditor& editor,
+                          const std::vector<FixedVertex>& positions, size_t i, const std::string& output) {
+  const MatrixX2d& uv = editor.move(positions);
+  const EditStats stats = editor.last_update();
+  const auto t_write = std::chrono::steady_clock::now();
+  WriteOptions wo;
+  wo.binary = a.binary;
+  write_mesh(output, mesh.V, mesh.F, uv, wo);
+  const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, uv);
+  if (!a.quiet)
+    std::cout << output << ": " << stats.moved << " moved, update " << stats.ms << " ms"
+              << (stats.resolved ? " (re-solved)" : "")
+              << (stats.new_responses ? ", " + std::to_string(stats.new_responses) + " new responses" : "") << ", "
+              << d.flipped_triangles << " flipped\n";
+  return {{"move", a.moves[i]},          {"output", output},
+          {"moved", stats.moved},        {"update_ms", stats.ms},
+          {"new_responses", stats.new_responses}, {"resolved", stats.resolved},
+          {"flipped_triangles", d.flipped_triangles}, {"write_ms", elapsed_ms(t_write)}};
+}
+
+struct EditTimes {
+  double read = 0, factor = 0;
+};
+
+// The base map as solved (method, boundary, solver, residual, ...) plus the
+// editor's figures and one entry per move.
+nlohmann::json edit_report(const EditArgs& a, const Mesh& mesh, const ParamResult& base, const Parameterizer& p,
+                           const BoundaryEditor& editor, const nlohmann::json& updates, const EditTimes& t) {
+  nlohmann::json report = mesh_json(mesh);
+  report["command"] = "edit";
+  add_solution(report, base, a.boundary);
+  report["boundary"] = a.boundary;
+  report["basis"] = a.basis;
+  report["responses"] = editor.responses();
+  report["basis_bytes"] = editor.basis_bytes();
+  report["factorizations"] = p.factorizations();
+  if (!a.constraints.empty()) report["constraints"] = constraints_json(p.residuals(editor.uv()));
+  report["updates"] = updates;
+  report["timings_ms"] = {{"read", t.read}, {"factor", t.factor}, {"precompute", editor.precompute_ms()}};
+  return report;
+}
+
+int run_edit(const EditArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::string> outputs;
+  for (size_t i = 0; i < a.moves.size(); ++i) {
+    outputs.push_back(numbered(a.output, i, a.moves.size()));
+    check_output_mesh_path(outputs.back());
+  }
+  ParamOptions options = edit_options(a);
+  ReadOptions ro;
+  ro.max_vertices = a.max_vertices;
+  const MeshData data = read_mesh(a.input, ro);
+  const Mesh mesh = make_mesh(data);
+  const int n = static_cast<int>(mesh.V.rows());
+  options.given = read_boundary_file(a.boundary, n);
+  std::vector<std::vector<FixedVertex>> move_files;
+  for (const std::string& m : a.moves) move_files.push_back(read_boundary_file(m, n));
+  EditTimes times;
+  times.read = elapsed_ms(t0);
+
+  const auto t1 = std::chrono::steady_clock::now();
+  Parameterizer parameterizer(mesh, options);
+  if (!a.constraints.empty()) {
+    Constraints c = read_constraints_file(a.constraints);
+    match_face_corners(c, data.F, mesh);
+    parameterizer.set_constraints(c);
+  }
+  const ParamResult base = parameterizer.solve();
+  times.factor = elapsed_ms(t1);
+  BoundaryEditor editor(parameterizer, editor_options(a));
+  if (!a.quiet)
+    std::cout << a.input << ": " << n << " vertices, " << options.given.size() << " fixed, factor " << times.factor
+              << " ms, precompute (" << a.basis << " basis, " << editor.responses() << " responses, "
+              << editor.basis_bytes() / (1 << 20) << " MiB) " << editor.precompute_ms() << " ms\n";
+  const std::vector<std::vector<FixedVertex>> moves = moves_from_base(a, editor.boundary(), move_files, n);
+  nlohmann::json updates = nlohmann::json::array();
+  size_t written = 0;
+  try {
+    for (; written < moves.size(); ++written)
+      updates.push_back(apply_move(a, mesh, editor, moves[written], written, outputs[written]));
+    if (!a.report.empty()) {
+      nlohmann::json report = edit_report(a, mesh, base, parameterizer, editor, updates, times);
+      report["timings_ms"]["total"] = elapsed_ms(t0);
+      write_report(a.report, report);
+    }
+  } catch (...) {
+    for (size_t i = 0; i < written; ++i) std::filesystem::remove(outputs[i]);  // no partial set of outputs
+    throw;
+  }
+  return 0;
+}
+
 }  // namespace
 
 void register_edit(CLI::App& app, Runner& run) {
@@ -65,119 +204,7 @@ void register_edit(CLI::App& app, Runner& run) {
   cmd->add_flag("--binary", a->binary, "Binary PLY output");
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();
   cmd->add_flag("-q,--quiet", a->quiet, "Print nothing on success");
-  cmd->callback([&run, a] {
-    run = [a] {
-      const auto t0 = std::chrono::steady_clock::now();
-      std::vector<std::string> outputs;
-      for (size_t i = 0; i < a->moves.size(); ++i) {
-        outputs.push_back(numbered(a->output, i, a->moves.size()));
-        check_output_mesh_path(outputs.back());
-      }
-      if (!(a->memory_budget_gib > 0)) throw_usage("--memory-budget must be positive");
-      ParamOptions options;
-      options.weights = a->weights->options();
-      options.holes = a->holes == "free" ? HoleRule::Free : HoleRule::Fill;
-      options.solver = parse_solver(a->solver);
-      ReadOptions ro;
-      ro.max_vertices = a->max_vertices;
-      const MeshData data = read_mesh(a->input, ro);
-      const Mesh mesh = make_mesh(data);
-      const int n = static_cast<int>(mesh.V.rows());
-      options.boundary = BoundaryShape::Given;
-      options.given = read_boundary_file(a->boundary, n);
-      std::vector<std::vector<FixedVertex>> moves;
-      for (const std::string& m : a->moves) moves.push_back(read_boundary_file(m, n));
-      const double t_read = elapsed_ms(t0);
-
-      const auto t1 = std::chrono::steady_clock::now();
-      Parameterizer parameterizer(mesh, options);
-      if (!a->constraints.empty()) {
-        Constraints c = read_constraints_file(a->constraints);
-        match_face_corners(c, data.F, mesh);
-        parameterizer.set_constraints(c);
-      }
-      const double t_factor = elapsed_ms(t1);
-      EditOptions eo;
-      eo.basis = a->basis == "full" ? BasisMode::Full : BasisMode::Lazy;
-      eo.memory_budget = static_cast<std::size_t>(a->memory_budget_gib * double(1 << 30));
-      eo.resolve_above = a->resolve_above;
-      BoundaryEditor editor(parameterizer, eo);
-      if (!a->quiet)
-        std::cout << a->input << ": " << n << " vertices, " << options.given.size() << " fixed, factor "
-                  << t_factor << " ms, precompute (" << a->basis << " basis, " << editor.responses()
-                  << " responses, " << editor.basis_bytes() / (1 << 20) << " MiB) " << editor.precompute_ms()
-                  << " ms\n";
-
-      // Each move starts from the base: vertices moved last time go back.
-      const std::vector<FixedVertex> base = editor.boundary();
-      std::vector<int> base_index(n, -1);
-      for (size_t k = 0; k < base.size(); ++k) base_index[base[k].vertex] = static_cast<int>(k);
-      std::vector<FixedVertex> previous;
-      nlohmann::json updates = nlohmann::json::array();
-      std::vector<std::string> written;
-      try {
-        for (size_t i = 0; i < moves.size(); ++i) {
-          std::vector<FixedVertex> positions;
-          std::vector<char> listed(n, 0);
-          for (const FixedVertex& fv : moves[i]) {
-            if (base_index[fv.vertex] < 0)
-              throw_input(a->moves[i] + ": vertex " + std::to_string(fv.vertex) +
-                          " is not in the base boundary " + a->boundary + ", so it cannot be moved");
-            positions.push_back(fv);
-            listed[fv.vertex] = 1;
-          }
-          for (const FixedVertex& fv : previous)
-            if (!listed[fv.vertex]) positions.push_back(base[base_index[fv.vertex]]);
-          const MatrixX2d& uv = editor.move(positions);
-          const EditStats stats = editor.last_update();
-          previous = moves[i];
-          const auto t_write = std::chrono::steady_clock::now();
-          WriteOptions wo;
-          wo.binary = a->binary;
-          write_mesh(outputs[i], mesh.V, mesh.F, uv, wo);
-          written.push_back(outputs[i]);
-          const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, uv);
-          updates.push_back({{"move", a->moves[i]},
-                             {"output", outputs[i]},
-                             {"moved", stats.moved},
-                             {"update_ms", stats.ms},
-                             {"new_responses", stats.new_responses},
-                             {"resolved", stats.resolved},
-                             {"flipped_triangles", d.flipped_triangles},
-                             {"write_ms", elapsed_ms(t_write)}});
-          if (!a->quiet)
-            std::cout << outputs[i] << ": " << stats.moved << " moved, update " << stats.ms << " ms"
-                      << (stats.resolved ? " (re-solved)" : "")
-                      << (stats.new_responses ? ", " + std::to_string(stats.new_responses) + " new responses" : "")
-                      << ", " << d.flipped_triangles << " flipped\n";
-        }
-        if (!a->report.empty()) {
-          nlohmann::json report = mesh_json(mesh);
-          report["command"] = "edit";
-          report["method"] = a->weights->method;
-          report["lambda"] = options.weights.lambda;
-          report["mu"] = options.weights.mu;
-          report["boundary"] = a->boundary;
-          report["fixed_vertices"] = options.given.size();
-          report["basis"] = a->basis;
-          report["responses"] = editor.responses();
-          report["basis_bytes"] = editor.basis_bytes();
-          report["factorizations"] = parameterizer.factorizations();
-          if (!a->constraints.empty()) report["constraints"] = constraints_json(parameterizer.residuals(editor.uv()));
-          report["updates"] = updates;
-          report["timings_ms"] = {{"read", t_read},
-                                  {"factor", t_factor},
-                                  {"precompute", editor.precompute_ms()},
-                                  {"total", elapsed_ms(t0)}};
-          write_report(a->report, report);
-        }
-      } catch (...) {
-        for (const std::string& w : written) std::filesystem::remove(w);  // no partial set of outputs
-        throw;
-      }
-      return 0;
-    };
-  });
+  cmd->callback([&run, a] { run = [a] { return run_edit(*a); }; });
 }
 
 }  // namespace intrinsic::app
