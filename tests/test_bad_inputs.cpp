@@ -334,12 +334,14 @@ TEST(AtomicOutput, FileSizeLimitMidStreamLeavesNothing) {
 TEST(AtomicOutput, ProducerExceptionLeavesNothing) {
   TempDir dir;
   const std::string path = dir / "out.bin";
-  EXPECT_THROW(write_file_atomically(path,
-                                     [](const ByteSink& sink) {
-                                       sink("partial", 7);
-                                       throw_numerical("stop");
-                                     }),
-               Error);
+  test::expect_error(
+      [&] {
+        write_file_atomically(path, [](const ByteSink& sink) {
+          sink("partial", 7);
+          throw_numerical("stop");
+        });
+      },
+      ErrorKind::Numerical, "stop");
   EXPECT_TRUE(dir.files().empty());
   write_file_atomically(path, [](const ByteSink& sink) {
     sink("ab", 2);

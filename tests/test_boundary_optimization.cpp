@@ -134,7 +134,7 @@ TEST(BoundaryOptimization, ResponsesBudgetIsEnforced) {
   BoundaryOptimizationOptions o;
   o.route = GradientRoute::Responses;
   o.responses_budget_bytes = 100;
-  EXPECT_THROW(optimize_boundary(mesh, o), Error);
+  test::expect_error([&] { optimize_boundary(mesh, o); }, ErrorKind::Usage, "above the budget; use the adjoint route");
 }
 
 }  // namespace

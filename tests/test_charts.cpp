@@ -98,7 +98,7 @@ TEST(Charts, PinnedChartStaysWhereThePinsPutIt) {
   // One pin in a chart is refused, naming the chart.
   o.pins.pop_back();
   o.pins.push_back({mesh.F(mesh.F.rows() - 1, 0), Eigen::Vector2d(0, 0)});
-  EXPECT_THROW(parameterize_charts(mesh, o), Error);
+  test::expect_error([&] { parameterize_charts(mesh, o); }, ErrorKind::Usage, "has one pin");
 }
 
 TEST(Charts, ClosedComponentIsRefusedAndLargestIsFound) {

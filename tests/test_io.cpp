@@ -695,11 +695,14 @@ TEST(IoWrite, ErrorsLeaveNoFileBehind) {
   ::rmdir(dir.file("taken.obj").c_str());
   Eigen::MatrixX3d bad = V;
   bad(1, 1) = std::nan("");
-  EXPECT_THROW(intrinsic::write_mesh(dir.file("nan.obj"), bad, F, Eigen::MatrixX2d()), Error);
+  intrinsic::test::expect_error([&] { intrinsic::write_mesh(dir.file("nan.obj"), bad, F, Eigen::MatrixX2d()); },
+                                ErrorKind::Output, "the vertex positions are not all finite");
   Eigen::MatrixX3i badF = F;
   badF(0, 2) = 3;
-  EXPECT_THROW(intrinsic::write_mesh(dir.file("f.obj"), V, badF, Eigen::MatrixX2d()), Error);
-  EXPECT_THROW(intrinsic::write_mesh(dir.file("uv.obj"), V, F, Eigen::MatrixX2d(2, 2)), Error);
+  intrinsic::test::expect_error([&] { intrinsic::write_mesh(dir.file("f.obj"), V, badF, Eigen::MatrixX2d()); },
+                                ErrorKind::Output, "face 0 has vertex index 3");
+  intrinsic::test::expect_error([&] { intrinsic::write_mesh(dir.file("uv.obj"), V, F, Eigen::MatrixX2d(2, 2)); },
+                                ErrorKind::Output, "2 texture coordinates for");
   EXPECT_TRUE(dir.files().empty());
 
   // Success replaces an existing file and leaves only that file.
@@ -730,7 +733,8 @@ TEST(IoRead, MissingFileAndUnknownFormat) {
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Input) << e.what();
   }
-  EXPECT_THROW(intrinsic::read_mesh_from_memory("solid x\n", "m.stl"), Error);
+  intrinsic::test::expect_error([] { intrinsic::read_mesh_from_memory("solid x\n", "m.stl"); }, ErrorKind::Usage,
+                                "unknown input format '.stl' for m.stl");
 }
 
 // Random damage to valid files of every format must give an Error, never a

@@ -14,6 +14,7 @@
 #include "render/mesh_checks.h"
 #include "render/rasterizer.h"
 #include "render/surface.h"
+#include "test_support.h"
 
 using namespace intrinsic;
 using render::Rgb;
@@ -382,7 +383,7 @@ TEST(Render, ComposePanelsLaysOutGrid) {
   EXPECT_GT(out.width, 100);
   EXPECT_GT(out.height, 2 * 40);
   EXPECT_GT(variance(out), 0);
-  EXPECT_THROW(compose_panels({}, {}, 1), Error);
+  intrinsic::test::expect_error([] { compose_panels({}, {}, 1); }, ErrorKind::Usage, "compose_panels: no panels");
 }
 
 TEST(Render, TickValuesAreRoundAndIncludeEnds) {
