@@ -413,17 +413,13 @@ TEST(Independent, ScalingAndRigidMotionsOfTheInput) {
   }
 }
 
-// BUG (default pins, docs/maths.md §3.4): the wavy patch's outer loop is
-// mirror-symmetric, so vertices 286-323 and 306-329 are both farthest pairs
-// (|x_i - x_j|^2 = 4.0208069966370754 for both). farthest_pair breaks ties by
-// exact equality of the rounded squared distances, and after scaling V by
-// 1e-6 rounding makes the second pair larger by one ulp (4.0208069966370754e-12
-// vs ...762e-12): the pins become 306, 329, and the natural map, unit scale,
-// moves by 0.49 (of [0,1]^2) instead of staying put; the surface-scale map is
-// no longer 1e-6 times the original. Scaling by 1e-3, 1e-4, 1e-5 or 1e6 keeps
-// 286, 323. A relative tolerance on ties would make the choice scale-invariant.
+// Regression (default pins, docs/maths.md §3.4): the wavy patch's outer loop
+// is mirror-symmetric, so vertices 286-323 and 306-329 are both farthest
+// pairs (|x_i - x_j|^2 = 4.0208069966370754 for both). Breaking ties by exact
+// equality let rounding after scaling V by 1e-6 make the second pair larger
+// by one ulp, so the pins moved and the unit-scale natural map moved by 0.49.
+// Ties are now within a relative 1e-12, broken by the smallest index pair.
 TEST(Independent, NaturalDefaultPinsAreScaleInvariant) {
-  GTEST_SKIP() << "bug: default pins tie-break on rounding (see comment)";
   ParamOptions natural;
   natural.boundary = BoundaryShape::Natural;
   check_scaling(wavy_data(), natural, {});

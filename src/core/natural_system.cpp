@@ -4,6 +4,7 @@
 #include "core/natural_system.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <numeric>
 #include <set>
@@ -96,23 +97,29 @@ std::pair<int, int> farthest_pair(const MatrixX3d& V, std::vector<int> b) {
   std::vector<int> order(b.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return r[x] > r[y]; });
+  // Distances within kTie of the largest are ties, broken by the smallest
+  // index pair: exact comparison would let rounding pick between mirror-image
+  // pairs, so scaling the input by 1e-6 could move the pins.
+  constexpr double kTie = 1e-12;
   double best = -1;
-  std::pair<int, int> pair{b[0], b[1]};
+  std::vector<std::pair<double, std::pair<int, int>>> near_best;  // pairs within kTie of the best so far
   for (size_t i = 0; i + 1 < order.size(); ++i) {
     const int p = order[i];
-    if (r[p] + r[order[i + 1]] < std::sqrt(std::max(best, 0.0)) * (1 - 1e-12)) break;
+    const double bound = std::sqrt(std::max(best, 0.0)) * (1 - 2 * kTie);
+    if (r[p] + r[order[i + 1]] < bound) break;
     const Eigen::Vector3d xp = V.row(b[p]);
     for (size_t j = i + 1; j < order.size(); ++j) {
       const int q = order[j];
-      if (r[p] + r[q] < std::sqrt(std::max(best, 0.0)) * (1 - 1e-12)) break;
+      if (r[p] + r[q] < bound) break;
       const double d2 = (V.row(b[q]).transpose() - xp).squaredNorm();
-      const std::pair<int, int> cand{std::min(b[p], b[q]), std::max(b[p], b[q])};
-      if (d2 > best || (d2 == best && cand < pair)) {  // ties: smallest indices, whatever the visiting order
-        best = d2;
-        pair = cand;
-      }
+      if (d2 < best * (1 - kTie)) continue;
+      best = std::max(best, d2);
+      near_best.push_back({d2, {std::min(b[p], b[q]), std::max(b[p], b[q])}});
     }
   }
+  std::pair<int, int> pair{INT_MAX, INT_MAX};
+  for (const auto& [d2, cand] : near_best)
+    if (d2 >= best * (1 - kTie)) pair = std::min(pair, cand);
   return pair;
 }
 

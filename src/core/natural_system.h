@@ -39,8 +39,10 @@ SparseMatrix assemble_natural_system(const Mesh& mesh);
 // The two vertices of the list farthest apart in 3D, smaller index first.
 // Exact: all pairs, pruned by a bounding-sphere bound (|x_i - x_j| <= r_i +
 // r_j around the centroid), so typical loops cost far fewer than m^2/2
-// distance evaluations; the worst case stays O(m^2). Ties go to the smallest
-// index pair. Throws Error(Input) for fewer than two vertices.
+// distance evaluations; the worst case stays O(m^2). Distances within a
+// relative 1e-12 of the largest are ties (so rounding, e.g. after scaling
+// the input, cannot choose between mirror-image pairs), broken by the
+// smallest index pair. Throws Error(Input) for fewer than two vertices.
 std::pair<int, int> farthest_pair(const MatrixX3d& V, std::vector<int> vertices);
 
 // The default pins of the natural map: the farthest pair of the outer loop
