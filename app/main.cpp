@@ -25,11 +25,6 @@ std::string mesh_extension(const std::string& path) {
   return p.substr(dot);
 }
 
-std::int64_t faces_for_vertices(std::int64_t max_vertices) {
-  const std::int64_t default_cap = ReadOptions().max_faces;
-  return max_vertices >= default_cap / 4 ? default_cap : 4 * max_vertices + 1000;
-}
-
 void check_output_mesh_path(const std::string& path) {
   const std::string ext = mesh_extension(path);
   if (ext != ".obj" && ext != ".ply")

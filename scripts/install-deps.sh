@@ -15,6 +15,8 @@ PACKAGES=(
   libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
   libstb-dev               # stb_easy_font for picture labels
   libgtest-dev libbenchmark-dev
+  # The Python module and its tests (Debian's /usr/bin/python3 and its packages)
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-distributed
 )
 export DEBIAN_FRONTEND=noninteractive
 missing=()

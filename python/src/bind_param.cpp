@@ -1,0 +1,290 @@
+// parameterize(), Result, Parameterizer and BoundaryEditor: the `param`
+// pipeline of app/param_job.h (the command line's own option mapping, solve
+// and report), with the GIL released while reading, validating, assembling,
+// factoring and solving.
+#include <chrono>
+#include <mutex>
+#include <optional>
+
+#include "common.h"
+#include "intrinsic/boundary_editor.h"
+#include "intrinsic/error.h"
+#include "intrinsic/metrics.h"
+#include "intrinsic/parameterizer.h"
+#include "report.h"
+
+namespace intrinsic::python {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+struct Result {
+  py::array uv;
+  double residual = 0;
+  int flipped_triangles = 0;
+  py::dict timings, report;
+};
+
+// The mesh: a file read inside the job (as the command line reads it), or arrays.
+struct Source {
+  MeshData data;
+  std::string path;
+};
+
+Source to_source(const py::object& V, const py::object& F) {
+  Source s;
+  if (F.is_none()) {
+    if (!py::isinstance<py::str>(V) && !py::hasattr(V, "__fspath__"))
+      throw_usage("give V and F arrays, or a mesh file path and no F");
+    s.path = to_path(V);
+  } else {
+    s.data.V = to_V(V);
+    s.data.F = to_F(F);
+  }
+  return s;
+}
+
+void read_source(Source& s, const app::ParamArgs& a) {
+  if (s.path.empty()) return;
+  ReadOptions ro;
+  ro.max_vertices = a.max_vertices;
+  ro.max_faces = app::faces_for_vertices(ro.max_vertices);
+  s.data = read_mesh(s.path, ro);
+}
+
+// What a solve hands back to Python, computed without the GIL.
+struct Outcome {
+  MatrixX2d UV;
+  double residual = 0;
+  int flipped = 0;
+  nlohmann::json report;
+};
+
+Outcome outcome(const app::ParamArgs& a, const Mesh& mesh, const app::Solved& s, nlohmann::json timings,
+                Clock::time_point t0) {
+  const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, s.map.UV);
+  Outcome o{s.map.UV, s.map.residual, d.flipped_triangles, app::build_report(a, mesh, s, d)};
+  if (mesh.path.empty()) o.report["input"] = nullptr;
+  o.report["output"] = nullptr;  // nothing written
+  timings["assemble"] = s.map.timings.assemble_ms;
+  timings["factor"] = s.map.timings.factor_ms;
+  timings["solve"] = s.map.timings.solve_ms;
+  timings["total"] = ms_since(t0);
+  o.report["timings_ms"] = timings;
+  return o;
+}
+
+Result to_result(const Outcome& o) {
+  Result r{from_UV(o.UV), o.residual, o.flipped, {}, to_python(o.report)};
+  r.timings = r.report["timings_ms"];
+  return r;
+}
+
+Result parameterize(const py::object& V, const py::object& F, const py::kwargs& kwargs) {
+  const app::ParamArgs a = to_args(kwargs, true);
+  Source src = to_source(V, F);
+  Outcome o;
+  {
+    py::gil_scoped_release release;
+    const auto t0 = Clock::now();
+    read_source(src, a);
+    nlohmann::json timings = {{"read", ms_since(t0)}};
+    const auto t1 = Clock::now();
+    const Mesh mesh = app::validated_mesh(a, src.data);
+    timings["validate"] = ms_since(t1);
+    const app::Solved solved = app::solve(a, mesh, src.data, app::to_options(a, static_cast<int>(mesh.V.rows())));
+    o = outcome(a, mesh, solved, timings, t0);
+  }
+  return to_result(o);
+}
+
+Constraints to_constraints(const py::object& c) {
+  if (py::isinstance<py::dict>(c))
+    return parse_constraints_json(py::str(py::module_::import("json").attr("dumps")(c)).cast<std::string>(),
+                                  "constraints");
+  return read_constraints_file(to_path(c));
+}
+
+}  // namespace
+
+// One mesh, factored once (intrinsic::Parameterizer). Methods release the GIL
+// and are serialized by a mutex: one object is not used by two threads at once.
+class PyParameterizer {
+ public:
+  PyParameterizer(const py::object& V, const py::object& F, const py::kwargs& kwargs)
+      : args_(to_args(kwargs, false)), src_(to_source(V, F)) {
+    py::gil_scoped_release release;
+    const auto t0 = Clock::now();
+    read_source(src_, args_);
+    mesh_ = std::make_unique<Mesh>(app::validated_mesh(args_, src_.data));
+    if (mesh_->topology.num_components > 1)
+      throw_usage("Parameterizer takes a single component; use largest_component=True, or parameterize() for charts");
+    p_ = std::make_unique<Parameterizer>(*mesh_, app::to_options(args_, static_cast<int>(mesh_->V.rows())));
+    if (args_.has_constraints()) p_->set_constraints(app::load_constraints(args_, src_.data, *mesh_));
+    setup_ms_ = ms_since(t0);
+  }
+
+  Result solve(const std::optional<std::vector<FixedVertex>>& fixed) {
+    Outcome o;
+    {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(mutex_);
+      const auto t0 = Clock::now();
+      if (fixed) pending_ = fixed;
+      app::Solved s{pending_ ? p_->solve_with_boundary(*pending_) : p_->solve(), nullptr, nullptr};
+      pending_.reset();
+      o = outcome(args_, *mesh_, s, {{"setup", setup_ms_}}, t0);
+    }
+    return to_result(o);
+  }
+
+  void set_boundary(const py::object& fixed) { pending_ = to_fixed(fixed, "boundary"); }
+
+  void set_constraints(const py::object& c) {
+    Constraints constraints = to_constraints(c);
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(mutex_);
+    match_face_corners(constraints, src_.data.F, *mesh_);
+    p_->set_constraints(constraints);
+  }
+
+  void set_constraint_targets(const py::object& targets) {
+    std::vector<Eigen::Vector2d> t;
+    for (const py::handle x : py::iter(targets)) {
+      const auto uv = x.cast<std::pair<double, double>>();
+      t.emplace_back(uv.first, uv.second);
+    }
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(mutex_);
+    p_->set_constraint_targets(t);
+  }
+
+  void clear_constraints() { p_->clear_constraints(); }
+  Parameterizer& get() { return *p_; }
+  std::mutex& mutex() { return mutex_; }
+
+ private:
+  app::ParamArgs args_;
+  Source src_;
+  std::unique_ptr<Mesh> mesh_;
+  std::unique_ptr<Parameterizer> p_;
+  std::optional<std::vector<FixedVertex>> pending_;
+  double setup_ms_ = 0;
+  std::mutex mutex_;
+};
+
+// intrinsic::BoundaryEditor on a PyParameterizer (kept alive by pybind11).
+class PyEditor {
+ public:
+  PyEditor(PyParameterizer& p, const std::string& basis, double memory_budget_gib, int resolve_above) : p_(p) {
+    if (basis != "full" && basis != "lazy") throw_usage("--basis: " + basis + " not in {full,lazy}");
+    EditOptions o;
+    o.basis = basis == "full" ? BasisMode::Full : BasisMode::Lazy;
+    o.memory_budget = static_cast<std::size_t>(memory_budget_gib * double(std::size_t(1) << 30));
+    o.resolve_above = resolve_above;
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(p.mutex());
+    editor_ = std::make_unique<BoundaryEditor>(p.get(), o);
+  }
+  py::array move(const py::object& positions) {
+    const std::vector<FixedVertex> fixed = to_fixed(positions, "positions");
+    {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(p_.mutex());
+      editor_->move(fixed);
+    }
+    return from_UV(editor_->uv());
+  }
+  BoundaryEditor& get() { return *editor_; }
+
+ private:
+  PyParameterizer& p_;
+  std::unique_ptr<BoundaryEditor> editor_;
+};
+
+void register_editor(py::module_& m) {
+  py::class_<PyEditor>(m, "BoundaryEditor",
+                       "BoundaryEditor(parameterizer, basis='lazy', memory_budget=2.0, resolve_above=64)\n\n"
+                       "Realtime boundary moves by superposition of impulse responses (paper section 4.2),\n"
+                       "as `intrinsic edit`: basis 'full' precomputes every response, 'lazy' computes one on a\n"
+                       "vertex's first move; memory_budget in GiB; more than resolve_above moved vertices re-solve\n"
+                       "with the kept factorization. Each move updates the Parameterizer's boundary.")
+      .def(py::init<PyParameterizer&, const std::string&, double, int>(), py::arg("parameterizer"),
+           py::arg("basis") = "lazy", py::arg("memory_budget") = 2.0, py::arg("resolve_above") = 64,
+           py::keep_alive<1, 2>())
+      .def("move", &PyEditor::move, py::arg("positions"),
+           "Moves fixed vertices [(vertex, u, v), ...] (others stay where they are) -> the new n x 2 UVs.")
+      .def_property_readonly("uv", [](PyEditor& e) { return from_UV(e.get().uv()); })
+      .def_property_readonly("boundary", [](PyEditor& e) { return from_fixed(e.get().boundary()); })
+      .def_property_readonly("precompute_ms", [](PyEditor& e) { return e.get().precompute_ms(); })
+      .def_property_readonly("basis_bytes", [](PyEditor& e) { return e.get().basis_bytes(); })
+      .def_property_readonly("responses", [](PyEditor& e) { return e.get().responses(); })
+      .def_property_readonly("last_update", [](PyEditor& e) {
+        const EditStats& s = e.get().last_update();
+        py::dict d;
+        d["update_ms"] = s.ms;
+        d["moved"] = s.moved;
+        d["new_responses"] = s.new_responses;
+        d["resolved"] = s.resolved;
+        return d;
+      }, "The last move: update_ms, moved, new_responses, resolved (as `intrinsic edit`'s report).");
+}
+
+void register_parameterizer(py::module_& m);
+
+void register_param(py::module_& m) {
+  py::class_<Result>(m, "Result",
+                     "What a solve produced: uv (n x 2 float64, one row per input vertex, unused vertices at 0),\n"
+                     "residual (max relative residual over u and v), flipped_triangles, timings (milliseconds)\n"
+                     "and report (the dict `intrinsic param --report` writes, built by the same code; 'input' is\n"
+                     "the file path or None for arrays, 'output' is None).")
+      .def_readonly("uv", &Result::uv, "n x 2 float64 UVs (a new C-contiguous array)")
+      .def_readonly("residual", &Result::residual, "max over u and v of |Ax-b|/|b|")
+      .def_readonly("flipped_triangles", &Result::flipped_triangles, "triangles with non-positive UV area")
+      .def_readonly("timings", &Result::timings, "stage timings in ms (report['timings_ms'])")
+      .def_readonly("report", &Result::report, "the command line's report as a dict (README 'Report')")
+      .def("__repr__", [](const Result& r) {
+        return "<intrinsic.Result " + std::to_string(r.uv.shape(0)) + " vertices, residual " +
+               short_number(r.residual) + ", " + std::to_string(r.flipped_triangles) + " flipped>";
+      });
+  m.def("parameterize", &parameterize, py::arg("V"), py::arg("F") = py::none(),
+        "parameterize(V, F=None, **options) -> Result\n\n"
+        "`intrinsic param` on arrays (or on a file: parameterize(path)). The package's parameterize()\n"
+        "documents every option; they are the command line's long options with dashes as underscores.");
+  register_parameterizer(m);
+  register_editor(m);
+}
+
+void register_parameterizer(py::module_& m) {
+  py::class_<PyParameterizer>(m, "Parameterizer",
+                              "Parameterizer(V, F=None, **options): assembles and factors once (intrinsic::"
+                              "Parameterizer);\nsolve() answers new boundaries and constraints without "
+                              "refactoring when the set of fixed\nvertices stays the same. Options as "
+                              "parameterize() except the optimize_* ones. One component only.")
+      .def(py::init<const py::object&, const py::object&, const py::kwargs&>(), py::arg("V"),
+           py::arg("F") = py::none())
+      .def("solve", [](PyParameterizer& p) { return p.solve(std::nullopt); },
+           "The map for the current boundary (or the one set by set_boundary) and constraints -> Result.")
+      .def("solve_with_boundary",
+           [](PyParameterizer& p, const py::object& fixed) { return p.solve(to_fixed(fixed, "boundary")); },
+           py::arg("fixed"),
+           "New positions [(vertex, u, v), ...] (output coordinates) for every fixed vertex, then solve.\n"
+           "The same set of fixed vertices needs no refactorization.")
+      .def("set_boundary", &PyParameterizer::set_boundary, py::arg("fixed"),
+           "Positions [(vertex, u, v), ...] used by the next solve() (see solve_with_boundary).")
+      .def("set_constraints", &PyParameterizer::set_constraints, py::arg("constraints"),
+           "Point and line constraints: a dict shaped like the JSON constraint file ({'points': [...],\n"
+           "'lines': [...]}) or the path of such a file. Replaces earlier constraints; no sparse refactorization.")
+      .def("set_constraint_targets", &PyParameterizer::set_constraint_targets, py::arg("targets"),
+           "New (u, v) targets for the same constraint rows, in the order of the report's 'constraints'.")
+      .def("clear_constraints", &PyParameterizer::clear_constraints, "Removes every constraint.")
+      .def_property_readonly("boundary", [](PyParameterizer& p) { return from_fixed(p.get().boundary()); },
+                             "Current fixed vertices [(vertex, u, v), ...] in output coordinates.")
+      .def_property_readonly("free_vertices", [](PyParameterizer& p) { return p.get().free_vertices(); })
+      .def_property_readonly("factorizations", [](PyParameterizer& p) { return p.get().factorizations(); },
+                             "Sparse numeric factorizations so far.")
+      .def_property_readonly("constraint_setups", [](PyParameterizer& p) { return p.get().constraint_setups(); });
+}
+
+}  // namespace intrinsic::python

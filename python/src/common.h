@@ -1,0 +1,57 @@
+// Shared declarations of the Python module intrinsic._intrinsic: array
+// conversion (numpy <-> the library's Eigen matrices), the conversion of
+// Python option dictionaries to the command line's ParamArgs, and one
+// register function per binding file.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "intrinsic/boundary.h"
+#include "intrinsic/mesh_data.h"
+#include "param_job.h"
+
+namespace intrinsic::python {
+
+namespace py = pybind11;
+
+// A C-contiguous float64 (or int32) array with `cols` columns: the object
+// itself when it already is one (no copy), else a converted copy. Throws
+// Error(Usage) naming `name` for a wrong shape or a non-numeric type.
+py::array c_array_double(const py::handle& obj, int cols, const char* name);
+py::array c_array_int32(const py::handle& obj, int cols, const char* name);
+
+// The library stores column-major Eigen matrices: these copy once.
+MatrixX3d to_V(const py::handle& obj);
+MatrixX3i to_F(const py::handle& obj);
+MatrixX2d to_UV(const py::handle& obj, const char* name = "uv");
+
+// New C-contiguous numpy arrays (n x 3 float64, n x 3 int32, n x 2 float64).
+py::array from_V(const MatrixX3d& V);
+py::array from_F(const MatrixX3i& F);
+py::array from_UV(const MatrixX2d& UV);
+
+// A path from str or os.PathLike.
+std::string to_path(const py::handle& obj);
+// (vertex, u, v) triples -> fixed vertices.
+std::vector<FixedVertex> to_fixed(const py::handle& obj, const char* name);
+py::list from_fixed(const std::vector<FixedVertex>& fixed);
+// A JSON document as Python objects (through the json module: exact numbers).
+py::object to_python(const nlohmann::json& j);
+
+// The keyword options of parameterize() (the CLI's long options, dashes as
+// underscores) -> ParamArgs; Error(Usage) with the CLI's messages for unknown
+// values. `optimizers` false refuses the optimize_* options (Parameterizer).
+app::ParamArgs to_args(const py::dict& options, bool optimizers);
+
+void register_errors(py::module_& m);
+void register_io(py::module_& m);
+void register_param(py::module_& m);
+void register_render(py::module_& m);
+
+}  // namespace intrinsic::python

@@ -1,0 +1,91 @@
+# Arrays (no conversion copy for C-contiguous float64/int32 input, dtypes
+# converted otherwise, new C-contiguous outputs), read/write round trips,
+# metrics and render equal to the CLI's, and the GIL released while solving.
+import json
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import intrinsic
+from intrinsic import _intrinsic
+from conftest import cli_path, shared_mesh
+
+
+def test_no_copy_for_c_contiguous_input():
+    V, F = intrinsic.read_mesh(shared_mesh("cat_head.obj"))
+    assert V.dtype == np.float64 and F.dtype == np.int32 and V.flags.c_contiguous and F.flags.c_contiguous
+    assert _intrinsic._view_address(V, 3) == V.ctypes.data
+    assert _intrinsic._view_address(F, 3, True) == F.ctypes.data
+    # other layouts or dtypes are converted (a copy), with the same result
+    assert _intrinsic._view_address(np.asfortranarray(V), 3) != V.ctypes.data
+    assert _intrinsic._view_address(F.astype(np.int64), 3, True) != F.ctypes.data
+    a = intrinsic.parameterize(V, F).uv
+    b = intrinsic.parameterize(np.asfortranarray(V), F.astype(np.int64)).uv
+    assert np.array_equal(a, b)
+
+
+def test_read_write_round_trip(tmp_path):
+    V, F = intrinsic.read_mesh(shared_mesh("snail.obj"))
+    uv = intrinsic.parameterize(V, F).uv
+    for name, binary in (("a.obj", False), ("a.ply", False), ("b.ply", True)):
+        intrinsic.write_mesh(tmp_path / name, V, F, uv, binary=binary)
+        V2, F2 = intrinsic.read_mesh(tmp_path / name)
+        assert np.array_equal(V, V2) and np.array_equal(F, F2)
+
+
+def test_metrics_like_cli(tmp_path):
+    path = shared_mesh("alligator.obj")
+    V, F = intrinsic.read_mesh(path)
+    uv = intrinsic.parameterize(V, F, method="authalic").uv
+    intrinsic.write_mesh(tmp_path / "uv.obj", V, F, uv)
+    proc = subprocess.run([cli_path(), "metrics", str(tmp_path / "uv.obj")], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    cli = json.loads(proc.stdout)
+    m = intrinsic.metrics(V, F, uv)
+    for k in ("flipped_triangles", "angle_distortion", "area_distortion", "stretch_l2", "edge_length_energy",
+              "area_energy", "faces", "boundary_loops"):
+        assert m[k] == pytest.approx(cli[k], rel=1e-12), k
+
+
+@pytest.mark.parametrize("mode", ["checker", "layout", "angle"])
+def test_render_like_cli(tmp_path, mode):
+    path = shared_mesh("cat_head.obj")
+    V, F = intrinsic.read_mesh(path)
+    uv = intrinsic.parameterize(V, F).uv
+    intrinsic.write_mesh(tmp_path / "uv.obj", V, F, uv)
+    out = tmp_path / "cli.png"
+    proc = subprocess.run([cli_path(), "render", str(tmp_path / "uv.obj"), "-o", str(out), "--mode", mode,
+                           "--size", "200,150", "-q"], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    img = intrinsic.render(V, F, uv, mode=mode, size=(200, 150))
+    assert img.shape == (150, 200, 3) and img.dtype == np.uint8
+    assert intrinsic.render(V, F, uv, mode=mode, size=(200, 150), path=tmp_path / "py.png") is None
+    assert (tmp_path / "py.png").read_bytes() == out.read_bytes()
+
+
+def test_gil_released():
+    """Two threads parameterizing at once take clearly less than twice one
+    (asserted loosely: the machine may be busy)."""
+    V, F = intrinsic.read_mesh(shared_mesh("max-planck-partial.obj"))
+    intrinsic.parameterize(V, F, solver="eigen-llt")
+    t0 = time.perf_counter()
+    intrinsic.parameterize(V, F, solver="eigen-llt")
+    one = time.perf_counter() - t0
+    ticks = []
+    stop = threading.Event()
+
+    def tick():  # runs only while the GIL is free
+        while not stop.is_set():
+            ticks.append(1)
+            time.sleep(0.001)
+
+    t = threading.Thread(target=tick)
+    t.start()
+    intrinsic.parameterize(V, F, solver="eigen-llt")
+    stop.set()
+    t.join()
+    # Holding the GIL would leave the ticker a switch interval or two (5 ms each).
+    assert one < 0.05 or len(ticks) > 10, (one, len(ticks))

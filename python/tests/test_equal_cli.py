@@ -1,0 +1,102 @@
+# Python results equal the CLI's (UVs to 1e-12, same report) on the shared
+# meshes, for every method and boundary mode.
+import numpy as np
+import pytest
+
+import intrinsic
+from conftest import shared_mesh
+
+MESHES = ["cat_head.obj", "snail.obj", "camel_b.obj", "alligator.obj", "fairing-cross.off", "beetle.off"]
+METHODS = [("conformal", {}), ("authalic", {}), ("mixed", {"lam": 0.5, "mu": 0.5}), ("tutte", {}),
+           ("floater", {})]
+# natural: the natural conformal map (conformal part needed)
+CASES = [(m, kw, b) for m, kw in METHODS for b in ("circle", "square")] + [("conformal", {}, "natural")]
+VOLATILE = {"input", "output", "timings_ms"}
+
+
+def cli_args(method, kw, boundary):
+    args = ["--method", method, "--boundary", boundary]
+    if "lam" in kw:
+        args += ["--lambda", kw["lam"]]
+    if "mu" in kw:
+        args += ["--mu", kw["mu"]]
+    return args
+
+
+def assert_reports_equal(py, cli):
+    assert set(py) == set(cli), set(py) ^ set(cli)
+    for k in set(py) - VOLATILE:
+        assert py[k] == pytest.approx(cli[k], rel=1e-9, abs=1e-12), k
+
+
+@pytest.mark.parametrize("mesh", MESHES)
+@pytest.mark.parametrize("method,kw,boundary", CASES)
+def test_same_as_cli(cli, mesh, method, kw, boundary):
+    path = shared_mesh(mesh)
+    c = cli([path, *cli_args(method, kw, boundary)])
+    V, F = intrinsic.read_mesh(path)
+    try:
+        r = intrinsic.parameterize(V, F, method=method, boundary=boundary, **kw)
+    except intrinsic.Error as e:  # the CLI must fail the same way
+        assert c.returncode == e.exit_code and c.message == str(e)
+        return
+    assert c.returncode == 0, c.stderr
+    assert r.uv.shape == (V.shape[0], 2) and r.uv.flags.c_contiguous
+    np.testing.assert_allclose(r.uv, c.uv, rtol=0, atol=1e-12)
+    assert_reports_equal(r.report, c.report)
+    assert r.residual == r.report["residual"] and r.flipped_triangles == r.report["flipped_triangles"]
+
+
+@pytest.mark.parametrize("options,args", [
+    ({"spacing": "uniform", "scale": "surface"}, ["--spacing", "uniform", "--scale", "surface"]),
+    ({"holes": "free"}, ["--holes", "free"]),
+    ({"holes": "natural"}, ["--holes", "natural"]),
+    ({"solver": "umfpack"}, ["--solver", "umfpack"]),
+    ({"boundary": "natural", "pins": [(0, 0.0, 0.0), (5, 1.0, 0.25)]},
+     ["--boundary", "natural", "--pin", "0:0,0", "--pin", "5:1,0.25"]),
+    ({"optimize_lambda": "area"}, ["--optimize-lambda", "area"]),
+    ({"optimize_boundary": "edge", "iterations": 5}, ["--optimize-boundary", "edge", "--iterations", "5"]),
+])
+def test_options_same_as_cli(cli, options, args):
+    path = shared_mesh("fairing-cross.off")
+    c = cli([path, *args])
+    assert c.returncode == 0, c.stderr
+    r = intrinsic.parameterize(str(path), **options)  # read from the file, as the CLI
+    np.testing.assert_allclose(r.uv, c.uv, rtol=0, atol=1e-12)
+    assert r.report["input"] == c.report["input"]
+    assert_reports_equal(r.report, c.report)
+
+
+def test_optimizer_wrappers(cli):
+    path = shared_mesh("snail.obj")
+    V, F = intrinsic.read_mesh(path)
+    r = intrinsic.optimal_lambda(V, F, energy="edge")
+    c = cli([path, "--optimize-lambda", "edge"])
+    np.testing.assert_allclose(r.uv, c.uv, rtol=0, atol=1e-12)
+    assert r.report["optimal_lambda"]["lambda"] == pytest.approx(c.report["optimal_lambda"]["lambda"], abs=1e-12)
+    r = intrinsic.optimize_boundary(V, F, energy="area", iterations=3)
+    c = cli([path, "--optimize-boundary", "area", "--iterations", "3"])
+    np.testing.assert_allclose(r.uv, c.uv, rtol=0, atol=1e-12)
+
+
+def test_charts_like_cli(cli):
+    """Several components become charts, as on the command line."""
+    V, F = intrinsic.read_mesh(shared_mesh("cat_head.obj"))
+    V2 = np.vstack([V, V + [10.0, 0.0, 0.0]])
+    F2 = np.vstack([F, F + V.shape[0]]).astype(np.int32)
+    import tempfile, os
+    with tempfile.TemporaryDirectory() as d:
+        p = os.path.join(d, "two.obj")
+        intrinsic.write_mesh(p, V2, F2)
+        c = cli([p])
+    r = intrinsic.parameterize(V2, F2)
+    assert len(r.report["charts"]) == 2
+    np.testing.assert_allclose(r.uv, c.uv, rtol=0, atol=1e-12)
+
+
+def test_large_patch(cli):
+    path = shared_mesh("max-planck-partial.obj")
+    for method, boundary in (("conformal", "circle"), ("conformal", "natural")):
+        c = cli([path, "--method", method, "--boundary", boundary])
+        r = intrinsic.parameterize(*intrinsic.read_mesh(path), method=method, boundary=boundary)
+        np.testing.assert_allclose(r.uv, c.uv, rtol=0, atol=1e-12)

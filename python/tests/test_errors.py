@@ -1,0 +1,116 @@
+# Each error kind raises its intrinsic.Error subclass with the CLI's message.
+import numpy as np
+import pytest
+
+import intrinsic
+from conftest import shared_mesh
+
+TETRA = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n"
+BAD_INDEX = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"
+
+
+def test_hierarchy():
+    for cls, code in ((intrinsic.UsageError, 1), (intrinsic.InputError, 2), (intrinsic.NumericalError, 3),
+                      (intrinsic.OutputError, 4)):
+        assert issubclass(cls, intrinsic.Error) and cls.exit_code == code
+    assert issubclass(intrinsic.Error, Exception)
+
+
+@pytest.mark.parametrize("text", [TETRA, BAD_INDEX], ids=["closed", "bad-index"])
+def test_input_errors_match_cli(cli, tmp_path, text):
+    path = tmp_path / "in.obj"
+    path.write_text(text)
+    c = cli([path])
+    assert c.returncode == 2
+    with pytest.raises(intrinsic.InputError) as e:
+        intrinsic.parameterize(str(path))
+    assert str(e.value) == c.message
+
+
+def test_closed_arrays_input_error():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
+    F = np.array([[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]], dtype=np.int32)
+    with pytest.raises(intrinsic.InputError, match="closed"):
+        intrinsic.parameterize(V, F)
+
+
+def test_bad_index_arrays_input_error():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=np.float64)
+    with pytest.raises(intrinsic.InputError):
+        intrinsic.parameterize(V, np.array([[0, 1, 8]], dtype=np.int32))
+    with pytest.raises(intrinsic.InputError):
+        intrinsic.parameterize(V, np.array([[0, 1, 2**40]], dtype=np.int64))
+
+
+def test_read_mesh_bad_index_matches_cli(cli, tmp_path):
+    path = tmp_path / "in.obj"
+    path.write_text(BAD_INDEX)
+    c = cli([path])
+    try:
+        V, F = intrinsic.read_mesh(path)  # the reader may accept it; validation refuses it
+        with pytest.raises(intrinsic.InputError):
+            intrinsic.parameterize(V, F)
+    except intrinsic.InputError as e:
+        assert str(e) == c.message
+
+
+def test_numerical_error_matches_cli(cli):
+    path = shared_mesh("cat_head.obj")
+    c = cli([path, "--solver", "bicgstab", "--max-residual", "1e-300"])
+    assert c.returncode == 3
+    with pytest.raises(intrinsic.NumericalError) as e:
+        intrinsic.parameterize(*intrinsic.read_mesh(path), solver="bicgstab", max_residual=1e-300)
+    assert str(e.value) == c.message
+
+
+def test_output_error_matches_cli(cli, tmp_path):
+    path = shared_mesh("cat_head.obj")
+    out = tmp_path / "missing-dir" / "x.obj"
+    c = cli([path], output="missing-dir/x.obj")
+    assert c.returncode == 4
+    V, F = intrinsic.read_mesh(path)
+    r = intrinsic.parameterize(V, F)
+    with pytest.raises(intrinsic.OutputError) as e:
+        intrinsic.write_mesh(out, V, F, r.uv)
+    assert str(e.value) == c.message
+    with pytest.raises(intrinsic.OutputError):
+        intrinsic.render(V, F, r.uv, path=tmp_path / "missing-dir" / "x.png", size=(16, 16))
+
+
+@pytest.mark.parametrize("options,args", [
+    ({"method": "foo"}, ["--method", "foo"]),
+    ({"spacing": "foo"}, ["--spacing", "foo"]),
+    ({"method": "mixed"}, ["--method", "mixed"]),
+    ({"lam": 0.5}, ["--lambda", "0.5"]),
+    ({"method": "authalic", "boundary": "natural"}, ["--method", "authalic", "--boundary", "natural"]),
+    ({"solver": "nope"}, ["--solver", "nope"]),
+    ({"pins": ["3:x"]}, ["--pin", "3:x"]),
+    ({"optimize_lambda": "edge", "optimize_boundary": "edge"}, ["--optimize-lambda", "edge",
+                                                               "--optimize-boundary", "edge"]),
+])
+def test_usage_errors_match_cli(cli, options, args):
+    path = shared_mesh("cat_head.obj")
+    c = cli([path, *args])
+    assert c.returncode == 1
+    with pytest.raises(intrinsic.UsageError) as e:
+        intrinsic.parameterize(*intrinsic.read_mesh(path), **options)
+    assert str(e.value) == c.message
+
+
+def test_unknown_option_and_lambda_spellings():
+    V, F = intrinsic.read_mesh(shared_mesh("cat_head.obj"))
+    with pytest.raises(intrinsic.UsageError, match="unknown option 'colour'"):
+        intrinsic.parameterize(V, F, colour="red")
+    a = intrinsic.parameterize(V, F, method="mixed", lam=0.3, mu=0.7).uv
+    b = intrinsic.parameterize(V, F, method="mixed", lambda_=0.3, mu=0.7).uv
+    c = intrinsic.parameterize(V, F, method="mixed", mu=0.7, **{"lambda": 0.3}).uv
+    assert np.array_equal(a, b) and np.array_equal(a, c)
+    with pytest.raises(intrinsic.UsageError):
+        intrinsic.parameterize(V, F, method="mixed", lam=0.3, lambda_=0.3)
+
+
+def test_bad_arrays_are_usage_errors():
+    with pytest.raises(intrinsic.UsageError, match="n x 3"):
+        intrinsic.parameterize(np.zeros((4, 2)), np.zeros((1, 3), dtype=np.int32))
+    with pytest.raises(intrinsic.UsageError, match="integer"):
+        intrinsic.parameterize(np.zeros((4, 3)), np.zeros((1, 3)))
