@@ -11,7 +11,7 @@ from conftest import cli_path, read_obj_uv, shared_mesh
 
 CONSTRAINTS = {
     "points": [{"face": 40, "bary": [0.2, 0.3, 0.5], "uv": [0.45, 0.55]}, {"vertex": 60, "uv": [0.6, 0.5]}],
-    "lines": [{"path": [{"face": 10, "bary": [0.3, 0.3, 0.4]}, {"vertex": 100}], "to": [[0.3, 0.3], [0.7, 0.35]]}],
+    "lines": [{"path": [{"vertex": 1156}, {"vertex": 1225}], "to": [[0.4, 0.45], [0.45, 0.7]]}],
 }
 
 

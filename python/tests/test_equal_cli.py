@@ -23,10 +23,18 @@ def cli_args(method, kw, boundary):
     return args
 
 
-def assert_reports_equal(py, cli):
-    assert set(py) == set(cli), set(py) ^ set(cli)
-    for k in set(py) - VOLATILE:
-        assert py[k] == pytest.approx(cli[k], rel=1e-9, abs=1e-12), k
+def assert_reports_equal(py, cli, where="report"):
+    """Same keys everywhere, same values (numbers to 1e-9), timings aside."""
+    if isinstance(py, dict):
+        assert isinstance(cli, dict) and set(py) == set(cli), (where, set(py) ^ set(cli))
+        for k in set(py) - VOLATILE:
+            assert_reports_equal(py[k], cli[k], f"{where}.{k}")
+    elif isinstance(py, list):
+        assert isinstance(cli, list) and len(py) == len(cli), where
+        for i, (a, b) in enumerate(zip(py, cli)):
+            assert_reports_equal(a, b, f"{where}[{i}]")
+    else:
+        assert py == pytest.approx(cli, rel=1e-9, abs=1e-12), where
 
 
 @pytest.mark.parametrize("mesh", MESHES)
