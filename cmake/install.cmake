@@ -29,6 +29,8 @@ if(INTRINSIC_BUILD_TESTS AND NOT INTRINSIC_SANITIZE)
   add_test(NAME install_consumer
            COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${CMAKE_BINARY_DIR} -DSOURCE_DIR=${CMAKE_SOURCE_DIR}
                    -DWORK_DIR=${CMAKE_BINARY_DIR}/consumer-test -DCONFIG=$<CONFIG>
+                   -DPYTHON=$<$<BOOL:${INTRINSIC_BUILD_PYTHON}>:${Python3_EXECUTABLE}>
+                   -DPYTHON_DIR=${INTRINSIC_PYTHON_INSTALL_DIR}
                    -P ${CMAKE_SOURCE_DIR}/tests/consumer/run_consumer_test.cmake)
   set_tests_properties(install_consumer PROPERTIES TIMEOUT 900 RUN_SERIAL TRUE)
 endif()

@@ -1,6 +1,8 @@
 # ctest script (cmake -P): installs the build tree into a temporary prefix,
 # then configures, builds and runs tests/consumer against it.
-# Variables: BUILD_DIR, SOURCE_DIR, WORK_DIR, CONFIG.
+# When the Python module is built, also imports the installed package with
+# PYTHONPATH=PREFIX/PYTHON_DIR and parameterizes a small disk.
+# Variables: BUILD_DIR, SOURCE_DIR, WORK_DIR, CONFIG, PYTHON (may be empty), PYTHON_DIR.
 set(prefix ${WORK_DIR}/prefix)
 file(REMOVE_RECURSE ${WORK_DIR})
 function(run)
@@ -20,3 +22,7 @@ run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/consumer -B ${WORK_DIR}/build -DCMAK
     -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer)
+if(PYTHON)
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/${PYTHON_DIR} ${PYTHON} ${SOURCE_DIR}/tests/consumer/check_python.py
+      ${prefix})
+endif()
