@@ -160,7 +160,11 @@ class PyParameterizer {
     p_->set_constraint_targets(t);
   }
 
-  void clear_constraints() { p_->clear_constraints(); }
+  void clear_constraints() {
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(mutex_);
+    p_->clear_constraints();
+  }
   Parameterizer& get() { return *p_; }
   std::mutex& mutex() { return mutex_; }
 
@@ -263,7 +267,10 @@ void register_parameterizer(py::module_& m) {
                               "refactoring when the set of fixed\nvertices stays the same. Options as "
                               "parameterize() except the optimize_* ones. One component only.")
       .def(py::init<const py::object&, const py::object&, const py::kwargs&>(), py::arg("V"),
-           py::arg("F") = py::none())
+           py::arg("F") = py::none(),
+           "V, F arrays (or a mesh file path and no F) and the options of parameterize(): method, lam/lambda_,\n"
+           "mu, boundary, spacing, scale, holes, largest_component, solver, pins, max_residual, constraints.\n"
+           "Validates, assembles and factors (GIL released). Raises as parameterize().")
       .def("solve", [](PyParameterizer& p) { return p.solve(std::nullopt); },
            "The map for the current boundary (or the one set by set_boundary) and constraints -> Result.")
       .def("solve_with_boundary",
@@ -281,10 +288,12 @@ void register_parameterizer(py::module_& m) {
       .def("clear_constraints", &PyParameterizer::clear_constraints, "Removes every constraint.")
       .def_property_readonly("boundary", [](PyParameterizer& p) { return from_fixed(p.get().boundary()); },
                              "Current fixed vertices [(vertex, u, v), ...] in output coordinates.")
-      .def_property_readonly("free_vertices", [](PyParameterizer& p) { return p.get().free_vertices(); })
+      .def_property_readonly("free_vertices", [](PyParameterizer& p) { return p.get().free_vertices(); },
+                             "Unknowns per coordinate of the factored system.")
       .def_property_readonly("factorizations", [](PyParameterizer& p) { return p.get().factorizations(); },
                              "Sparse numeric factorizations so far.")
-      .def_property_readonly("constraint_setups", [](PyParameterizer& p) { return p.get().constraint_setups(); });
+      .def_property_readonly("constraint_setups", [](PyParameterizer& p) { return p.get().constraint_setups(); },
+                             "Dense constraint factorizations so far (one per set_constraints).");
 }
 
 }  // namespace intrinsic::python
