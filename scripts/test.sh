@@ -8,8 +8,13 @@ JOBS=${JOBS:-$(nproc)}
 # The CGAL comparison is a benchmark of its own (slow to compile); not built here.
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DINTRINSIC_BENCH_CGAL=OFF
 cmake --build build -j"$JOBS"
+# ctest also runs the Python tests (python_tests: /usr/bin/python3 -m pytest
+# python/tests) and install_consumer (cmake --install into a temporary prefix,
+# a find_package(intrinsic) project and the installed Python package).
 (cd build && ctest --output-on-failure -j"$JOBS")
 if [ "${INTRINSIC_SKIP_SANITIZERS:-0}" != 1 ]; then
+  # No Python module here (INTRINSIC_SANITIZE turns it off: an ASan-instrumented
+  # module cannot load into a plain python3), so no Python or consumer tests.
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DINTRINSIC_SANITIZE=ON -DINTRINSIC_BUILD_BENCH=OFF
   cmake --build build-asan -j"$JOBS"
   # The large shared mesh is exercised by the Release run; under the

@@ -89,3 +89,26 @@ def test_gil_released():
     t.join()
     # Holding the GIL would leave the ticker a switch interval or two (5 ms each).
     assert one < 0.05 or len(ticks) > 10, (one, len(ticks))
+
+
+def test_render_view_and_modes():
+    V, F = intrinsic.read_mesh(shared_mesh("cat_head.obj"))
+    uv = intrinsic.parameterize(V, F).uv
+    a = intrinsic.render(V, F, uv, size=(64, 48), view=(30, 45))
+    b = intrinsic.render(V, F, uv, size=(64, 48), view="30,45")
+    assert np.array_equal(a, b)
+    assert intrinsic.render(V, F, uv, mode="stretch", size=(64, 48), on_surface=True, log=True).shape == (48, 64, 3)
+    with pytest.raises(intrinsic.UsageError):
+        intrinsic.render(V, F, uv, mode="checker", log=True)
+    with pytest.raises(intrinsic.UsageError):
+        intrinsic.render(V, F, uv, mode="nope")
+
+
+def test_set_boundary_then_solve():
+    V, F = intrinsic.read_mesh(shared_mesh("cat_head.obj"))
+    p = intrinsic.Parameterizer(V, F, boundary="square")
+    fixed = [(v, 0.5 * u, 0.5 * w) for v, u, w in p.boundary]
+    p.set_boundary(fixed)
+    r = p.solve()
+    np.testing.assert_allclose(r.uv, 0.5 * intrinsic.parameterize(V, F, boundary="square").uv, atol=1e-12)
+    assert p.factorizations == 1 and r.report["factorizations"] == 1
