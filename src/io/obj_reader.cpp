@@ -92,39 +92,35 @@ void read_texcoord(TextScanner& s, ObjState& st) {
   ++st.n_tc;
 }
 
-// Reads one face corner "v", "v/vt", "v//vn" or "v/vt/vn".
-Corner read_corner(TextScanner& s, const ObjState& st) {
-  Corner c{0, -1};
-  std::int64_t written;
-  if (!s.parse_int64_prefix(written)) {
-    s.fail("expected a vertex index in face, found " + quote_token(s.word()));
-  }
-  c.v = resolve(s, written, st.b.vertex_count(), "vertex");
-  if (s.consume('/')) {
-    if (s.pos() < s.end() && *s.pos() != '/') {
-      std::int64_t t;
-      if (!s.parse_int64_prefix(t)) s.fail("expected a texture index after '/' in face");
-      c.vt = resolve(s, t, st.n_tc, "texture");
-    }
-    if (s.consume('/')) {
-      std::int64_t n;
-      // Normal indices are not used, but a malformed one is still malformed.
-      if (!s.at_token_end() && !s.parse_int64_prefix(n)) s.fail("expected a normal index after '/' in face");
-    }
-  }
-  if (!s.at_token_end()) s.fail("unexpected " + quote_token(s.word()) + " in face");
-  return c;
-}
-
-// Reads the corners of an 'f' line (keyword already consumed) and appends
-// its fan of triangles; texture indices are kept only while every face has them.
+// Reads the corners ("v", "v/vt", "v//vn" or "v/vt/vn") of an 'f' line
+// (keyword already consumed) and appends its fan of triangles; texture
+// indices are kept only while every face has them. The corner loop stays in
+// this function: it runs for every corner of the file.
 void read_face(TextScanner& s, ObjState& st) {
   MeshBuilder& b = st.b;
   std::vector<Corner>& poly = st.poly;
   poly.clear();
   bool all_vt = true;
   while (!s.at_line_end()) {
-    const Corner c = read_corner(s, st);
+    Corner c{0, -1};
+    std::int64_t written;
+    if (!s.parse_int64_prefix(written)) {
+      s.fail("expected a vertex index in face, found " + quote_token(s.word()));
+    }
+    c.v = resolve(s, written, b.vertex_count(), "vertex");
+    if (s.consume('/')) {
+      if (s.pos() < s.end() && *s.pos() != '/') {
+        std::int64_t t;
+        if (!s.parse_int64_prefix(t)) s.fail("expected a texture index after '/' in face");
+        c.vt = resolve(s, t, st.n_tc, "texture");
+      }
+      if (s.consume('/')) {
+        std::int64_t n;
+        // Normal indices are not used, but a malformed one is still malformed.
+        if (!s.at_token_end() && !s.parse_int64_prefix(n)) s.fail("expected a normal index after '/' in face");
+      }
+    }
+    if (!s.at_token_end()) s.fail("unexpected " + quote_token(s.word()) + " in face");
     if (c.vt < 0) all_vt = false;
     poly.push_back(c);
   }
