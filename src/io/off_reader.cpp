@@ -31,6 +31,7 @@ std::int64_t read_count(TextScanner& s, const char* what) {
   return n;
 }
 
+// The counts line of the header.
 struct OffHeader {
   std::int64_t nv = 0, nf = 0;  // announced vertex and face counts
   int line = 0;                 // the counts' line, for messages

@@ -262,6 +262,7 @@ void read_body(Cursor& cur, const std::vector<Element>& elements, const Layout& 
   }
 }
 
+// What the header declares: the body format and the elements in file order.
 struct Header {
   Format format = Format::Ascii;
   bool have_format = false;
