@@ -34,37 +34,144 @@ std::int64_t resolve(TextScanner& s, std::int64_t idx, std::int64_t defined, con
   return defined + idx;
 }
 
+// What the line loop carries from one line to the next.
+struct ObjState {
+  MeshBuilder b;
+  std::int64_t max_v = 0, max_f = 0;  // the options' limits
+  std::int64_t n_tc = 0;              // texture coordinates so far
+  bool every_face_has_vt = true;
+  std::vector<Corner> poly;  // the current face, reused to avoid allocations
+};
+
+// Counting 'v' and 'f' lines first costs one memchr pass but spares the
+// repeated regrowth (and page faults) of the big arrays.
+void reserve_from_line_counts(const char* data, std::size_t size, ObjState& st) {
+  std::size_t nv_hint = 0, nf_hint = 0;
+  const char* q = data;
+  const char* end = data + size;
+  while (q < end) {
+    if (end - q > 1 && q[1] == ' ') {
+      if (q[0] == 'v') ++nv_hint;
+      if (q[0] == 'f') ++nf_hint;
+    }
+    const void* nl = std::memchr(q, '\n', static_cast<std::size_t>(end - q));
+    q = nl ? static_cast<const char*>(nl) + 1 : end;
+  }
+  nv_hint = std::min<std::size_t>(nv_hint, static_cast<std::size_t>(st.max_v));
+  nf_hint = std::min<std::size_t>(nf_hint, static_cast<std::size_t>(st.max_f));
+  st.b.xyz.reserve(nv_hint * 3);
+  st.b.tri.reserve(nf_hint * 3);
+  st.b.line.reserve(nf_hint);
+}
+
+// Reads the x y z of a 'v' line (keyword already consumed).
+void read_vertex(TextScanner& s, ObjState& st) {
+  MeshBuilder& b = st.b;
+  double c[3];
+  for (double& x : c) {
+    if (!s.parse_double(x)) s.fail("expected a number after 'v'");
+  }
+  if (b.vertex_count() >= st.max_v)
+    s.fail("more than " + std::to_string(st.max_v) + " vertices (the limit)");
+  if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]))
+    s.fail("vertex " + std::to_string(b.vertex_count() + 1) + " has a non-finite coordinate");
+  b.xyz.insert(b.xyz.end(), c, c + 3);
+  // Whatever follows (w, vertex colours) is not ours to read.
+}
+
+// Reads the u [v] of a 'vt' line (keyword already consumed).
+void read_texcoord(TextScanner& s, ObjState& st) {
+  double u = 0, v = 0;
+  if (!s.parse_double(u)) s.fail("expected a number after 'vt'");
+  if (!s.at_line_end() && !s.parse_double(v)) s.fail("expected a number after 'vt'");
+  if (!std::isfinite(u) || !std::isfinite(v))
+    s.fail("texture coordinate " + std::to_string(st.n_tc + 1) + " is not finite");
+  if (st.n_tc >= st.max_v) s.fail("more than " + std::to_string(st.max_v) + " texture coordinates (the limit)");
+  st.b.uv.push_back(u);
+  st.b.uv.push_back(v);
+  ++st.n_tc;
+}
+
+// Reads the corners ("v", "v/vt", "v//vn" or "v/vt/vn") of an 'f' line
+// (keyword already consumed) and appends its fan of triangles; texture
+// indices are kept only while every face has them. The corner loop stays in
+// this function: it runs for every corner of the file.
+void read_face(TextScanner& s, ObjState& st) {
+  MeshBuilder& b = st.b;
+  std::vector<Corner>& poly = st.poly;
+  poly.clear();
+  bool all_vt = true;
+  while (!s.at_line_end()) {
+    Corner c{0, -1};
+    std::int64_t written;
+    if (!s.parse_int64_prefix(written)) {
+      s.fail("expected a vertex index in face, found " + quote_token(s.word()));
+    }
+    c.v = resolve(s, written, b.vertex_count(), "vertex");
+    if (s.consume('/')) {
+      if (s.pos() < s.end() && *s.pos() != '/') {
+        std::int64_t t;
+        if (!s.parse_int64_prefix(t)) s.fail("expected a texture index after '/' in face");
+        c.vt = resolve(s, t, st.n_tc, "texture");
+      }
+      if (s.consume('/')) {
+        std::int64_t n;
+        // Normal indices are not used, but a malformed one is still malformed.
+        if (!s.at_token_end() && !s.parse_int64_prefix(n)) s.fail("expected a normal index after '/' in face");
+      }
+    }
+    if (!s.at_token_end()) s.fail("unexpected " + quote_token(s.word()) + " in face");
+    if (c.vt < 0) all_vt = false;
+    poly.push_back(c);
+  }
+  if (poly.size() < 3) s.fail("face has " + std::to_string(poly.size()) + " vertices (at least 3 needed)");
+  if (!all_vt) st.every_face_has_vt = false;
+  if (b.triangle_count() + static_cast<std::int64_t>(poly.size()) - 2 > st.max_f)
+    s.fail("more than " + std::to_string(st.max_f) + " faces (the limit)");
+  for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
+    const Corner* t[3] = {&poly[0], &poly[k], &poly[k + 1]};
+    for (const Corner* c : t) {
+      b.tri.push_back(static_cast<int>(c->v));
+      if (st.every_face_has_vt) b.tri_uv.push_back(static_cast<int>(c->vt));
+    }
+    b.line.push_back(s.line());
+  }
+  if (!st.every_face_has_vt) b.tri_uv.clear();
+}
+
+// Range-checks the face indices once every element is known (positive
+// indices may refer forward); drops the texture coordinates if unused.
+void check_face_indices(const TextScanner& s, ObjState& st) {
+  MeshBuilder& b = st.b;
+  const std::int64_t nv = b.vertex_count();
+  for (std::size_t i = 0; i < b.tri.size(); ++i) {
+    if (b.tri[i] >= nv) {
+      s.fail_at(b.line[i / 3], "face index " + std::to_string(std::int64_t(b.tri[i]) + 1) +
+                                   " out of range (file has " + std::to_string(nv) + " vertices)");
+    }
+  }
+  if (!b.tri_uv.empty()) {
+    for (std::size_t i = 0; i < b.tri_uv.size(); ++i) {
+      if (b.tri_uv[i] >= st.n_tc) {
+        s.fail_at(b.line[i / 3], "face texture index " + std::to_string(std::int64_t(b.tri_uv[i]) + 1) +
+                                     " out of range (file has " + std::to_string(st.n_tc) +
+                                     " texture coordinates)");
+      }
+    }
+  } else {
+    b.uv.clear();
+  }
+}
+
 }  // namespace
 
 MeshData read_obj(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt) {
   TextScanner s(data, data + size, name);
-  MeshBuilder b;
-  const std::int64_t max_v = vertex_limit(opt);
-  const std::int64_t max_f = face_limit(opt);
-  std::int64_t n_tc = 0;
-  bool every_face_has_vt = true;
-  std::vector<Corner> poly;
-  poly.reserve(16);
-  // Counting 'v' and 'f' lines first costs one memchr pass but spares the
-  // repeated regrowth (and page faults) of the big arrays.
-  {
-    std::size_t nv_hint = 0, nf_hint = 0;
-    const char* q = data;
-    const char* end = data + size;
-    while (q < end) {
-      if (end - q > 1 && q[1] == ' ') {
-        if (q[0] == 'v') ++nv_hint;
-        if (q[0] == 'f') ++nf_hint;
-      }
-      const void* nl = std::memchr(q, '\n', static_cast<std::size_t>(end - q));
-      q = nl ? static_cast<const char*>(nl) + 1 : end;
-    }
-    nv_hint = std::min<std::size_t>(nv_hint, static_cast<std::size_t>(max_v));
-    nf_hint = std::min<std::size_t>(nf_hint, static_cast<std::size_t>(max_f));
-    b.xyz.reserve(nv_hint * 3);
-    b.tri.reserve(nf_hint * 3);
-    b.line.reserve(nf_hint);
-  }
+  ObjState st;
+  st.max_v = vertex_limit(opt);
+  st.max_f = face_limit(opt);
+  st.poly.reserve(16);
+  reserve_from_line_counts(data, size, st);
 
   while (!s.at_end()) {
     s.skip_blanks();
@@ -76,92 +183,20 @@ MeshData read_obj(const char* data, std::size_t size, const std::string& name, c
     };
     if (keyword_is("v", 1)) {
       s.word();
-      double c[3];
-      for (double& x : c) {
-        if (!s.parse_double(x)) s.fail("expected a number after 'v'");
-      }
-      if (b.vertex_count() >= max_v)
-        s.fail("more than " + std::to_string(max_v) + " vertices (the limit)");
-      if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]))
-        s.fail("vertex " + std::to_string(b.vertex_count() + 1) + " has a non-finite coordinate");
-      b.xyz.insert(b.xyz.end(), c, c + 3);
-      // Whatever follows (w, vertex colours) is not ours to read.
+      read_vertex(s, st);
     } else if (keyword_is("vt", 2)) {
       s.word();
-      double u = 0, v = 0;
-      if (!s.parse_double(u)) s.fail("expected a number after 'vt'");
-      if (!s.at_line_end() && !s.parse_double(v)) s.fail("expected a number after 'vt'");
-      if (!std::isfinite(u) || !std::isfinite(v))
-        s.fail("texture coordinate " + std::to_string(n_tc + 1) + " is not finite");
-      if (n_tc >= max_v) s.fail("more than " + std::to_string(max_v) + " texture coordinates (the limit)");
-      b.uv.push_back(u);
-      b.uv.push_back(v);
-      ++n_tc;
+      read_texcoord(s, st);
     } else if (keyword_is("f", 1)) {
       s.word();
-      poly.clear();
-      bool all_vt = true;
-      while (!s.at_line_end()) {
-        Corner c{0, -1};
-        std::int64_t written;
-        if (!s.parse_int64_prefix(written)) {
-          s.fail("expected a vertex index in face, found " + quote_token(s.word()));
-        }
-        c.v = resolve(s, written, b.vertex_count(), "vertex");
-        if (s.consume('/')) {
-          if (s.pos() < s.end() && *s.pos() != '/') {
-            std::int64_t t;
-            if (!s.parse_int64_prefix(t)) s.fail("expected a texture index after '/' in face");
-            c.vt = resolve(s, t, n_tc, "texture");
-          }
-          if (s.consume('/')) {
-            std::int64_t n;
-            // Normal indices are not used, but a malformed one is still malformed.
-            if (!s.at_token_end() && !s.parse_int64_prefix(n)) s.fail("expected a normal index after '/' in face");
-          }
-        }
-        if (!s.at_token_end()) s.fail("unexpected " + quote_token(s.word()) + " in face");
-        if (c.vt < 0) all_vt = false;
-        poly.push_back(c);
-      }
-      if (poly.size() < 3) s.fail("face has " + std::to_string(poly.size()) + " vertices (at least 3 needed)");
-      if (!all_vt) every_face_has_vt = false;
-      if (b.triangle_count() + static_cast<std::int64_t>(poly.size()) - 2 > max_f)
-        s.fail("more than " + std::to_string(max_f) + " faces (the limit)");
-      for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
-        const Corner* t[3] = {&poly[0], &poly[k], &poly[k + 1]};
-        for (const Corner* c : t) {
-          b.tri.push_back(static_cast<int>(c->v));
-          if (every_face_has_vt) b.tri_uv.push_back(static_cast<int>(c->vt));
-        }
-        b.line.push_back(s.line());
-      }
-      if (!every_face_has_vt) b.tri_uv.clear();
+      read_face(s, st);
     }
     // Other statements (vn, vp, g, o, s, usemtl, mtllib, l, comments) and
     // whatever follows the values we read are skipped.
     s.next_line();
   }
-
-  const std::int64_t nv = b.vertex_count();
-  for (std::size_t i = 0; i < b.tri.size(); ++i) {
-    if (b.tri[i] >= nv) {
-      s.fail_at(b.line[i / 3], "face index " + std::to_string(std::int64_t(b.tri[i]) + 1) +
-                                   " out of range (file has " + std::to_string(nv) + " vertices)");
-    }
-  }
-  if (!b.tri_uv.empty()) {
-    for (std::size_t i = 0; i < b.tri_uv.size(); ++i) {
-      if (b.tri_uv[i] >= n_tc) {
-        s.fail_at(b.line[i / 3], "face texture index " + std::to_string(std::int64_t(b.tri_uv[i]) + 1) +
-                                     " out of range (file has " + std::to_string(n_tc) +
-                                     " texture coordinates)");
-      }
-    }
-  } else {
-    b.uv.clear();
-  }
-  return b.finish(name);
+  check_face_indices(s, st);
+  return st.b.finish(name);
 }
 
 }  // namespace intrinsic::io

@@ -31,10 +31,14 @@ std::int64_t read_count(TextScanner& s, const char* what) {
   return n;
 }
 
-}  // namespace
+// The counts line of the header.
+struct OffHeader {
+  std::int64_t nv = 0, nf = 0;  // announced vertex and face counts
+  int line = 0;                 // the counts' line, for messages
+};
 
-MeshData read_off(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt) {
-  TextScanner s(data, data + size, name);
+// Reads the keyword and the counts line, leaving s at the first vertex line.
+OffHeader read_header(TextScanner& s, const std::string& name) {
   s.skip_space_and_comments();
   if (s.at_end()) throw_input(name + ": no vertices (empty file)");
   std::string_view kw = s.word();
@@ -50,35 +54,39 @@ MeshData read_off(const char* data, std::size_t size, const std::string& name, c
     // Not a keyword: it is the start of the counts line.
     s = TextScanner(w.data(), s.end(), name, s.line());
   }
-  const std::int64_t nv = read_count(s, "vertices");
-  const std::int64_t nf = read_count(s, "faces");
+  OffHeader h;
+  h.nv = read_count(s, "vertices");
+  h.nf = read_count(s, "faces");
   if (!s.at_line_end()) {
     std::int64_t ne;  // edge count: unused, but must be a number if present
     if (!s.parse_int64(ne)) s.fail("expected the number of edges in the OFF header");
   }
-  const int header_line = s.line();
+  h.line = s.line();
   s.next_line();
+  return h;
+}
 
-  if (nv > vertex_limit(opt))
-    s.fail_at(header_line, "header announces " + std::to_string(nv) + " vertices, more than the limit of " +
-                               std::to_string(vertex_limit(opt)));
-  if (nf > face_limit(opt))
-    s.fail_at(header_line, "header announces " + std::to_string(nf) + " faces, more than the limit of " +
-                               std::to_string(face_limit(opt)));
+// Refuses counts above the options' limits, or that the rest of the file
+// cannot hold.
+void check_counts(const TextScanner& s, const OffHeader& h, const ReadOptions& opt) {
+  if (h.nv > vertex_limit(opt))
+    s.fail_at(h.line, "header announces " + std::to_string(h.nv) + " vertices, more than the limit of " +
+                          std::to_string(vertex_limit(opt)));
+  if (h.nf > face_limit(opt))
+    s.fail_at(h.line, "header announces " + std::to_string(h.nf) + " faces, more than the limit of " +
+                          std::to_string(face_limit(opt)));
   // Each vertex needs at least "0 0 0\n" and each face "3 0 0 0\n": refuse
   // impossible counts before allocating for them.
   const std::uint64_t left = s.remaining();
-  if (static_cast<std::uint64_t>(nv) > (left + 1) / 6 ||
-      static_cast<std::uint64_t>(nv) * 6 + static_cast<std::uint64_t>(nf) * 8 > left + 8) {
-    s.fail_at(header_line, "header announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
-                               " faces, but the file holds only " + std::to_string(left) + " more bytes");
+  if (static_cast<std::uint64_t>(h.nv) > (left + 1) / 6 ||
+      static_cast<std::uint64_t>(h.nv) * 6 + static_cast<std::uint64_t>(h.nf) * 8 > left + 8) {
+    s.fail_at(h.line, "header announces " + std::to_string(h.nv) + " vertices and " + std::to_string(h.nf) +
+                          " faces, but the file holds only " + std::to_string(left) + " more bytes");
   }
+}
 
-  MeshBuilder b;
-  b.xyz.reserve(static_cast<std::size_t>(nv) * 3);
-  b.tri.reserve(static_cast<std::size_t>(nf) * 3);
-  b.line.reserve(static_cast<std::size_t>(nf));
-
+// Reads nv vertex lines, ignoring anything after x y z.
+void read_vertices(TextScanner& s, std::int64_t nv, MeshBuilder& b) {
   for (std::int64_t i = 0; i < nv; ++i) {
     s.skip_space_and_comments();
     if (s.at_end()) s.fail("file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
@@ -91,7 +99,11 @@ MeshData read_off(const char* data, std::size_t size, const std::string& name, c
     b.xyz.insert(b.xyz.end(), c, c + 3);
     s.next_line();  // colours, normals, texture coordinates
   }
+}
 
+// Reads nf face lines "n i1 ... in", fanned into triangles.
+void read_faces(TextScanner& s, const OffHeader& h, const ReadOptions& opt, MeshBuilder& b) {
+  const std::int64_t nv = h.nv, nf = h.nf;
   std::vector<std::int64_t> poly;
   for (std::int64_t i = 0; i < nf; ++i) {
     s.skip_space_and_comments();
@@ -121,6 +133,20 @@ MeshData read_off(const char* data, std::size_t size, const std::string& name, c
     }
     s.next_line();  // per-face colour
   }
+}
+
+}  // namespace
+
+MeshData read_off(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt) {
+  TextScanner s(data, data + size, name);
+  const OffHeader h = read_header(s, name);
+  check_counts(s, h, opt);
+  MeshBuilder b;
+  b.xyz.reserve(static_cast<std::size_t>(h.nv) * 3);
+  b.tri.reserve(static_cast<std::size_t>(h.nf) * 3);
+  b.line.reserve(static_cast<std::size_t>(h.nf));
+  read_vertices(s, h.nv, b);
+  read_faces(s, h, opt, b);
   return b.finish(name);
 }
 

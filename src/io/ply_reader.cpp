@@ -262,16 +262,53 @@ void read_body(Cursor& cur, const std::vector<Element>& elements, const Layout& 
   }
 }
 
-}  // namespace
-
-MeshData read_ply(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt) {
-  TextScanner s(data, data + size, name);
-  if (s.word() != "ply" || !s.at_line_end()) s.fail("not a PLY file (the first line must be 'ply')");
-  s.next_line();
-
+// What the header declares: the body format and the elements in file order.
+struct Header {
   Format format = Format::Ascii;
   bool have_format = false;
   std::vector<Element> elements;
+};
+
+// Parses the rest of a "format" line into h.
+void read_format_line(TextScanner& s, Header& h) {
+  std::string_view f = s.word();
+  if (f == "ascii") h.format = Format::Ascii;
+  else if (f == "binary_little_endian") h.format = Format::BinaryLE;
+  else if (f == "binary_big_endian") h.format = Format::BinaryBE;
+  else s.fail("unknown PLY format " + quote_token(f));
+  h.have_format = true;
+}
+
+// Parses the rest of an "element" line and appends the element.
+void read_element_line(TextScanner& s, std::vector<Element>& elements) {
+  Element e;
+  e.name = std::string(s.word());
+  e.line = s.line();
+  if (e.name.empty()) s.fail("element without a name");
+  if (!s.parse_int64(e.count) || e.count < 0) s.fail("expected the number of '" + e.name + "' elements");
+  elements.push_back(std::move(e));
+}
+
+// Parses the rest of a "property" line and adds it to the last element.
+void read_property_line(TextScanner& s, std::vector<Element>& elements) {
+  if (elements.empty()) s.fail("property before any element");
+  Property p;
+  std::string_view t = s.word();
+  if (t == "list") {
+    p.is_list = true;
+    std::string_view ct = s.word();
+    if (!parse_type(ct, p.count_type)) s.fail("unknown PLY type " + quote_token(ct));
+    t = s.word();
+  }
+  if (!parse_type(t, p.type)) s.fail("unknown PLY type " + quote_token(t));
+  p.name = std::string(s.word());
+  if (p.name.empty()) s.fail("property without a name");
+  elements.back().props.push_back(std::move(p));
+}
+
+// Reads the header lines after "ply" up to and including "end_header".
+Header read_header(TextScanner& s) {
+  Header h;
   while (true) {
     if (s.at_end()) s.fail("the header has no 'end_header' line");
     std::string_view kw = s.word();
@@ -283,41 +320,46 @@ MeshData read_ply(const char* data, std::size_t size, const std::string& name, c
       s.next_line();
       continue;
     }
-    if (kw == "format") {
-      std::string_view f = s.word();
-      if (f == "ascii") format = Format::Ascii;
-      else if (f == "binary_little_endian") format = Format::BinaryLE;
-      else if (f == "binary_big_endian") format = Format::BinaryBE;
-      else s.fail("unknown PLY format " + quote_token(f));
-      have_format = true;
-    } else if (kw == "element") {
-      Element e;
-      e.name = std::string(s.word());
-      e.line = s.line();
-      if (e.name.empty()) s.fail("element without a name");
-      if (!s.parse_int64(e.count) || e.count < 0) s.fail("expected the number of '" + e.name + "' elements");
-      elements.push_back(std::move(e));
-    } else if (kw == "property") {
-      if (elements.empty()) s.fail("property before any element");
-      Property p;
-      std::string_view t = s.word();
-      if (t == "list") {
-        p.is_list = true;
-        std::string_view ct = s.word();
-        if (!parse_type(ct, p.count_type)) s.fail("unknown PLY type " + quote_token(ct));
-        t = s.word();
-      }
-      if (!parse_type(t, p.type)) s.fail("unknown PLY type " + quote_token(t));
-      p.name = std::string(s.word());
-      if (p.name.empty()) s.fail("property without a name");
-      elements.back().props.push_back(std::move(p));
-    } else {
-      s.fail("unexpected header line starting with " + quote_token(kw));
-    }
+    if (kw == "format") read_format_line(s, h);
+    else if (kw == "element") read_element_line(s, h.elements);
+    else if (kw == "property") read_property_line(s, h.elements);
+    else s.fail("unexpected header line starting with " + quote_token(kw));
     s.next_line();
   }
-  if (!have_format) throw_input(name + ": the PLY header has no 'format' line");
+  return h;
+}
 
+// Finds the x/y/z properties (required) and the first complete u/v pair
+// under any of the usual names (optional) in the vertex element.
+void find_vertex_properties(const TextScanner& s, const Element& v, Layout& lay) {
+  const char* axis[3] = {"x", "y", "z"};
+  const char* uv_names[][2] = {{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
+  for (int k = 0; k < static_cast<int>(v.props.size()); ++k) {
+    const Property& p = v.props[k];
+    if (p.is_list) continue;
+    for (int a = 0; a < 3; ++a)
+      if (p.name == axis[a]) lay.xyz[a] = k;
+  }
+  for (int a = 0; a < 3; ++a)
+    if (lay.xyz[a] < 0) s.fail_at(v.line, std::string("the vertex element has no '") + axis[a] + "' property");
+  for (const auto& pair : uv_names) {
+    int found[2] = {-1, -1};
+    for (int k = 0; k < static_cast<int>(v.props.size()); ++k) {
+      if (v.props[k].is_list) continue;
+      if (v.props[k].name == pair[0]) found[0] = k;
+      if (v.props[k].name == pair[1]) found[1] = k;
+    }
+    if (found[0] >= 0 && found[1] >= 0) {
+      lay.uv[0] = found[0];
+      lay.uv[1] = found[1];
+      break;
+    }
+  }
+}
+
+// Locates the vertex and face elements and the properties read from them;
+// throws if one is missing, empty or duplicated. Points into `elements`.
+Layout find_layout(const TextScanner& s, const std::vector<Element>& elements, const std::string& name) {
   Layout lay;
   for (const Element& e : elements) {
     if (e.name == "vertex") {
@@ -330,77 +372,76 @@ MeshData read_ply(const char* data, std::size_t size, const std::string& name, c
   }
   if (!lay.vertex || lay.vertex->count == 0) throw_input(name + ": no vertices");
   if (!lay.face || lay.face->count == 0) throw_input(name + ": no faces");
-  {
-    const Element& v = *lay.vertex;
-    const char* axis[3] = {"x", "y", "z"};
-    const char* uv_names[][2] = {{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
-    for (int k = 0; k < static_cast<int>(v.props.size()); ++k) {
-      const Property& p = v.props[k];
-      if (p.is_list) continue;
-      for (int a = 0; a < 3; ++a)
-        if (p.name == axis[a]) lay.xyz[a] = k;
-    }
-    for (int a = 0; a < 3; ++a)
-      if (lay.xyz[a] < 0) s.fail_at(v.line, std::string("the vertex element has no '") + axis[a] + "' property");
-    for (const auto& pair : uv_names) {
-      int found[2] = {-1, -1};
-      for (int k = 0; k < static_cast<int>(v.props.size()); ++k) {
-        if (v.props[k].is_list) continue;
-        if (v.props[k].name == pair[0]) found[0] = k;
-        if (v.props[k].name == pair[1]) found[1] = k;
-      }
-      if (found[0] >= 0 && found[1] >= 0) {
-        lay.uv[0] = found[0];
-        lay.uv[1] = found[1];
-        break;
-      }
-    }
-    const Element& f = *lay.face;
-    for (int k = 0; k < static_cast<int>(f.props.size()); ++k) {
-      if (f.props[k].is_list && (f.props[k].name == "vertex_indices" || f.props[k].name == "vertex_index"))
-        lay.indices = k;
-    }
-    if (lay.indices < 0) s.fail_at(f.line, "the face element has no 'vertex_indices' list");
+  find_vertex_properties(s, *lay.vertex, lay);
+  const Element& f = *lay.face;
+  for (int k = 0; k < static_cast<int>(f.props.size()); ++k) {
+    if (f.props[k].is_list && (f.props[k].name == "vertex_indices" || f.props[k].name == "vertex_index"))
+      lay.indices = k;
   }
-  // Refuse counts the remaining bytes cannot hold, before allocating: every
-  // element needs at least its fixed-size properties and list lengths
-  // (binary), or a digit and a separator per property (ASCII).
-  const std::uint64_t body = s.remaining();
+  if (lay.indices < 0) s.fail_at(f.line, "the face element has no 'vertex_indices' list");
+  return lay;
+}
+
+// Refuse counts the remaining bytes cannot hold, before allocating: every
+// element needs at least its fixed-size properties and list lengths
+// (binary), or a digit and a separator per property (ASCII).
+void check_counts_fit(std::uint64_t body, const Header& h, const std::string& name) {
   std::uint64_t needed = 0;
-  for (const Element& e : elements) {
+  for (const Element& e : h.elements) {
     std::uint64_t min_size = 0;
     for (const Property& p : e.props) {
-      min_size += format == Format::Ascii ? 2 : type_size(p.is_list ? p.count_type : p.type);
+      min_size += h.format == Format::Ascii ? 2 : type_size(p.is_list ? p.count_type : p.type);
     }
     if (min_size == 0) continue;
     const std::uint64_t left = body > needed ? body - needed : 0;
     // ASCII: the last value needs no separator.
-    const std::uint64_t room = format == Format::Ascii ? left + 1 : left;
+    const std::uint64_t room = h.format == Format::Ascii ? left + 1 : left;
     if (static_cast<std::uint64_t>(e.count) > room / min_size) {
       throw_input(name + ": header announces " + std::to_string(e.count) + " " + plural(e.name) +
                   ", but the file holds at most " + std::to_string(left) + " bytes of " + e.name + " data");
     }
     needed += static_cast<std::uint64_t>(e.count) * min_size;
   }
+}
 
+// Refuses vertex and face counts above the options' limits.
+void check_limits(const TextScanner& s, const Layout& lay, const ReadOptions& opt) {
   if (lay.vertex->count > vertex_limit(opt))
     s.fail_at(lay.vertex->line, "header announces " + std::to_string(lay.vertex->count) +
                                     " vertices, more than the limit of " + std::to_string(vertex_limit(opt)));
   if (lay.face->count > face_limit(opt))
     s.fail_at(lay.face->line, "header announces " + std::to_string(lay.face->count) +
                                   " faces, more than the limit of " + std::to_string(face_limit(opt)));
+}
+
+// Whether this machine stores integers least significant byte first.
+bool host_is_little_endian() {
+  const std::uint16_t probe = 1;
+  unsigned char first;
+  std::memcpy(&first, &probe, 1);
+  return first == 1;
+}
+
+}  // namespace
+
+MeshData read_ply(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt) {
+  TextScanner s(data, data + size, name);
+  if (s.word() != "ply" || !s.at_line_end()) s.fail("not a PLY file (the first line must be 'ply')");
+  s.next_line();
+  const Header h = read_header(s);
+  if (!h.have_format) throw_input(name + ": the PLY header has no 'format' line");
+  const Layout lay = find_layout(s, h.elements, name);
+  check_counts_fit(s.remaining(), h, name);
+  check_limits(s, lay, opt);
 
   MeshBuilder b;
-  if (format == Format::Ascii) {
+  if (h.format == Format::Ascii) {
     AsciiCursor cur(TextScanner(s.pos(), s.end(), name, s.line()));
-    read_body(cur, elements, lay, b, opt);
+    read_body(cur, h.elements, lay, b, opt);
   } else {
-    const std::uint16_t probe = 1;
-    unsigned char first;
-    std::memcpy(&first, &probe, 1);
-    const bool host_little = first == 1;
-    BinaryCursor cur(s.pos(), s.end(), data, (format == Format::BinaryLE) != host_little, name);
-    read_body(cur, elements, lay, b, opt);
+    const bool swap = (h.format == Format::BinaryLE) != host_is_little_endian();
+    BinaryCursor cur(s.pos(), s.end(), data, swap, name);
+    read_body(cur, h.elements, lay, b, opt);
   }
   if (lay.uv[0] >= 0) b.tri_uv = b.tri;  // per-vertex u,v: corners index TC like V
   return b.finish(name);

@@ -42,13 +42,20 @@ std::string edge_name(int a, int b) {
   return s.str();
 }
 
-}  // namespace
+// Counts the other half-edges on h's undirected edge (either direction).
+int count_edge_mates(const Mesh& mesh, const OutgoingLists& out, int h) {
+  const int a = mesh.source(h), b = mesh.target(h);
+  int count = 0;
+  for (int k = out.begin[b]; k < out.begin[b + 1]; ++k) count += mesh.target(out.halfedges[k]) == a;
+  for (int k = out.begin[a]; k < out.begin[a + 1]; ++k)
+    count += out.halfedges[k] != h && mesh.target(out.halfedges[k]) == b;
+  return count;
+}
 
-int orient_faces(Mesh& mesh) {
+// For every half-edge, the one other half-edge on the same undirected edge
+// (either direction), or -1; throws if an edge has more than two faces.
+std::vector<int> edge_mates(const Mesh& mesh, const OutgoingLists& out) {
   const int m = static_cast<int>(mesh.F.rows());
-  const OutgoingLists out = outgoing_lists(mesh);
-  // For every half-edge, the one other half-edge on the same undirected edge
-  // (either direction), or -1. More than one other means a non-manifold edge.
   std::vector<int> mate(3 * static_cast<size_t>(m), -1);
   // In parallel; each piece remembers its first non-manifold half-edge, and
   // the smallest is reported (the same message as a serial scan).
@@ -75,65 +82,63 @@ int orient_faces(Mesh& mesh) {
     }
   });
   if (!first_bad.empty()) {
+    // Recounted serially: the parallel scan stopped at the first excess.
     const int h = *std::min_element(first_bad.begin(), first_bad.end());
-    const int a = mesh.source(h), b = mesh.target(h);
-    int count = 0;
-    for (int k = out.begin[b]; k < out.begin[b + 1]; ++k) count += mesh.target(out.halfedges[k]) == a;
-    for (int k = out.begin[a]; k < out.begin[a + 1]; ++k)
-      count += out.halfedges[k] != h && mesh.target(out.halfedges[k]) == b;
-    throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") + edge_name(a, b) + " has " +
-                std::to_string(count + 1) + " faces (non-manifold edge; e.g. " + mesh.describe_face(h / 3) + ")");
+    throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") + edge_name(mesh.source(h), mesh.target(h)) +
+                " has " + std::to_string(count_edge_mates(mesh, out, h) + 1) +
+                " faces (non-manifold edge; e.g. " + mesh.describe_face(h / 3) + ")");
   }
-
-  std::vector<signed char> flip(m, -1);  // -1 unvisited, 0 keep, 1 flip
-  int flipped_total = 0;
-  std::vector<int> component;
-  for (int seed = 0; seed < m; ++seed) {
-    if (flip[seed] >= 0) continue;
-    component.clear();
-    flip[seed] = 0;
-    component.push_back(seed);
-    for (size_t q = 0; q < component.size(); ++q) {
-      const int f = component[q];
-      for (int c = 0; c < 3; ++c) {
-        const int h = 3 * f + c, g = mate[h];
-        if (g < 0) continue;
-        const bool same_direction = mesh.source(g) == mesh.source(h);
-        const signed char want = static_cast<signed char>(flip[f] ^ (same_direction ? 1 : 0));
-        const int nb = g / 3;
-        if (flip[nb] < 0) {
-          flip[nb] = want;
-          component.push_back(nb);
-        } else if (flip[nb] != want) {
-          throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") +
-                      "the surface is not orientable (" + mesh.describe_face(f) + " and " +
-                      mesh.describe_face(nb) + " cannot agree across " +
-                      edge_name(mesh.source(h), mesh.target(h)) + ")");
-        }
-      }
-    }
-    size_t flips = 0;
-    for (int f : component) flips += flip[f];
-    const bool invert = flips * 2 > component.size();  // keep the majority as listed
-    for (int f : component) {
-      if (invert) flip[f] ^= 1;
-      if (flip[f]) {
-        std::swap(mesh.F(f, 1), mesh.F(f, 2));
-        ++flipped_total;
-      }
-    }
-  }
-  return flipped_total;
+  return mate;
 }
 
-void build_topology(Mesh& mesh) {
-  const int n = static_cast<int>(mesh.V.rows());
-  const int m = static_cast<int>(mesh.F.rows());
-  Topology& t = mesh.topology;
-  t.num_vertices = n;
-  t.num_faces = m;
-  const OutgoingLists out = outgoing_lists(mesh);
+// Flood-fills the component of seed into `component`, setting flip (0 keep,
+// 1 flip) relative to seed; throws if two faces cannot agree.
+void propagate_orientation(const Mesh& mesh, const std::vector<int>& mate, int seed,
+                           std::vector<signed char>& flip, std::vector<int>& component) {
+  component.clear();
+  flip[seed] = 0;
+  component.push_back(seed);
+  for (size_t q = 0; q < component.size(); ++q) {
+    const int f = component[q];
+    for (int c = 0; c < 3; ++c) {
+      const int h = 3 * f + c, g = mate[h];
+      if (g < 0) continue;
+      const bool same_direction = mesh.source(g) == mesh.source(h);
+      const signed char want = static_cast<signed char>(flip[f] ^ (same_direction ? 1 : 0));
+      const int nb = g / 3;
+      if (flip[nb] < 0) {
+        flip[nb] = want;
+        component.push_back(nb);
+      } else if (flip[nb] != want) {
+        throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") +
+                    "the surface is not orientable (" + mesh.describe_face(f) + " and " +
+                    mesh.describe_face(nb) + " cannot agree across " +
+                    edge_name(mesh.source(h), mesh.target(h)) + ")");
+      }
+    }
+  }
+}
 
+// Applies a component's flips, inverted if that flips fewer faces (keeping
+// the majority as listed); returns the number of faces flipped.
+int apply_flips(Mesh& mesh, const std::vector<int>& component, std::vector<signed char>& flip) {
+  size_t flips = 0;
+  for (int f : component) flips += flip[f];
+  const bool invert = flips * 2 > component.size();  // keep the majority as listed
+  int flipped = 0;
+  for (int f : component) {
+    if (invert) flip[f] ^= 1;
+    if (flip[f]) {
+      std::swap(mesh.F(f, 1), mesh.F(f, 2));
+      ++flipped;
+    }
+  }
+  return flipped;
+}
+
+// Fills t.twin: the opposite half-edge b->a of each a->b, or -1 on the boundary.
+void find_twins(const Mesh& mesh, const OutgoingLists& out, Topology& t) {
+  const int m = static_cast<int>(mesh.F.rows());
   t.twin.assign(3 * static_cast<size_t>(m), -1);
   parallel_for(3 * static_cast<std::int64_t>(m), [&](std::int64_t begin, std::int64_t end) {
     for (int h = static_cast<int>(begin); h < end; ++h) {
@@ -144,7 +149,12 @@ void build_topology(Mesh& mesh) {
       }
     }
   });
+}
 
+// Fills is_used, is_boundary and vertex_out (the boundary half-edge of a
+// boundary vertex); throws on a vertex whose faces form more than one fan.
+void classify_vertices(const Mesh& mesh, const OutgoingLists& out, Topology& t) {
+  const int n = static_cast<int>(mesh.V.rows());
   t.is_used.assign(n, 0);
   t.is_boundary.assign(n, 0);
   t.vertex_out.assign(n, -1);
@@ -173,13 +183,16 @@ void build_topology(Mesh& mesh) {
     t.is_boundary[v] = boundary_count > 0;
     t.vertex_out[v] = start;
   }
+}
 
-  // Components by flood fill over twins.
-  t.face_component.assign(m, -1);
+// Components by flood fill over twins: face_component, num_components and
+// component_faces (the face count of each).
+void find_components(int num_faces, Topology& t) {
+  t.face_component.assign(num_faces, -1);
   t.num_components = 0;
   t.component_faces.clear();
   std::vector<int> stack;
-  for (int seed = 0; seed < m; ++seed) {
+  for (int seed = 0; seed < num_faces; ++seed) {
     if (t.face_component[seed] >= 0) continue;
     const int id = t.num_components++;
     int count = 0;
@@ -199,9 +212,14 @@ void build_topology(Mesh& mesh) {
     }
     t.component_faces.push_back(count);
   }
+}
 
-  // Boundary loops: from a boundary half-edge a->b, the next one is b's
-  // (unique, since b is manifold) outgoing boundary half-edge.
+// Traces boundary_loops and loop_length in half-edge order; returns the
+// component of each loop.
+std::vector<int> trace_boundary_loops(const Mesh& mesh, Topology& t) {
+  const int m = static_cast<int>(mesh.F.rows());
+  // From a boundary half-edge a->b, the next one is b's (unique, since b is
+  // manifold) outgoing boundary half-edge.
   t.boundary_loops.clear();
   t.loop_length.clear();
   std::vector<char> seen(3 * static_cast<size_t>(m), 0);
@@ -221,13 +239,18 @@ void build_topology(Mesh& mesh) {
     t.loop_length.push_back(length);
     loop_component.push_back(t.face_component[h0 / 3]);
   }
+  return loop_component;
+}
+
+// Fills component_loops (longest first) and renumbers the loops so the
+// global list reads component by component, outer first.
+void group_loops_by_component(const std::vector<int>& loop_component, Topology& t) {
   t.component_loops.assign(t.num_components, {});
   for (size_t l = 0; l < t.boundary_loops.size(); ++l)
     t.component_loops[loop_component[l]].push_back(static_cast<int>(l));
   for (auto& loops : t.component_loops)
     std::stable_sort(loops.begin(), loops.end(),
                      [&](int a, int b) { return t.loop_length[a] > t.loop_length[b]; });
-  // Renumber loops so the global list reads component by component, outer first.
   std::vector<std::vector<int>> loops_sorted;
   std::vector<double> length_sorted;
   for (auto& loops : t.component_loops)
@@ -238,6 +261,33 @@ void build_topology(Mesh& mesh) {
     }
   t.boundary_loops = std::move(loops_sorted);
   t.loop_length = std::move(length_sorted);
+}
+
+}  // namespace
+
+int orient_faces(Mesh& mesh) {
+  const int m = static_cast<int>(mesh.F.rows());
+  const std::vector<int> mate = edge_mates(mesh, outgoing_lists(mesh));
+  std::vector<signed char> flip(m, -1);  // -1 unvisited, 0 keep, 1 flip
+  int flipped_total = 0;
+  std::vector<int> component;
+  for (int seed = 0; seed < m; ++seed) {
+    if (flip[seed] >= 0) continue;
+    propagate_orientation(mesh, mate, seed, flip, component);
+    flipped_total += apply_flips(mesh, component, flip);
+  }
+  return flipped_total;
+}
+
+void build_topology(Mesh& mesh) {
+  Topology& t = mesh.topology;
+  t.num_vertices = static_cast<int>(mesh.V.rows());
+  t.num_faces = static_cast<int>(mesh.F.rows());
+  const OutgoingLists out = outgoing_lists(mesh);
+  find_twins(mesh, out, t);
+  classify_vertices(mesh, out, t);
+  find_components(t.num_faces, t);
+  group_loops_by_component(trace_boundary_loops(mesh, t), t);
 }
 
 }  // namespace intrinsic::detail
