@@ -3,6 +3,7 @@
 // and report), with the GIL released while reading, validating, assembling,
 // factoring and solving.
 #include <chrono>
+#include <memory>
 #include <mutex>
 #include <optional>
 
@@ -24,6 +25,7 @@ struct Result {
   double residual = 0;
   int flipped_triangles = 0;
   py::dict timings, report;
+  std::shared_ptr<const Mesh> mesh;  // the validated mesh the command line writes (V, F on demand)
 };
 
 // The mesh: a file read inside the job (as the command line reads it), or arrays.
@@ -59,12 +61,14 @@ struct Outcome {
   double residual = 0;
   int flipped = 0;
   nlohmann::json report;
+  std::shared_ptr<const Mesh> mesh;
 };
 
-Outcome outcome(const app::ParamArgs& a, const Mesh& mesh, const app::Solved& s, nlohmann::json timings,
-                Clock::time_point t0) {
+Outcome outcome(const app::ParamArgs& a, const std::shared_ptr<const Mesh>& mesh_ptr, const app::Solved& s,
+                nlohmann::json timings, Clock::time_point t0) {
+  const Mesh& mesh = *mesh_ptr;
   const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, s.map.UV);
-  Outcome o{s.map.UV, s.map.residual, d.flipped_triangles, app::build_report(a, mesh, s, d)};
+  Outcome o{s.map.UV, s.map.residual, d.flipped_triangles, app::build_report(a, mesh, s, d), mesh_ptr};
   if (mesh.path.empty()) o.report["input"] = nullptr;
   o.report["output"] = nullptr;  // nothing written
   timings["assemble"] = s.map.timings.assemble_ms;
@@ -76,7 +80,7 @@ Outcome outcome(const app::ParamArgs& a, const Mesh& mesh, const app::Solved& s,
 }
 
 Result to_result(const Outcome& o) {
-  Result r{from_UV(o.UV), o.residual, o.flipped, {}, to_python(o.report)};
+  Result r{from_UV(o.UV), o.residual, o.flipped, {}, to_python(o.report), o.mesh};
   r.timings = r.report["timings_ms"];
   return r;
 }
@@ -91,9 +95,10 @@ Result parameterize(const py::object& V, const py::object& F, const py::kwargs& 
     read_source(src, a);
     nlohmann::json timings = {{"read", ms_since(t0)}};
     const auto t1 = Clock::now();
-    const Mesh mesh = app::validated_mesh(a, src.data);
+    const auto mesh = std::make_shared<const Mesh>(app::validated_mesh(a, src.data));
     timings["validate"] = ms_since(t1);
-    const app::Solved solved = app::solve(a, mesh, src.data, app::to_options(a, static_cast<int>(mesh.V.rows())));
+    const app::Solved solved =
+        app::solve(a, *mesh, src.data, app::to_options(a, static_cast<int>(mesh->V.rows())));
     o = outcome(a, mesh, solved, timings, t0);
   }
   return to_result(o);
@@ -117,7 +122,7 @@ class PyParameterizer {
     py::gil_scoped_release release;
     const auto t0 = Clock::now();
     read_source(src_, args_);
-    mesh_ = std::make_unique<Mesh>(app::validated_mesh(args_, src_.data));
+    mesh_ = std::make_shared<const Mesh>(app::validated_mesh(args_, src_.data));
     if (mesh_->topology.num_components > 1)
       throw_usage("Parameterizer takes a single component; use largest_component=True, or parameterize() for charts");
     p_ = std::make_unique<Parameterizer>(*mesh_, app::to_options(args_, static_cast<int>(mesh_->V.rows())));
@@ -134,7 +139,7 @@ class PyParameterizer {
       if (fixed) pending_ = fixed;
       app::Solved s{pending_ ? p_->solve_with_boundary(*pending_) : p_->solve(), nullptr, nullptr};
       pending_.reset();
-      o = outcome(args_, *mesh_, s, {{"setup", setup_ms_}}, t0);
+      o = outcome(args_, mesh_, s, {{"setup", setup_ms_}}, t0);
     }
     return to_result(o);
   }
@@ -171,7 +176,7 @@ class PyParameterizer {
  private:
   app::ParamArgs args_;
   Source src_;
-  std::unique_ptr<Mesh> mesh_;
+  std::shared_ptr<const Mesh> mesh_;
   std::unique_ptr<Parameterizer> p_;
   std::optional<std::vector<FixedVertex>> pending_;
   double setup_ms_ = 0;
@@ -248,6 +253,15 @@ void register_param(py::module_& m) {
       .def_readonly("flipped_triangles", &Result::flipped_triangles, "triangles with non-positive UV area")
       .def_readonly("timings", &Result::timings, "stage timings in ms (report['timings_ms'])")
       .def_readonly("report", &Result::report, "the command line's report as a dict (README 'Report')")
+      .def_property_readonly(
+          "V", [](const Result& r) { return from_V(r.mesh->V); },
+          "the validated mesh's positions (n x 3 float64, a new array): what `intrinsic param -o` writes\n"
+          "(with largest_component only the kept component's vertices)")
+      .def_property_readonly(
+          "F", [](const Result& r) { return from_F(r.mesh->F); },
+          "the validated mesh's faces (m x 3 int32, a new array), consistently oriented (reoriented faces\n"
+          "flipped, as `intrinsic param -o` writes them); write_mesh(path, r.V, r.F, uv=r.uv) writes the\n"
+          "command line's output file")
       .def("__repr__", [](const Result& r) {
         return "<intrinsic.Result " + std::to_string(r.uv.shape(0)) + " vertices, residual " +
                short_number(r.residual) + ", " + std::to_string(r.flipped_triangles) + " flipped>";

@@ -108,3 +108,34 @@ def test_large_patch(cli):
         c = cli([path, "--method", method, "--boundary", boundary])
         r = intrinsic.parameterize(*intrinsic.read_mesh(path), method=method, boundary=boundary)
         np.testing.assert_allclose(r.uv, c.uv, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("mesh", ["inverted-triangles.obj", "cat_head.obj"])
+def test_result_mesh_is_what_cli_writes(cli, tmp_path, mesh):
+    """r.V, r.F: the validated mesh (faces reoriented), the one `param -o` writes."""
+    path = shared_mesh(mesh)
+    c = cli([path])
+    assert c.returncode == 0, c.stderr
+    r = intrinsic.parameterize(str(path))
+    Vc, Fc = intrinsic.read_mesh(tmp_path / "out.obj")
+    assert np.array_equal(r.V, Vc) and np.array_equal(r.F, Fc) and r.F.dtype == np.int32
+    V, F = intrinsic.read_mesh(path)
+    assert np.array_equal(r.V, V) and (r.report["reoriented_faces"] > 0) == (not np.array_equal(r.F, F))
+    intrinsic.write_mesh(tmp_path / "py.obj", r.V, r.F, uv=r.uv)
+    assert (tmp_path / "py.obj").read_bytes() == (tmp_path / "out.obj").read_bytes()
+
+
+def test_result_mesh_largest_component(cli, tmp_path):
+    """With largest_component only the kept component is in r.V, r.F (as the CLI writes)."""
+    two = tmp_path / "two.obj"
+    fan = lambda o, n: [f"v {o + np.cos(t)} {np.sin(t)} 0" for t in np.linspace(0, 2 * np.pi, n, endpoint=False)]
+    lines = ["v 0 0 0", *fan(0, 6), "v 5 0 0", *fan(5, 8)]
+    lines += [f"f 1 {i + 2} {(i + 1) % 6 + 2}" for i in range(6)]
+    lines += [f"f 8 {i + 9} {(i + 1) % 8 + 9}" for i in range(8)]
+    two.write_text("\n".join(lines) + "\n")
+    c = cli([two, "--largest-component"])
+    assert c.returncode == 0, c.stderr
+    r = intrinsic.parameterize(str(two), largest_component=True)
+    Vc, Fc = intrinsic.read_mesh(tmp_path / "out.obj")
+    assert r.F.shape == (8, 3) and np.array_equal(r.V, Vc) and np.array_equal(r.F, Fc)
+    np.testing.assert_allclose(r.uv, c.uv, rtol=0, atol=1e-12)
