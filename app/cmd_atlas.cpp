@@ -78,6 +78,9 @@ nlohmann::json report_json(const AtlasArgs& a, const MeshData& m, const AtlasRes
   j["components"] = r.components;
   j["charts"] = r.charts.size();
   j["splits"] = r.splits;
+  const AtlasSplits& sr = r.split_reasons;
+  j["split_reasons"] = {{"not_disk", sr.not_disk}, {"refused", sr.refused}, {"solve_failed", sr.solve_failed},
+                        {"flipped", sr.flipped}, {"boundary_crossing", sr.boundary_crossing}};
   j["utilization"] = r.utilization;
   j["flipped"] = r.flipped;
   j["overlapping"] = r.overlapping;
@@ -87,6 +90,8 @@ nlohmann::json report_json(const AtlasArgs& a, const MeshData& m, const AtlasRes
                    {"nonmanifold_edges", r.cleaning.nonmanifold_edges},
                    {"nonmanifold_vertices", r.cleaning.nonmanifold_vertices},
                    {"inconsistent_edges", r.cleaning.inconsistent_edges},
+                   {"reversed_faces", r.cleaning.reversed_faces},
+                   {"nonorientable_cuts", r.cleaning.nonorientable_cuts},
                    {"unreferenced_vertices", r.cleaning.unreferenced_vertices}};
   nlohmann::json charts = nlohmann::json::array();
   for (const AtlasChart& c : r.charts)

@@ -128,6 +128,7 @@ void expect_disk_charts(const AtlasResult& r) {
 void expect_valid_atlas(const MeshData& m, const AtlasResult& r) {
   ASSERT_EQ(r.FUV.rows(), m.F.rows());
   ASSERT_EQ(r.face_chart.size(), static_cast<size_t>(m.F.rows()));
+  ASSERT_EQ(r.face_reversed.size(), static_cast<size_t>(m.F.rows()));
   ASSERT_TRUE(r.UV.allFinite());
   EXPECT_GE(r.UV.minCoeff(), 0.0);
   EXPECT_LE(r.UV.maxCoeff(), 1.0);
@@ -141,7 +142,7 @@ void expect_valid_atlas(const MeshData& m, const AtlasResult& r) {
       EXPECT_NEAR(a, 0.0, 1e-14);
     } else {
       EXPECT_GE(r.face_chart[f], 0) << "face " << f;
-      flipped += a > 0 ? 0 : 1;
+      flipped += (r.face_reversed[f] ? -a : a) > 0 ? 0 : 1;
     }
   }
   EXPECT_EQ(flipped, 0);
@@ -174,6 +175,7 @@ TEST(Atlas, GeneratedClosedSurfaces) {
     expect_valid_atlas(m, r);
     EXPECT_GE(r.charts.size(), 2u);  // closed: cut
     EXPECT_EQ(r.components, 1);
+    EXPECT_EQ(r.cleaning.reversed_faces, 0);  // consistently oriented input: every UV triangle counter-clockwise
   }
 }
 
@@ -294,6 +296,7 @@ TEST(AtlasCli, KeepsVerticesWritesCornersDeterministic) {
   r.FUV = out.FTC;
   const AtlasResult lib = atlas(src);
   r.face_chart = lib.face_chart;
+  r.face_reversed = lib.face_reversed;
   r.utilization = lib.utilization;
   expect_valid_atlas(src, r);  // what the file holds, read back
   const std::string report = test::slurp(rep);

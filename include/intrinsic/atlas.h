@@ -56,8 +56,19 @@ struct AtlasCleaning {
   int degenerate_faces = 0;       // zero area or repeated vertex: UVs collapsed onto a neighbour, chart -1
   int nonmanifold_edges = 0;      // edges with more than two faces: every face there gets a seam
   int nonmanifold_vertices = 0;   // vertices whose corners fall into several charts' pieces without a seam edge
-  int inconsistent_edges = 0;     // two faces listing the edge in the same direction: cut as a seam
+  int inconsistent_edges = 0;     // two faces listing the edge in the same direction
+  int reversed_faces = 0;         // faces listed against their piece's orientation (the fewer), reversed for the solve
+  int nonorientable_cuts = 0;     // edges cut because the orientations could not agree (a Moebius band)
   int unreferenced_vertices = 0;  // written unchanged, no UV
+};
+
+// Why charts were split (each split counted once, by the first check that failed).
+struct AtlasSplits {
+  int not_disk = 0;           // several boundary loops, closed, or Euler characteristic not 1
+  int refused = 0;            // make_mesh refused the chart's own mesh (e.g. a pinched vertex)
+  int solve_failed = 0;       // the natural map's solve failed
+  int flipped = 0;            // a flipped or collapsed triangle, or an interior vertex wound twice
+  int boundary_crossing = 0;  // the boundary crosses itself
 };
 
 struct AtlasTimings {
@@ -68,11 +79,16 @@ struct AtlasResult {
   MatrixX2d UV;       // texture coordinates, all in [0,1]^2
   MatrixX3i FUV;      // #F x 3: per face corner, a row of UV
   std::vector<int> face_chart;  // per face; -1 for degenerate faces
+  // Per face: listed against its chart's orientation in the input (fixed for
+  // the computation). Its UV triangle, read in the input's corner order, is
+  // then clockwise: the texture still lies on the surface as on its neighbours.
+  std::vector<char> face_reversed;
   std::vector<AtlasChart> charts;
   int components = 0;
   int splits = 0;          // charts split because they were not disks, flipped or crossed themselves
+  AtlasSplits split_reasons;
   double utilization = 0;  // UV area of the charts / area of [0,1]^2
-  int flipped = 0;         // non-degenerate faces with signed UV area <= 0 (0 by construction)
+  int flipped = 0;         // non-degenerate faces with signed UV area <= 0 in their chart's orientation (0 by construction)
   int overlapping = 0;     // charts whose packed boxes meet another's (0 by construction)
   AtlasCleaning cleaning;
   AtlasTimings timings;

@@ -29,9 +29,22 @@ void check_options(const AtlasOptions& o) {
   if (!(o.degenerate_ratio >= 0 && o.degenerate_ratio < 1)) throw_usage("the degenerate ratio must be in [0, 1)");
 }
 
+void count_split(detail::ChartStatus status, AtlasResult& r) {
+  ++r.splits;
+  AtlasSplits& s = r.split_reasons;
+  switch (status) {
+    case detail::ChartStatus::NotDisk: ++s.not_disk; break;
+    case detail::ChartStatus::Refused: ++s.refused; break;
+    case detail::ChartStatus::SolveFailed: ++s.solve_failed; break;
+    case detail::ChartStatus::Flipped: ++s.flipped; break;
+    case detail::ChartStatus::BoundaryCrossing: ++s.boundary_crossing; break;
+    case detail::ChartStatus::Valid: break;
+  }
+}
+
 // Flattens every chart, splitting invalid ones in two until all are valid.
 std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::CleanMesh& clean,
-                                           std::vector<std::vector<int>> charts, double ratio, int& splits) {
+                                           std::vector<std::vector<int>> charts, double ratio, AtlasResult& r) {
   std::deque<std::vector<int>> work(std::make_move_iterator(charts.begin()), std::make_move_iterator(charts.end()));
   std::vector<detail::FlatChart> done;
   while (!work.empty()) {
@@ -40,12 +53,13 @@ std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::
     detail::FlatChart chart;
     chart.mesh = detail::chart_mesh(input, clean, faces);
     chart.summary.component = clean.component[faces.front()];
-    if (detail::flatten_chart(chart, ratio) == detail::ChartStatus::Valid) {
+    const detail::ChartStatus status = detail::flatten_chart(chart, ratio);
+    if (status == detail::ChartStatus::Valid) {
       done.push_back(std::move(chart));
       continue;
     }
     if (faces.size() == 1) throw_numerical("face " + std::to_string(faces[0]) + " could not be laid flat");
-    ++splits;
+    count_split(status, r);
     for (std::vector<int>& half : detail::split_in_two(clean, faces)) work.push_back(std::move(half));
   }
   return done;
@@ -98,11 +112,12 @@ AtlasResult atlas(const MeshData& input, const AtlasOptions& options) {
   std::vector<std::vector<int>> segments = detail::segment(input, clean, options);
   r.timings.segment_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
-  std::vector<detail::FlatChart> charts = flatten_all(input, clean, std::move(segments), options.degenerate_ratio, r.splits);
+  std::vector<detail::FlatChart> charts = flatten_all(input, clean, std::move(segments), options.degenerate_ratio, r);
   r.timings.flatten_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
   r.utilization = detail::pack_charts(charts, options, r.overlapping);
   assemble(input, charts, r);
+  r.face_reversed = clean.reversed;
   for (const detail::FlatChart& c : charts) {
     r.charts.push_back(c.summary);
     r.flipped += c.summary.flipped;

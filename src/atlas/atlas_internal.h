@@ -14,11 +14,12 @@ namespace intrinsic::detail {
 
 // The input seen by the computation. Half-edge c of face f runs from F(f,c)
 // to F(f,(c+1)%3); glued[3f+c] is the face across it when exactly two
-// non-degenerate faces share the edge and list it in opposite directions,
-// else -1 (a seam whatever the segmentation does).
+// non-degenerate faces share the edge and their orientations (after
+// `reversed`) agree, else -1 (a seam whatever the segmentation does).
 struct CleanMesh {
   std::vector<char> good;  // per face: not degenerate
   std::vector<int> glued;  // per half-edge
+  std::vector<char> reversed;  // per face: its corners are taken in the order 0, 2, 1 for the computation
   std::vector<Eigen::Vector3d> normal;  // unit, per face (zero for degenerate faces)
   std::vector<double> area;
   std::vector<int> component;  // per face: connected component (faces sharing vertices)
@@ -38,7 +39,7 @@ std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::
 struct ChartMesh {
   std::vector<int> faces;   // input faces, sorted
   std::vector<int> corner;  // per face corner (3 * k + c): local vertex
-  MeshData data;            // local vertices (positions of their input vertex), faces in input corner order
+  MeshData data;            // local vertices (positions of their input vertex), faces oriented (reversed ones 0, 2, 1)
 };
 ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces);
 

@@ -20,12 +20,16 @@ namespace {
 
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// A single triangle in its own plane: its natural map up to a similarity.
-MatrixX2d lay_triangle(const MatrixX3d& V) {
-  const Eigen::Vector3d e1 = V.row(1) - V.row(0), e2 = V.row(2) - V.row(0);
+// A single triangle in its own plane, counter-clockwise in the order of its
+// face: its natural map up to a similarity.
+MatrixX2d lay_triangle(const Mesh& mesh) {
+  const int a = mesh.F(0, 0), b = mesh.F(0, 1), c = mesh.F(0, 2);
+  const Eigen::Vector3d e1 = mesh.V.row(b) - mesh.V.row(a), e2 = mesh.V.row(c) - mesh.V.row(a);
   const double l = e1.norm();
   MatrixX2d UV(3, 2);
-  UV << 0, 0, l, 0, e2.dot(e1) / l, e1.cross(e2).norm() / l;
+  UV.row(a) << 0, 0;
+  UV.row(b) << l, 0;
+  UV.row(c) << e2.dot(e1) / l, e1.cross(e2).norm() / l;
   return UV;
 }
 
@@ -129,7 +133,7 @@ ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio) {
   s.area_3d = surface_area(mesh.V, mesh.F);
   if (nf == 1) {
     s.method = ChartMethod::Triangle;
-    chart.UV = lay_triangle(mesh.V);
+    chart.UV = lay_triangle(mesh);
   } else {
     s.method = ChartMethod::Natural;
     const ChartStatus solved = solve(chart, mesh);

@@ -53,7 +53,8 @@ ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::v
   chart.data.V.resize(static_cast<int>(vertex.size()), 3);
   for (size_t v = 0; v < vertex.size(); ++v) chart.data.V.row(static_cast<int>(v)) = input.V.row(vertex[v]);
   chart.data.F.resize(k, 3);
-  for (int h = 0; h < 3 * k; ++h) chart.data.F(h / 3, h % 3) = chart.corner[h];
+  for (int i = 0; i < k; ++i)
+    for (int c = 0; c < 3; ++c) chart.data.F(i, c) = chart.corner[3 * i + (clean.reversed[faces[i]] ? (3 - c) % 3 : c)];
   chart.data.path = input.path;
   return chart;
 }
