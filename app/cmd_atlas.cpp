@@ -118,7 +118,7 @@ int run_atlas(const AtlasArgs& a) {
   const double write_ms = elapsed_ms(t1);
   nlohmann::json j = report_json(a, data, r);
   j["timings_ms"] = {{"read", read_ms},       {"clean", r.timings.clean_ms}, {"segment", r.timings.segment_ms},
-                     {"flatten", r.timings.flatten_ms}, {"pack", r.timings.pack_ms}, {"write", write_ms},
+                     {"flatten", r.timings.flatten_ms}, {"merge", r.timings.merge_ms}, {"pack", r.timings.pack_ms}, {"write", write_ms},
                      {"total", elapsed_ms(t0)}};
   if (!a.report.empty()) write_all({{a.report, j.dump(2) + "\n"}}, {a.output});
   if (!a.quiet)
@@ -147,6 +147,10 @@ void register_atlas(CLI::App& app, Runner& run) {
   cmd->add_option("--max-normal-deviation", a->options.max_normal_deviation_deg,
                   "Degrees between a face normal and its chart's mean normal")
       ->check(CLI::Range(1.0, 180.0))
+      ->capture_default_str();
+  cmd->add_option("--min-chart-faces", a->options.min_chart_faces,
+                  "Merge smaller charts into a neighbour when the result stays valid (0: never)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")
       ->check(CLI::PositiveNumber)

@@ -33,6 +33,11 @@ struct AtlasOptions {
   Segmentation segmentation = Segmentation::NormalCones;
   double max_normal_deviation_deg = 60;  // NormalCones: face normal vs the chart's mean normal
   double sharp_angle_deg = 70;           // dihedral angle above which an edge is always a seam
+  // Charts with fewer faces are merged into a neighbour when the union is
+  // valid and its mean L2 stretch (Sander) stays below max_stretch (or the
+  // neighbour's own). 0: no merging.
+  int min_chart_faces = 20;
+  double max_stretch = 1.1;
   // Texture size the padding is measured in (texels of the [0,1]^2 square).
   int resolution = 1024;
   double padding = 2;  // texels between charts and around the border
@@ -72,7 +77,7 @@ struct AtlasSplits {
 };
 
 struct AtlasTimings {
-  double clean_ms = 0, segment_ms = 0, flatten_ms = 0, pack_ms = 0, total_ms = 0;
+  double clean_ms = 0, segment_ms = 0, flatten_ms = 0, merge_ms = 0, pack_ms = 0, total_ms = 0;
 };
 
 struct AtlasResult {

@@ -26,6 +26,8 @@ void check_options(const AtlasOptions& o) {
   if (o.resolution < 1 || o.resolution > 1 << 20) throw_usage("the resolution must be between 1 and 1048576 texels");
   if (!(o.padding >= 0 && o.padding < o.resolution / 4.0))
     throw_usage("the padding must be at least 0 and less than a quarter of the resolution");
+  if (o.min_chart_faces < 0) throw_usage("the minimum chart size must be at least 0 faces");
+  if (!(o.max_stretch >= 1)) throw_usage("the stretch bound for merging must be at least 1");
   if (!(o.degenerate_ratio >= 0 && o.degenerate_ratio < 1)) throw_usage("the degenerate ratio must be in [0, 1)");
 }
 
@@ -114,6 +116,9 @@ AtlasResult atlas(const MeshData& input, const AtlasOptions& options) {
   t = std::chrono::steady_clock::now();
   std::vector<detail::FlatChart> charts = flatten_all(input, clean, std::move(segments), options.degenerate_ratio, r);
   r.timings.flatten_ms = ms_since(t);
+  t = std::chrono::steady_clock::now();
+  if (options.min_chart_faces > 0) detail::merge_small_charts(input, clean, options, charts);
+  r.timings.merge_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
   r.utilization = detail::pack_charts(charts, options, r.overlapping);
   assemble(input, charts, r);

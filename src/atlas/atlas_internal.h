@@ -57,6 +57,11 @@ struct FlatChart {
 // simple boundary, every interior vertex wound once.
 ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio);
 
+// Merges charts with fewer than options.min_chart_faces faces into a
+// neighbour when the union flattens validly within options.max_stretch.
+void merge_small_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
+                        std::vector<FlatChart>& charts);
+
 // Scales all charts by one factor, rotates and shelf-packs their boxes with
 // padding and fits the layout into [0,1]^2 (UVs changed in place). Returns
 // the utilization; `overlapping` counts charts whose boxes meet.
