@@ -235,6 +235,40 @@ TEST(Atlas, MessyHandMadeMeshes) {
   expect_valid_atlas(s, atlas(s));
 }
 
+// A strip of quads whose every other face is listed backwards: one piece,
+// reoriented for the solve (the minority reversed), then one valid chart.
+TEST(Atlas, InconsistentOrientationIsFixedNotCut) {
+  MeshData m;
+  const int n = 12;
+  m.V.resize(2 * (n + 1), 3);
+  for (int i = 0; i <= n; ++i) {
+    m.V.row(2 * i) << i, 0, 0.1 * i * i;
+    m.V.row(2 * i + 1) << i, 1, 0.1 * i * i;
+  }
+  m.F.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 * i, b = 2 * i + 2, c = 2 * i + 1, d = 2 * i + 3;
+    m.F.row(2 * i) << a, b, d;
+    if (i % 3 == 0) m.F.row(2 * i + 1) << a, c, d;  // backwards
+    else m.F.row(2 * i + 1) << a, d, c;
+  }
+  const AtlasResult r = atlas(m);
+  expect_valid_atlas(m, r);
+  EXPECT_EQ(r.cleaning.reversed_faces, 4);
+  EXPECT_EQ(r.charts.size(), 1u);
+  for (int f = 0; f < m.F.rows(); ++f) EXPECT_EQ(r.face_reversed[f], f % 6 == 1) << f;
+}
+
+TEST(Atlas, DeterministicAndIndependentOfNothingElse) {
+  GenerateOptions o;
+  o.rings = 12;
+  const MeshData m = generate_genus2(o);
+  const AtlasResult a = atlas(m), b = atlas(m);
+  EXPECT_EQ(a.UV, b.UV);
+  EXPECT_EQ(a.FUV, b.FUV);
+  EXPECT_EQ(a.face_chart, b.face_chart);
+}
+
 TEST(Atlas, BadInputIsRefusedClearly) {
   MeshData m;
   m.V.resize(3, 3);
