@@ -80,7 +80,7 @@ nlohmann::json report_json(const AtlasArgs& a, const MeshData& m, const AtlasRes
   j["splits"] = r.splits;
   const AtlasSplits& sr = r.split_reasons;
   j["split_reasons"] = {{"not_disk", sr.not_disk}, {"refused", sr.refused}, {"solve_failed", sr.solve_failed},
-                        {"flipped", sr.flipped}, {"boundary_crossing", sr.boundary_crossing}};
+                        {"flipped", sr.flipped}, {"boundary_crossing", sr.boundary_crossing}, {"sparse", sr.sparse}};
   j["utilization"] = r.utilization;
   j["flipped"] = r.flipped;
   j["overlapping"] = r.overlapping;

@@ -74,6 +74,7 @@ struct AtlasSplits {
   int solve_failed = 0;       // the natural map's solve failed
   int flipped = 0;            // a flipped or collapsed triangle, or an interior vertex wound twice
   int boundary_crossing = 0;  // the boundary crosses itself
+  int sparse = 0;             // valid, but filling under 15% of the square on its box's longer side (64 faces or more)
 };
 
 struct AtlasTimings {
@@ -90,7 +91,7 @@ struct AtlasResult {
   std::vector<char> face_reversed;
   std::vector<AtlasChart> charts;
   int components = 0;
-  int splits = 0;          // charts split because they were not disks, flipped or crossed themselves
+  int splits = 0;          // charts split: not disks, flipped, boundary crossing, or too sparse for packing
   AtlasSplits split_reasons;
   double utilization = 0;  // UV area of the charts / area of [0,1]^2
   int flipped = 0;         // non-degenerate faces with signed UV area <= 0 in their chart's orientation (0 by construction)

@@ -40,6 +40,7 @@ void count_split(detail::ChartStatus status, AtlasResult& r) {
     case detail::ChartStatus::SolveFailed: ++s.solve_failed; break;
     case detail::ChartStatus::Flipped: ++s.flipped; break;
     case detail::ChartStatus::BoundaryCrossing: ++s.boundary_crossing; break;
+    case detail::ChartStatus::Sparse: ++s.sparse; break;
     case detail::ChartStatus::Valid: break;
   }
 }
@@ -55,7 +56,10 @@ std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::
     detail::FlatChart chart;
     chart.mesh = detail::chart_mesh(input, clean, faces);
     chart.summary.component = clean.component[faces.front()];
-    const detail::ChartStatus status = detail::flatten_chart(chart, ratio);
+    detail::ChartStatus status = detail::flatten_chart(chart, ratio);
+    // A valid chart that would waste most of its square (sparse, or a long thin strip) is split for packing.
+    if (status == detail::ChartStatus::Valid && faces.size() >= 64 && detail::square_fill(chart) < 0.15)
+      status = detail::ChartStatus::Sparse;
     if (status == detail::ChartStatus::Valid) {
       done.push_back(std::move(chart));
       continue;

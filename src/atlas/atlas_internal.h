@@ -44,7 +44,7 @@ struct ChartMesh {
 ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces);
 
 // Why a chart cannot be shipped as it is.
-enum class ChartStatus { Valid, NotDisk, Refused, SolveFailed, Flipped, BoundaryCrossing };
+enum class ChartStatus { Valid, NotDisk, Refused, SolveFailed, Flipped, BoundaryCrossing, Sparse };
 
 struct FlatChart {
   ChartMesh mesh;
@@ -61,6 +61,10 @@ ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio);
 // neighbour when the union flattens validly within options.max_stretch.
 void merge_small_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
                         std::vector<FlatChart>& charts);
+
+// The chart's area over the square on the longer side of its smallest
+// bounding box (UV area = 3D area): low for sparse or long thin charts.
+double square_fill(const FlatChart& chart);
 
 // Scales all charts by one factor, rotates and shelf-packs their boxes with
 // padding and fits the layout into [0,1]^2 (UVs changed in place). Returns

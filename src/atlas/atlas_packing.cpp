@@ -40,10 +40,11 @@ std::vector<Eigen::Vector2d> convex_hull(const MatrixX2d& UV) {
   return h;
 }
 
-// Rotates the chart to its smallest box (then wider than tall) and moves its corner to the origin.
-void orient_chart(FlatChart& chart) {
-  const std::vector<Eigen::Vector2d> hull = convex_hull(chart.UV);
-  double best_area = INFINITY, best_angle = 0;
+// The angle that turns UV to its smallest axis-aligned box; `area` gets that box's area.
+double smallest_box_angle(const MatrixX2d& UV, double& best_area) {
+  const std::vector<Eigen::Vector2d> hull = convex_hull(UV);
+  best_area = INFINITY;
+  double best_angle = 0;
   for (size_t i = 0; i < hull.size(); ++i) {
     const Eigen::Vector2d e = hull[(i + 1) % hull.size()] - hull[i];
     if (e.norm() == 0) continue;
@@ -54,6 +55,13 @@ void orient_chart(FlatChart& chart) {
     const double area = (hi - lo).prod();
     if (area < best_area * (1 - 1e-12)) best_area = area, best_angle = a;
   }
+  return best_angle;
+}
+
+// Rotates the chart to its smallest box (then wider than tall) and moves its corner to the origin.
+void orient_chart(FlatChart& chart) {
+  double best_area = 0;
+  const double best_angle = smallest_box_angle(chart.UV, best_area);
   const Eigen::Matrix2d R = Eigen::Rotation2Dd(best_angle).toRotationMatrix();
   chart.UV = chart.UV * R.transpose();
   Eigen::Vector2d size = chart.UV.colwise().maxCoeff() - chart.UV.colwise().minCoeff();
@@ -126,6 +134,14 @@ std::vector<Eigen::Vector2d> pack_square(const std::vector<Eigen::Vector2d>& siz
 }
 
 }  // namespace
+
+double square_fill(const FlatChart& chart) {
+  double box = 0;
+  const Eigen::Matrix2d R = Eigen::Rotation2Dd(smallest_box_angle(chart.UV, box)).toRotationMatrix();
+  const MatrixX2d turned = chart.UV * R.transpose();
+  const double side = (turned.colwise().maxCoeff() - turned.colwise().minCoeff()).maxCoeff();
+  return side > 0 ? chart.summary.area_3d / (side * side) : 1;
+}
 
 double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping) {
   overlapping = 0;
