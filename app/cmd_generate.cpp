@@ -14,8 +14,8 @@ void register_generate(CLI::App& app, Runner& run) {
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("generate", "Write a built-in irregular test surface");
-  cmd->add_option("surface", a->name, "wave | cap | flat | strip | two-disks")
-      ->check(CLI::IsMember({"wave", "cap", "flat", "strip", "two-disks"}))
+  cmd->add_option("surface", a->name, "wave | cap | flat | strip | two-disks | sphere | torus | genus2 (closed: for `intrinsic atlas`)")
+      ->check(CLI::IsMember({"wave", "cap", "flat", "strip", "two-disks", "sphere", "torus", "genus2"}))
       ->required();
   cmd->add_option("-o,--output", a->output, "Output mesh (.obj or .ply)")->required();
   cmd->add_option("--rings", a->options.rings, "Radial resolution (about 3*rings^2 vertices)")

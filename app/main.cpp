@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   app::register_edit(app, run);
   app::register_render(app, run);
   app::register_compare(app, run);
+  app::register_atlas(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,7 +1,7 @@
 // Surfaces the project makes itself: the README's default input, the test
 // cases with known answers, and the benchmark meshes. All are irregularly
 // sampled disks (rings of jittered points around a centre, stitched by
-// angle), lifted onto a surface.
+// angle), lifted onto a surface, or closed grids (sphere, torus, genus 2).
 #pragma once
 
 #include <cstdint>
@@ -32,7 +32,18 @@ MeshData generate_sphere_strip(const GenerateOptions& o);
 // Two disjoint flat disks side by side (a two-component file).
 MeshData generate_two_disks(const GenerateOptions& o);
 
-// By name: "flat", "cap", "wave", "strip", "two-disks". Throws Error(Usage).
+// Closed surfaces (no boundary), for `intrinsic atlas` (issue 13). Regular
+// grids jittered inside their cells, outward-oriented.
+// A bumpy sphere (latitude-longitude grid with two poles, radius modulated):
+// genus 0, Euler characteristic 2; about 2 * rings^2 vertices.
+MeshData generate_bumpy_sphere(const GenerateOptions& o);
+// A torus (radii 1 and 0.4): genus 1, Euler characteristic 0; 3 * rings^2 vertices.
+MeshData generate_torus(const GenerateOptions& o);
+// Two tori joined by a tube: genus 2, Euler characteristic -2; about 6 * rings^2 vertices.
+MeshData generate_genus2(const GenerateOptions& o);
+
+// By name: "flat", "cap", "wave", "strip", "two-disks", "sphere", "torus",
+// "genus2". Throws Error(Usage).
 MeshData generate_surface(const std::string& name, const GenerateOptions& o);
 
 }  // namespace intrinsic

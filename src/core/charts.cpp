@@ -133,7 +133,7 @@ void check_charts_input(const Mesh& mesh, const ParamOptions& o) {
     if (t.component_loops[c].empty())
       throw_input((mesh.path.empty() ? "" : mesh.path + ": ") + "component " + std::to_string(c) + " of " +
                   std::to_string(t.num_components) + " (" + std::to_string(t.component_faces[c]) +
-                  " faces) is closed (no boundary): cut it open to a disk, or keep only the largest component");
+                  " faces) is closed (no boundary): use `intrinsic atlas` (library: atlas.h), or keep only the largest component");
   for (const std::vector<FixedVertex>* list : {&o.given, &o.pins})
     for (const FixedVertex& fv : *list)
       if (fv.vertex < 0 || fv.vertex >= mesh.V.rows())

@@ -37,7 +37,7 @@ void check_options(const Mesh& mesh, const ParamOptions& o) {
                 " (use parameterize_charts, or keep the largest component)");
   if (t.component_loops[0].empty())
     throw_input((mesh.path.empty() ? "" : mesh.path + ": ") +
-                "the surface is closed (no boundary): cut it open to a disk before parameterizing");
+                "the surface is closed (no boundary): use `intrinsic atlas` (library: atlas.h), which cuts it into disk charts");
   if (o.weights.method == Method::Mixed && o.weights.lambda == 0 && o.weights.mu == 0)
     throw_usage("mixed method needs lambda and mu not both zero");
   if (!std::isfinite(o.weights.lambda) || !std::isfinite(o.weights.mu))

@@ -100,7 +100,7 @@ Mesh make_mesh(const MeshData& data, const ValidateOptions& options) {
     for (int c = 0; c < t.num_components; ++c)
       if (t.component_loops[c].empty())
         throw_input(where(mesh) + (t.num_components > 1 ? "component " + std::to_string(c) + " is" : "the surface is") +
-                    " closed (no boundary): cut it open to a disk before parameterizing");
+                    " closed (no boundary): use `intrinsic atlas` (library: atlas.h), which cuts it into disk charts");
   return mesh;
 }
 

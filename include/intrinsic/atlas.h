@@ -1,0 +1,108 @@
+// Whole assets (issue 13): a packed, overlap-free UV atlas of any triangle
+// mesh, closed, higher-genus or messy. The input is cleaned for the
+// computation only (zero-area faces set aside, non-manifold edges and vertices
+// split, inconsistently oriented edges cut), segmented into disk charts, each
+// chart flattened by the natural conformal map of the paper (section 4.2,
+// eq. 7; docs/maths.md §3) through the one Parameterizer, checked (no flipped
+// triangle, simple boundary) and split until valid, then packed into
+// [0,1]^2 at one texel density (paper section 1.3: an atlas of charts).
+// The input's vertices and faces are never changed: seams exist only in the
+// per-corner UV indices.
+#pragma once
+
+#include <vector>
+
+#include "intrinsic/mesh_data.h"
+
+namespace intrinsic {
+
+// How faces are grouped into charts before the validity splits.
+enum class Segmentation {
+  NormalCones,  // region growing: normals within max_normal_deviation of the chart's mean, never across sharp edges
+  Components,   // one chart per manifold piece (then split only where needed)
+};
+
+// How a chart was flattened.
+enum class ChartMethod {
+  Natural,   // the natural conformal map (Parameterizer, BoundaryShape::Natural)
+  Triangle,  // a single triangle laid flat in its own plane (its natural map, up to a similarity)
+};
+const char* chart_method_name(ChartMethod m);  // "natural", "triangle"
+
+struct AtlasOptions {
+  Segmentation segmentation = Segmentation::NormalCones;
+  double max_normal_deviation_deg = 60;  // NormalCones: face normal vs the chart's mean normal
+  double sharp_angle_deg = 70;           // dihedral angle above which an edge is always a seam
+  // Charts with fewer faces are merged into a neighbour when the union is
+  // valid and its mean L2 stretch (Sander) stays below max_stretch (or the
+  // neighbour's own). 0: no merging.
+  int min_chart_faces = 20;
+  double max_stretch = 1.1;
+  // Texture size the padding is measured in (texels of the [0,1]^2 square).
+  int resolution = 1024;
+  double padding = 2;  // texels between charts and around the border
+  // A face with area below this fraction of its longest edge squared (or a
+  // repeated vertex) is degenerate: it gets UVs but takes no part in a solve.
+  double degenerate_ratio = 1e-12;
+};
+
+struct AtlasChart {
+  int component = 0;  // connected component of the input (faces sharing vertices)
+  int faces = 0, vertices = 0;  // vertices: the chart's own copies (corners glued across its interior edges)
+  ChartMethod method = ChartMethod::Natural;
+  int flipped = 0;  // always 0 in a result: flipped charts are split
+  double angle_distortion_mean = 1, stretch_l2_mean = 1;  // docs/maths.md §9, area-weighted
+  double area_3d = 0;
+  bool rotated = false;  // turned for packing
+};
+
+// What cleaning found; each is handled for the computation, never changes the output's faces.
+struct AtlasCleaning {
+  int degenerate_faces = 0;       // zero area or repeated vertex: UVs collapsed onto a neighbour, chart -1
+  int nonmanifold_edges = 0;      // edges with more than two faces: every face there gets a seam
+  int nonmanifold_vertices = 0;   // vertices whose corners fall into several charts' pieces without a seam edge
+  int inconsistent_edges = 0;     // two faces listing the edge in the same direction
+  int reversed_faces = 0;         // faces listed against their piece's orientation (the fewer), reversed for the solve
+  int nonorientable_cuts = 0;     // edges cut because the orientations could not agree (a Moebius band)
+  int unreferenced_vertices = 0;  // written unchanged, no UV
+};
+
+// Why charts were split (each split counted once, by the first check that failed).
+struct AtlasSplits {
+  int not_disk = 0;           // several boundary loops, closed, or Euler characteristic not 1
+  int refused = 0;            // make_mesh refused the chart's own mesh (e.g. a pinched vertex)
+  int solve_failed = 0;       // the natural map's solve failed
+  int flipped = 0;            // a flipped or collapsed triangle, or an interior vertex wound twice
+  int boundary_crossing = 0;  // the boundary crosses itself
+  int sparse = 0;             // valid, but filling under 15% of the square on its box's longer side (64 faces or more)
+};
+
+struct AtlasTimings {
+  double clean_ms = 0, segment_ms = 0, flatten_ms = 0, merge_ms = 0, pack_ms = 0, total_ms = 0;
+};
+
+struct AtlasResult {
+  MatrixX2d UV;       // texture coordinates, all in [0,1]^2
+  MatrixX3i FUV;      // #F x 3: per face corner, a row of UV
+  std::vector<int> face_chart;  // per face; -1 for degenerate faces
+  // Per face: listed against its chart's orientation in the input (fixed for
+  // the computation). Its UV triangle, read in the input's corner order, is
+  // then clockwise: the texture still lies on the surface as on its neighbours.
+  std::vector<char> face_reversed;
+  std::vector<AtlasChart> charts;
+  int components = 0;
+  int splits = 0;          // charts split: not disks, flipped, boundary crossing, or too sparse for packing
+  AtlasSplits split_reasons;
+  double utilization = 0;  // UV area of the charts / area of [0,1]^2
+  int flipped = 0;         // non-degenerate faces with signed UV area <= 0 in their chart's orientation (0 by construction)
+  int overlapping = 0;     // charts whose packed boxes meet another's (0 by construction)
+  AtlasCleaning cleaning;
+  AtlasTimings timings;
+};
+
+// The atlas of `input` (faces as given: triangles). Throws Error(Input) for
+// an empty mesh, an out-of-range index or a non-finite coordinate,
+// Error(Usage) for options out of range. Deterministic.
+AtlasResult atlas(const MeshData& input, const AtlasOptions& options = {});
+
+}  // namespace intrinsic

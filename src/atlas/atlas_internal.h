@@ -1,0 +1,74 @@
+// The stages of intrinsic::atlas (atlas.h), one file each: cleaning.cpp
+// (face adjacency for the computation), segmentation.cpp (region growing and
+// splits), chart_mesh.cpp (a chart as a Mesh of its own), chart_flatten.cpp
+// (the natural map and the validity checks), atlas_packing.cpp.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "intrinsic/atlas.h"
+#include "intrinsic/mesh.h"
+
+namespace intrinsic::detail {
+
+// The input seen by the computation. Half-edge c of face f runs from F(f,c)
+// to F(f,(c+1)%3); glued[3f+c] is the face across it when exactly two
+// non-degenerate faces share the edge and their orientations (after
+// `reversed`) agree, else -1 (a seam whatever the segmentation does).
+struct CleanMesh {
+  std::vector<char> good;  // per face: not degenerate
+  std::vector<int> glued;  // per half-edge
+  std::vector<char> reversed;  // per face: its corners are taken in the order 0, 2, 1 for the computation
+  std::vector<Eigen::Vector3d> normal;  // unit, per face (zero for degenerate faces)
+  std::vector<double> area;
+  std::vector<int> component;  // per face: connected component (faces sharing vertices)
+  int components = 0;
+  AtlasCleaning cleaning;
+};
+
+CleanMesh clean_mesh(const MeshData& input, const AtlasOptions& options);
+
+// Charts as lists of face indices (sorted), each connected through glued edges.
+std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options);
+// Two connected halves grown from two far-apart faces of the chart (at least two faces).
+std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::vector<int>& faces);
+
+// A chart with its own vertices: the corners of its faces, glued across its
+// interior edges (so non-manifold vertices and edges of the input come apart).
+struct ChartMesh {
+  std::vector<int> faces;   // input faces, sorted
+  std::vector<int> corner;  // per face corner (3 * k + c): local vertex
+  MeshData data;            // local vertices (positions of their input vertex), faces oriented (reversed ones 0, 2, 1)
+};
+ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces);
+
+// Why a chart cannot be shipped as it is.
+enum class ChartStatus { Valid, NotDisk, Refused, SolveFailed, Flipped, BoundaryCrossing, Sparse };
+
+struct FlatChart {
+  ChartMesh mesh;
+  MatrixX2d UV;  // per local vertex; UV area equals 3D area
+  AtlasChart summary;
+};
+
+// Flattens `chart` (natural conformal map, or the triangle's own plane for a
+// single face) and checks it: a disk, no flipped or collapsed triangle, a
+// simple boundary, every interior vertex wound once.
+ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio);
+
+// Merges charts with fewer than options.min_chart_faces faces into a
+// neighbour when the union flattens validly within options.max_stretch.
+void merge_small_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
+                        std::vector<FlatChart>& charts);
+
+// The chart's area over the square on the longer side of its smallest
+// bounding box (UV area = 3D area): low for sparse or long thin charts.
+double square_fill(const FlatChart& chart);
+
+// Scales all charts by one factor, rotates and shelf-packs their boxes with
+// padding and fits the layout into [0,1]^2 (UVs changed in place). Returns
+// the utilization; `overlapping` counts charts whose boxes meet.
+double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping);
+
+}  // namespace intrinsic::detail

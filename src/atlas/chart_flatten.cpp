@@ -1,0 +1,151 @@
+// One chart through the one pipeline: make_mesh on the chart's own data, then
+// parameterize() with BoundaryShape::Natural (the natural conformal map,
+// paper section 4.2, eq. 7; docs/maths.md §3), scaled so its UV area is its
+// 3D area (docs/maths.md §2.4). Then the checks that make the chart safe to
+// ship (issue 13, "guaranteed valid"): a disk (one boundary loop, Euler
+// characteristic 1), every triangle positively oriented in the input's corner
+// order, every interior vertex wound once (angle sum below 3 pi), and a
+// boundary that does not cross itself. A locally injective map of a disk
+// with a simple boundary is injective, so the chart does not overlap itself.
+#include <algorithm>
+#include <cmath>
+
+#include "atlas/atlas_internal.h"
+#include "intrinsic/error.h"
+#include "intrinsic/metrics.h"
+#include "intrinsic/parameterize.h"
+
+namespace intrinsic::detail {
+namespace {
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// A single triangle in its own plane, counter-clockwise in the order of its
+// face: its natural map up to a similarity.
+MatrixX2d lay_triangle(const Mesh& mesh) {
+  const int a = mesh.F(0, 0), b = mesh.F(0, 1), c = mesh.F(0, 2);
+  const Eigen::Vector3d e1 = mesh.V.row(b) - mesh.V.row(a), e2 = mesh.V.row(c) - mesh.V.row(a);
+  const double l = e1.norm();
+  MatrixX2d UV(3, 2);
+  UV.row(a) << 0, 0;
+  UV.row(b) << l, 0;
+  UV.row(c) << e2.dot(e1) / l, e1.cross(e2).norm() / l;
+  return UV;
+}
+
+bool segments_cross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r,
+                    const Eigen::Vector2d& s) {
+  const double d1 = cross2(q - p, r - p), d2 = cross2(q - p, s - p);
+  const double d3 = cross2(s - r, p - r), d4 = cross2(s - r, q - r);
+  if (d1 * d2 > 0 || d3 * d4 > 0) return false;
+  // Touching or collinear: count it when the boxes meet (conservative).
+  return std::max(p.x(), q.x()) >= std::min(r.x(), s.x()) && std::max(r.x(), s.x()) >= std::min(p.x(), q.x()) &&
+         std::max(p.y(), q.y()) >= std::min(r.y(), s.y()) && std::max(r.y(), s.y()) >= std::min(p.y(), q.y());
+}
+
+// Non-adjacent boundary segments that meet, found through a uniform grid.
+bool boundary_crosses(const std::vector<int>& loop, const MatrixX2d& UV) {
+  const int n = static_cast<int>(loop.size());
+  if (n < 4) return false;
+  Eigen::Vector2d lo = UV.row(loop[0]).transpose(), hi = lo;
+  for (int v : loop) lo = lo.cwiseMin(UV.row(v).transpose()), hi = hi.cwiseMax(UV.row(v).transpose());
+  const int g = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(n))));
+  const Eigen::Vector2d cell = ((hi - lo) / g).cwiseMax(Eigen::Vector2d::Constant(1e-300));
+  std::vector<std::vector<int>> bins(g * g);
+  auto bin = [&](double x, double lo_x, double size) { return std::clamp(static_cast<int>((x - lo_x) / size), 0, g - 1); };
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d a = UV.row(loop[i]), b = UV.row(loop[(i + 1) % n]);
+    for (int x = bin(std::min(a.x(), b.x()), lo.x(), cell.x()); x <= bin(std::max(a.x(), b.x()), lo.x(), cell.x()); ++x)
+      for (int y = bin(std::min(a.y(), b.y()), lo.y(), cell.y()); y <= bin(std::max(a.y(), b.y()), lo.y(), cell.y()); ++y)
+        bins[x * g + y].push_back(i);
+  }
+  for (const std::vector<int>& b : bins)
+    for (size_t s = 0; s < b.size(); ++s)
+      for (size_t t = s + 1; t < b.size(); ++t) {
+        const int i = b[s], j = b[t];
+        if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // adjacent segments share a vertex
+        if (segments_cross(UV.row(loop[i]), UV.row(loop[(i + 1) % n]), UV.row(loop[j]), UV.row(loop[(j + 1) % n])))
+          return true;
+      }
+  return false;
+}
+
+// Flipped or collapsed triangles (input corner order), and interior vertices wound more than once.
+bool folds(const Mesh& mesh, const MatrixX2d& UV, double degenerate_ratio, int& flipped) {
+  std::vector<double> angle_sum(mesh.V.rows(), 0.0);
+  flipped = 0;
+  for (int f = 0; f < mesh.F.rows(); ++f) {
+    Eigen::Vector2d p[3];
+    for (int c = 0; c < 3; ++c) p[c] = UV.row(mesh.F(f, c));
+    const double twice = cross2(p[1] - p[0], p[2] - p[0]);
+    const double longest = std::max({(p[1] - p[0]).squaredNorm(), (p[2] - p[1]).squaredNorm(), (p[0] - p[2]).squaredNorm()});
+    if (!(twice > degenerate_ratio * longest)) ++flipped;
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector2d a = p[(c + 1) % 3] - p[c], b = p[(c + 2) % 3] - p[c];
+      angle_sum[mesh.F(f, c)] += std::atan2(std::abs(cross2(a, b)), a.dot(b));
+    }
+  }
+  if (flipped > 0) return true;
+  for (int v = 0; v < mesh.V.rows(); ++v)
+    if (!mesh.topology.is_boundary[v] && angle_sum[v] > 3 * M_PI) return true;
+  return false;
+}
+
+ChartStatus solve(FlatChart& chart, Mesh& mesh) {
+  ParamOptions o;
+  o.boundary = BoundaryShape::Natural;
+  o.scale = ScaleMode::Surface;
+  try {
+    chart.UV = parameterize(mesh, o).UV;
+  } catch (const Error&) {
+    return ChartStatus::SolveFailed;
+  }
+  if (!chart.UV.allFinite()) return ChartStatus::SolveFailed;
+  const double a3 = surface_area(mesh.V, mesh.F), a2 = parameter_area(mesh.F, chart.UV);
+  if (!(a2 > 0)) return ChartStatus::Flipped;
+  chart.UV *= std::sqrt(a3 / a2);
+  return ChartStatus::Valid;
+}
+
+}  // namespace
+
+ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio) {
+  ValidateOptions vo;
+  vo.degenerate_ratio = degenerate_ratio;
+  vo.allow_closed = true;
+  Mesh mesh;
+  try {
+    mesh = make_mesh(chart.mesh.data, vo);
+  } catch (const Error&) {
+    return ChartStatus::Refused;
+  }
+  const Topology& t = mesh.topology;
+  long boundary_edges = 0;
+  for (const std::vector<int>& loop : t.boundary_loops) boundary_edges += static_cast<long>(loop.size());
+  const long nf = mesh.F.rows(), edges = (3 * nf + boundary_edges) / 2;
+  if (t.boundary_loops.size() != 1 || mesh.V.rows() - edges + nf != 1) return ChartStatus::NotDisk;
+  // Glued edges are consistently oriented, so nothing is reoriented; if it
+  // were, the input's corner order would no longer match the map.
+  if (mesh.validation.reoriented_faces != 0) return ChartStatus::Refused;
+  AtlasChart& s = chart.summary;
+  s.faces = static_cast<int>(nf);
+  s.vertices = static_cast<int>(mesh.V.rows());
+  s.area_3d = surface_area(mesh.V, mesh.F);
+  if (nf == 1) {
+    s.method = ChartMethod::Triangle;
+    chart.UV = lay_triangle(mesh);
+  } else {
+    s.method = ChartMethod::Natural;
+    const ChartStatus solved = solve(chart, mesh);
+    if (solved != ChartStatus::Valid) return solved;
+  }
+  if (folds(mesh, chart.UV, degenerate_ratio, s.flipped)) return ChartStatus::Flipped;
+  if (boundary_crosses(t.boundary_loops[0], chart.UV)) return ChartStatus::BoundaryCrossing;
+  const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, chart.UV);
+  s.angle_distortion_mean = d.angle_distortion.mean;
+  s.stretch_l2_mean = d.stretch_l2.mean;
+  return ChartStatus::Valid;
+}
+
+}  // namespace intrinsic::detail
+

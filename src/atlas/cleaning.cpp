@@ -1,0 +1,180 @@
+// Cleaning for the atlas (issue 13, "cleaning, reported, never silent"): the
+// input is never changed; this decides which faces take part in a solve
+// (non-degenerate ones, by the same area test as make_mesh), which faces are
+// reversed for the computation (inconsistent orientation fixed, as make_mesh
+// does, the minority flipped), and across which edges charts may be glued:
+// edges with exactly two such faces, consistently oriented once reversed.
+// Everything else (non-manifold edges, the cut that makes a non-orientable
+// piece orientable) is a seam, so every chart is manifold and oriented.
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+
+#include "atlas/atlas_internal.h"
+#include "intrinsic/error.h"
+
+namespace intrinsic::detail {
+namespace {
+
+int find_root(std::vector<int>& parent, int x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+void check_input(const MeshData& in) {
+  const std::string where = in.path.empty() ? "" : in.path + ": ";
+  if (in.V.rows() == 0) throw_input(where + "the mesh has no vertices");
+  if (in.F.rows() == 0) throw_input(where + "the mesh has no faces");
+  for (int f = 0; f < in.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (in.F(f, c) < 0 || in.F(f, c) >= in.V.rows())
+        throw_input(where + "face " + std::to_string(f) + " refers to vertex " + std::to_string(in.F(f, c)) +
+                    ", but the mesh has " + std::to_string(in.V.rows()) + " vertices");
+  for (int v = 0; v < in.V.rows(); ++v)
+    if (!in.V.row(v).allFinite()) throw_input(where + "vertex " + std::to_string(v) + " has a non-finite coordinate");
+}
+
+// Normals, areas and the degenerate test (make_mesh's: twice the area against the longest edge squared).
+void face_geometry(const MeshData& in, double ratio, CleanMesh& m) {
+  const int nf = static_cast<int>(in.F.rows());
+  m.good.assign(nf, 0);
+  m.normal.assign(nf, Eigen::Vector3d::Zero());
+  m.area.assign(nf, 0);
+  for (int f = 0; f < nf; ++f) {
+    const Eigen::Vector3d x0 = in.V.row(in.F(f, 0)), x1 = in.V.row(in.F(f, 1)), x2 = in.V.row(in.F(f, 2));
+    const Eigen::Vector3d n = (x1 - x0).cross(x2 - x0);
+    const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
+    const bool repeated = in.F(f, 0) == in.F(f, 1) || in.F(f, 1) == in.F(f, 2) || in.F(f, 0) == in.F(f, 2);
+    m.area[f] = 0.5 * n.norm();
+    if (!repeated && n.norm() > ratio * longest) {
+      m.good[f] = 1;
+      m.normal[f] = n.normalized();
+    } else {
+      ++m.cleaning.degenerate_faces;
+    }
+  }
+}
+
+// Manifold edges (exactly two good faces) as pairs of half-edges, from the
+// half-edges of good faces sorted by undirected edge; counts the others.
+std::vector<std::pair<int, int>> manifold_edges(const MeshData& in, CleanMesh& m) {
+  const int nf = static_cast<int>(in.F.rows());
+  std::vector<std::tuple<int, int, int>> he;  // (min vertex, max vertex, half-edge)
+  he.reserve(3 * nf);
+  for (int f = 0; f < nf; ++f)
+    if (m.good[f])
+      for (int c = 0; c < 3; ++c) {
+        const int a = in.F(f, c), b = in.F(f, (c + 1) % 3);
+        he.emplace_back(std::min(a, b), std::max(a, b), 3 * f + c);
+      }
+  std::sort(he.begin(), he.end());
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < he.size();) {
+    size_t j = i;
+    while (j < he.size() && std::get<0>(he[j]) == std::get<0>(he[i]) && std::get<1>(he[j]) == std::get<1>(he[i])) ++j;
+    if (j - i > 2) ++m.cleaning.nonmanifold_edges;
+    if (j - i == 2) {
+      const int h = std::get<2>(he[i]), k = std::get<2>(he[i + 1]);
+      if (in.F(h / 3, h % 3) == in.F(k / 3, k % 3)) ++m.cleaning.inconsistent_edges;  // same direction in both
+      pairs.emplace_back(h, k);
+    }
+    i = j;
+  }
+  return pairs;
+}
+
+// Orientation by breadth-first search over manifold edges: a face is reversed
+// when its neighbour's orientation requires it; an edge is glued when the two
+// orientations agree across it (a Moebius band keeps one cut edge). In each
+// connected piece the smaller set of faces is the one reversed.
+void orient_and_glue(const MeshData& in, CleanMesh& m) {
+  const int nf = static_cast<int>(in.F.rows());
+  const std::vector<std::pair<int, int>> pairs = manifold_edges(in, m);
+  std::vector<int> across(3 * nf, -1);  // half-edge -> the other half-edge of its manifold edge
+  for (const auto& [h, k] : pairs) across[h] = k, across[k] = h;
+  auto same_direction = [&](int h, int k) { return in.F(h / 3, h % 3) == in.F(k / 3, k % 3); };
+  m.reversed.assign(nf, 0);
+  std::vector<int> piece(nf, -1), queue;
+  for (int s = 0; s < nf; ++s) {
+    if (!m.good[s] || piece[s] >= 0) continue;
+    queue.assign(1, s);
+    piece[s] = s;
+    long flipped = 0;
+    for (size_t q = 0; q < queue.size(); ++q) {
+      const int f = queue[q];
+      flipped += m.reversed[f];
+      for (int c = 0; c < 3; ++c) {
+        const int k = across[3 * f + c], g = k < 0 ? -1 : k / 3;
+        if (g < 0 || piece[g] >= 0) continue;
+        piece[g] = s;
+        m.reversed[g] = static_cast<char>(m.reversed[f] ^ (same_direction(3 * f + c, k) ? 1 : 0));
+        queue.push_back(g);
+      }
+    }
+    if (2 * flipped > static_cast<long>(queue.size()))
+      for (int f : queue) m.reversed[f] ^= 1;
+  }
+  m.glued.assign(3 * nf, -1);
+  for (const auto& [h, k] : pairs)
+    if ((m.reversed[h / 3] ^ m.reversed[k / 3]) == (same_direction(h, k) ? 1 : 0)) {
+      m.glued[h] = k / 3;
+      m.glued[k] = h / 3;
+    } else {
+      ++m.cleaning.nonorientable_cuts;
+    }
+  for (int f = 0; f < nf; ++f) {
+    m.cleaning.reversed_faces += m.reversed[f];
+    if (m.reversed[f]) m.normal[f] = -m.normal[f];  // the normal of the orientation used
+  }
+}
+
+// Components (faces sharing a vertex), non-manifold vertices (corners of a
+// vertex in several glued fans) and unreferenced vertices.
+void count_components(const MeshData& in, CleanMesh& m) {
+  const int nv = static_cast<int>(in.V.rows()), nf = static_cast<int>(in.F.rows());
+  std::vector<int> parent(nv), corner(3 * nf);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::iota(corner.begin(), corner.end(), 0);
+  for (int f = 0; f < nf; ++f)
+    for (int c = 1; c < 3; ++c) parent[find_root(parent, in.F(f, c))] = find_root(parent, in.F(f, 0));
+  for (int h = 0; h < 3 * nf; ++h) {
+    const int g = m.glued[h];
+    if (g < 0) continue;
+    const int f = h / 3, a = in.F(f, h % 3), b = in.F(f, (h % 3 + 1) % 3);
+    for (int c = 0; c < 3; ++c)
+      if (in.F(g, c) == a || in.F(g, c) == b) {
+        const int mine = 3 * f + (in.F(g, c) == a ? h % 3 : (h % 3 + 1) % 3);
+        corner[find_root(corner, 3 * g + c)] = find_root(corner, mine);
+      }
+  }
+  std::vector<int> root_of(nv, -1), label(nv, -1);
+  std::vector<char> counted(nv, 0), used(nv, 0);
+  for (int h = 0; h < 3 * nf; ++h) {
+    const int v = in.F(h / 3, h % 3);
+    used[v] = 1;
+    if (!m.good[h / 3]) continue;
+    const int r = find_root(corner, h);
+    if (root_of[v] < 0) root_of[v] = r;
+    else if (root_of[v] != r && !counted[v]) counted[v] = 1, ++m.cleaning.nonmanifold_vertices;
+  }
+  for (int v = 0; v < nv; ++v) m.cleaning.unreferenced_vertices += used[v] ? 0 : 1;
+  m.component.assign(nf, 0);
+  for (int f = 0; f < nf; ++f) {
+    const int r = find_root(parent, in.F(f, 0));
+    if (label[r] < 0) label[r] = m.components++;
+    m.component[f] = label[r];
+  }
+}
+
+}  // namespace
+
+CleanMesh clean_mesh(const MeshData& input, const AtlasOptions& options) {
+  check_input(input);
+  CleanMesh m;
+  face_geometry(input, options.degenerate_ratio, m);
+  orient_and_glue(input, m);
+  count_components(input, m);
+  return m;
+}
+
+}  // namespace intrinsic::detail

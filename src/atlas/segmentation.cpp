@@ -1,0 +1,133 @@
+// Segmentation into charts (issue 13, "segmentation into disk charts"): region
+// growing from seeds over glued edges, a face joining a chart while its normal
+// stays within a cone around the chart's mean normal and never across a sharp
+// edge (the charts are then close to height fields, where the natural map of
+// paper section 4.2 rarely folds). Seeds are taken on the frontier of the
+// charts grown so far, so charts grow outward like a front. Charts that turn
+// out not to be disks, or whose map is invalid, are split in two by
+// split_in_two (atlas.cpp).
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <queue>
+
+#include "atlas/atlas_internal.h"
+
+namespace intrinsic::detail {
+namespace {
+
+struct Grower {
+  const MeshData& in;
+  const CleanMesh& m;
+  double cos_cone, cos_sharp;
+  std::vector<int> label;  // chart per face, -1 unassigned
+  std::deque<int> frontier;
+
+  // Grows chart `id` from `seed`; returns its faces (sorted).
+  std::vector<int> grow(int seed, int id) {
+    using Item = std::pair<double, int>;  // (cost, face): smallest cost first, then smallest face
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    std::vector<int> faces;
+    heap.emplace(0.0, seed);
+    while (!heap.empty()) {
+      const int f = heap.top().second;
+      heap.pop();
+      if (label[f] >= 0) continue;
+      if (!faces.empty() && m.normal[f].dot(sum.normalized()) < cos_cone) continue;
+      label[f] = id;
+      faces.push_back(f);
+      sum += m.area[f] * m.normal[f] + 1e-300 * m.normal[f];
+      const Eigen::Vector3d mean = sum.normalized();
+      for (int c = 0; c < 3; ++c) {
+        const int g = m.glued[3 * f + c];
+        if (g < 0 || label[g] >= 0 || m.normal[f].dot(m.normal[g]) < cos_sharp) continue;
+        heap.emplace(1 - m.normal[g].dot(mean), g);
+      }
+    }
+    for (int f : faces)
+      for (int c = 0; c < 3; ++c) {
+        const int g = m.glued[3 * f + c];
+        if (g >= 0 && label[g] < 0) frontier.push_back(g);
+      }
+    std::sort(faces.begin(), faces.end());
+    return faces;
+  }
+};
+
+// Breadth-first distances (in faces) from `sources` inside the chart; the last face reached.
+int farthest(const CleanMesh& m, const std::vector<int>& faces, int source) {
+  std::vector<char> seen(faces.size(), 0);
+  auto index = [&](int f) {
+    auto it = std::lower_bound(faces.begin(), faces.end(), f);
+    return it != faces.end() && *it == f ? static_cast<int>(it - faces.begin()) : -1;
+  };
+  std::deque<int> queue{source};
+  seen[index(source)] = 1;
+  int last = source;
+  while (!queue.empty()) {
+    last = queue.front();
+    queue.pop_front();
+    for (int c = 0; c < 3; ++c) {
+      const int g = m.glued[3 * last + c], k = g < 0 ? -1 : index(g);
+      if (k >= 0 && !seen[k]) seen[k] = 1, queue.push_back(g);
+    }
+  }
+  return last;
+}
+
+}  // namespace
+
+std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options) {
+  const int nf = static_cast<int>(input.F.rows());
+  const bool components = options.segmentation == Segmentation::Components;
+  Grower g{input, clean, components ? -2.0 : std::cos(options.max_normal_deviation_deg * M_PI / 180),
+           components ? -2.0 : std::cos(options.sharp_angle_deg * M_PI / 180), std::vector<int>(nf, -1), {}};
+  std::vector<std::vector<int>> charts;
+  int next = 0;  // lowest face that may still be unassigned
+  while (true) {
+    int seed = -1;
+    while (!g.frontier.empty() && seed < 0) {
+      if (g.label[g.frontier.front()] < 0) seed = g.frontier.front();
+      g.frontier.pop_front();
+    }
+    while (seed < 0 && next < nf) {
+      if (clean.good[next] && g.label[next] < 0) seed = next;
+      ++next;
+    }
+    if (seed < 0) break;
+    charts.push_back(g.grow(seed, static_cast<int>(charts.size())));
+  }
+  return charts;
+}
+
+std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::vector<int>& faces) {
+  const int a = farthest(clean, faces, faces.front());
+  const int b = farthest(clean, faces, a);
+  // Two fronts grown together, one face layer at a time: both halves connected.
+  std::vector<int> side(faces.size(), -1);
+  auto index = [&](int f) {
+    auto it = std::lower_bound(faces.begin(), faces.end(), f);
+    return it != faces.end() && *it == f ? static_cast<int>(it - faces.begin()) : -1;
+  };
+  std::deque<int> queue{a, b};
+  side[index(a)] = 0;
+  side[index(b)] = a == b ? 0 : 1;
+  while (!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    for (int c = 0; c < 3; ++c) {
+      const int g = clean.glued[3 * f + c], k = g < 0 ? -1 : index(g);
+      if (k >= 0 && side[k] < 0) side[k] = side[index(f)], queue.push_back(g);
+    }
+  }
+  std::array<std::vector<int>, 2> halves;
+  for (size_t k = 0; k < faces.size(); ++k) halves[side[k] == 1 ? 1 : 0].push_back(faces[k]);
+  if (halves[1].empty()) {  // not connected or a == b: peel one face off
+    halves[1].push_back(halves[0].back());
+    halves[0].pop_back();
+  }
+  return halves;
+}
+
+}  // namespace intrinsic::detail

@@ -1,0 +1,360 @@
+// intrinsic atlas (issue 13), checked from the outside: every face gets
+// finite per-corner UVs in [0,1]^2, no triangle is flipped, no two triangles
+// overlap (an overlap test of its own: a uniform grid over UV space and a
+// separating-axis triangle test with a small tolerance, independent of the
+// packer and of the library's own checks), each chart is a disk on its corner
+// mesh (V - E + F = 1, one boundary loop), on the generated closed surfaces,
+// hand-made messy meshes, every patch of shared/meshes and every asset.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "cli_support.h"
+#include "intrinsic/atlas.h"
+#include "intrinsic/generate.h"
+#include "intrinsic/io.h"
+#include "test_support.h"
+
+namespace intrinsic {
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+double twice_area(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+}
+
+bool degenerate_3d(const MeshData& m, int f) {
+  const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
+  if (a == b || b == c || a == c) return true;
+  const Eigen::Vector3d x0 = m.V.row(a), x1 = m.V.row(b), x2 = m.V.row(c);
+  const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
+  return !((x1 - x0).cross(x2 - x0).norm() > 1e-12 * longest);
+}
+
+// Separating axis test for two triangles: true when their interiors overlap
+// by more than `tol` along every edge normal of both.
+bool triangles_overlap(const std::array<Vec2, 3>& p, const std::array<Vec2, 3>& q, double tol) {
+  for (const std::array<Vec2, 3>* t : {&p, &q})
+    for (int e = 0; e < 3; ++e) {
+      const Vec2 d = (*t)[(e + 1) % 3] - (*t)[e];
+      if (d.norm() == 0) continue;
+      const Vec2 n = Vec2(-d.y(), d.x()).normalized();
+      double p0 = INFINITY, p1 = -INFINITY, q0 = INFINITY, q1 = -INFINITY;
+      for (int i = 0; i < 3; ++i) {
+        p0 = std::min(p0, n.dot(p[i])), p1 = std::max(p1, n.dot(p[i]));
+        q0 = std::min(q0, n.dot(q[i])), q1 = std::max(q1, n.dot(q[i]));
+      }
+      if (p1 <= q0 + tol || q1 <= p0 + tol) return false;
+    }
+  return true;
+}
+
+// Pairs of UV triangles (non-zero area) whose interiors overlap.
+long count_overlaps(const MatrixX3i& FUV, const MatrixX2d& UV) {
+  std::vector<std::array<Vec2, 3>> tri;
+  for (int f = 0; f < FUV.rows(); ++f) {
+    std::array<Vec2, 3> t{UV.row(FUV(f, 0)), UV.row(FUV(f, 1)), UV.row(FUV(f, 2))};
+    if (std::abs(twice_area(t[0], t[1], t[2])) > 1e-20) tri.push_back(t);
+  }
+  const int g = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(tri.size()))), 1, 1024);
+  std::vector<std::vector<int>> cells(static_cast<size_t>(g) * g);
+  auto cell = [g](double x) { return std::clamp(static_cast<int>(x * g), 0, g - 1); };
+  std::vector<std::array<int, 4>> box(tri.size());
+  for (size_t i = 0; i < tri.size(); ++i) {
+    const auto& t = tri[i];
+    box[i] = {cell(std::min({t[0].x(), t[1].x(), t[2].x()})), cell(std::max({t[0].x(), t[1].x(), t[2].x()})),
+              cell(std::min({t[0].y(), t[1].y(), t[2].y()})), cell(std::max({t[0].y(), t[1].y(), t[2].y()}))};
+    for (int x = box[i][0]; x <= box[i][1]; ++x)
+      for (int y = box[i][2]; y <= box[i][3]; ++y) cells[x * g + y].push_back(static_cast<int>(i));
+  }
+  long overlaps = 0;
+  for (int x = 0; x < g; ++x)
+    for (int y = 0; y < g; ++y) {
+      const std::vector<int>& c = cells[x * g + y];
+      for (size_t s = 0; s < c.size(); ++s)
+        for (size_t t = s + 1; t < c.size(); ++t) {
+          const int i = c[s], j = c[t];
+          // Count each pair once: in the first cell both boxes share.
+          if (x != std::max(box[i][0], box[j][0]) || y != std::max(box[i][2], box[j][2])) continue;
+          overlaps += triangles_overlap(tri[i], tri[j], 1e-10) ? 1 : 0;
+        }
+    }
+  return overlaps;
+}
+
+// Each chart's corner mesh (its UV indices) is a disk: one component,
+// V - E + F = 1, edges with one or two faces, the boundary one closed loop.
+void expect_disk_charts(const AtlasResult& r) {
+  std::map<int, std::vector<int>> faces;
+  for (size_t f = 0; f < r.face_chart.size(); ++f)
+    if (r.face_chart[f] >= 0) faces[r.face_chart[f]].push_back(static_cast<int>(f));
+  std::vector<int> uv_chart(r.UV.rows(), -1);
+  for (const auto& [c, list] : faces) {
+    std::map<std::pair<int, int>, int> edges;
+    std::set<int> verts;
+    for (int f : list)
+      for (int i = 0; i < 3; ++i) {
+        const int a = r.FUV(f, i), b = r.FUV(f, (i + 1) % 3);
+        verts.insert(a);
+        ++edges[{std::min(a, b), std::max(a, b)}];
+        if (uv_chart[a] >= 0) EXPECT_EQ(uv_chart[a], c) << "UV " << a << " shared by two charts";
+        uv_chart[a] = c;
+      }
+    std::map<int, std::vector<int>> boundary;
+    for (const auto& [e, n] : edges) {
+      ASSERT_LE(n, 2) << "chart " << c << ": edge with " << n << " faces";
+      if (n == 1) boundary[e.first].push_back(e.second), boundary[e.second].push_back(e.first);
+    }
+    EXPECT_EQ(static_cast<long>(verts.size()) - static_cast<long>(edges.size()) + static_cast<long>(list.size()), 1)
+        << "chart " << c << " (" << list.size() << " faces) is not a disk";
+    // One loop: every boundary vertex has two boundary neighbours and a walk visits them all.
+    ASSERT_FALSE(boundary.empty()) << "chart " << c << " is closed";
+    for (const auto& [v, nb] : boundary) ASSERT_EQ(nb.size(), 2u) << "chart " << c << ": boundary pinched at " << v;
+    int prev = -1, v = boundary.begin()->first, steps = 0;
+    do {
+      const int next = boundary[v][0] != prev ? boundary[v][0] : boundary[v][1];
+      prev = v, v = next, ++steps;
+    } while (v != boundary.begin()->first && steps <= static_cast<int>(boundary.size()));
+    EXPECT_EQ(steps, static_cast<int>(boundary.size())) << "chart " << c << " has several boundary loops";
+  }
+}
+
+// Everything the atlas promises, measured on the result.
+void expect_valid_atlas(const MeshData& m, const AtlasResult& r) {
+  ASSERT_EQ(r.FUV.rows(), m.F.rows());
+  ASSERT_EQ(r.face_chart.size(), static_cast<size_t>(m.F.rows()));
+  ASSERT_EQ(r.face_reversed.size(), static_cast<size_t>(m.F.rows()));
+  ASSERT_TRUE(r.UV.allFinite());
+  EXPECT_GE(r.UV.minCoeff(), 0.0);
+  EXPECT_LE(r.UV.maxCoeff(), 1.0);
+  ASSERT_GE(r.FUV.minCoeff(), 0);
+  ASSERT_LT(r.FUV.maxCoeff(), r.UV.rows());
+  long flipped = 0;
+  for (int f = 0; f < m.F.rows(); ++f) {
+    const double a = twice_area(r.UV.row(r.FUV(f, 0)), r.UV.row(r.FUV(f, 1)), r.UV.row(r.FUV(f, 2)));
+    if (degenerate_3d(m, f)) {
+      EXPECT_EQ(r.face_chart[f], -1);
+      EXPECT_NEAR(a, 0.0, 1e-14);
+    } else {
+      EXPECT_GE(r.face_chart[f], 0) << "face " << f;
+      flipped += (r.face_reversed[f] ? -a : a) > 0 ? 0 : 1;
+    }
+  }
+  EXPECT_EQ(flipped, 0);
+  EXPECT_EQ(r.flipped, 0);
+  EXPECT_EQ(r.overlapping, 0);
+  EXPECT_EQ(count_overlaps(r.FUV, r.UV), 0);
+  expect_disk_charts(r);
+  EXPECT_GT(r.utilization, 0.0);
+  EXPECT_LE(r.utilization, 1.0);
+}
+
+void check_file(const std::string& name) {
+  SCOPED_TRACE(name);
+  const MeshData m = read_mesh(test::shared_mesh(name));
+  const auto t0 = std::chrono::steady_clock::now();
+  const AtlasResult r = atlas(m);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("  %-34s %7ld faces %5zu charts %4d splits utilization %.3f  %.2f s\n", name.c_str(),
+              static_cast<long>(m.F.rows()), r.charts.size(), r.splits, r.utilization, s);
+  expect_valid_atlas(m, r);
+}
+
+TEST(Atlas, GeneratedClosedSurfaces) {
+  for (const char* name : {"sphere", "torus", "genus2"}) {
+    SCOPED_TRACE(name);
+    GenerateOptions o;
+    o.rings = 14;
+    const MeshData m = generate_surface(name, o);
+    const AtlasResult r = atlas(m);
+    expect_valid_atlas(m, r);
+    EXPECT_GE(r.charts.size(), 2u);  // closed: cut
+    EXPECT_EQ(r.components, 1);
+    EXPECT_EQ(r.cleaning.reversed_faces, 0);  // consistently oriented input: every UV triangle counter-clockwise
+  }
+}
+
+TEST(Atlas, ComponentsSegmentationCutsClosedSurfaces) {
+  GenerateOptions o;
+  o.rings = 10;
+  AtlasOptions ao;
+  ao.segmentation = Segmentation::Components;  // one chart per piece first: the splits must cut the handles
+  for (const char* name : {"sphere", "torus", "genus2"}) {
+    SCOPED_TRACE(name);
+    const MeshData m = generate_surface(name, o);
+    const AtlasResult r = atlas(m, ao);
+    expect_valid_atlas(m, r);
+    EXPECT_GT(r.splits, 0);
+  }
+}
+
+// Two triangles sharing only a vertex, three faces on one edge, a face listed
+// backwards, a zero-area face, a repeated index, a Moebius strip.
+TEST(Atlas, MessyHandMadeMeshes) {
+  MeshData m;
+  m.V.resize(12, 3);
+  m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0.2, 1, 1, 1, 0.5, 0.5, 0, 2, 0, 0, 3, 0, 0, 5, 5, 5, 0, 0, 1,
+      0.5, 0, -1;
+  m.F.resize(9, 3);
+  m.F << 0, 1, 2,   // base
+      0, 3, 4,      // shares only vertex 0
+      0, 2, 1,      // same edge (0,1) again, backwards: non-manifold edge, inconsistent
+      1, 0, 10,     // third face on edge (0,1)
+      1, 7, 8,      // zero area (collinear)
+      1, 1, 5,      // repeated index
+      2, 6, 5,      //
+      6, 2, 0,      // listed against its neighbours
+      0, 11, 1;     // fourth face on edge (0,1)
+  const AtlasResult r = atlas(m);
+  expect_valid_atlas(m, r);
+  EXPECT_EQ(r.cleaning.degenerate_faces, 2);
+  EXPECT_GE(r.cleaning.nonmanifold_edges, 1);
+  EXPECT_EQ(r.cleaning.unreferenced_vertices, 1);  // vertex 9
+  // Moebius strip: 2 x 8 grid glued with a half twist.
+  MeshData s;
+  const int n = 8;
+  s.V.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 2; ++j) {
+      const double t = 2 * M_PI * i / n, w = (j - 0.5) * 0.6;
+      s.V.row(2 * i + j) << (1 + w * std::cos(t / 2)) * std::cos(t), (1 + w * std::cos(t / 2)) * std::sin(t),
+          w * std::sin(t / 2);
+    }
+  s.F.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    int a = 2 * i, b = 2 * i + 1, c = 2 * (i + 1), d = 2 * (i + 1) + 1;
+    if (i == n - 1) c = 1, d = 0;  // the twist
+    s.F.row(2 * i) << a, c, b;
+    s.F.row(2 * i + 1) << b, c, d;
+  }
+  expect_valid_atlas(s, atlas(s));
+}
+
+// A strip of quads whose every other face is listed backwards: one piece,
+// reoriented for the solve (the minority reversed), then one valid chart.
+TEST(Atlas, InconsistentOrientationIsFixedNotCut) {
+  MeshData m;
+  const int n = 12;
+  m.V.resize(2 * (n + 1), 3);
+  for (int i = 0; i <= n; ++i) {
+    m.V.row(2 * i) << i, 0, 0.1 * i * i;
+    m.V.row(2 * i + 1) << i, 1, 0.1 * i * i;
+  }
+  m.F.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 * i, b = 2 * i + 2, c = 2 * i + 1, d = 2 * i + 3;
+    m.F.row(2 * i) << a, b, d;
+    if (i % 3 == 0) m.F.row(2 * i + 1) << a, c, d;  // backwards
+    else m.F.row(2 * i + 1) << a, d, c;
+  }
+  const AtlasResult r = atlas(m);
+  expect_valid_atlas(m, r);
+  EXPECT_EQ(r.cleaning.reversed_faces, 4);
+  EXPECT_EQ(r.charts.size(), 1u);
+  for (int f = 0; f < m.F.rows(); ++f) EXPECT_EQ(r.face_reversed[f], f % 6 == 1) << f;
+}
+
+TEST(Atlas, DeterministicAndIndependentOfNothingElse) {
+  GenerateOptions o;
+  o.rings = 12;
+  const MeshData m = generate_genus2(o);
+  const AtlasResult a = atlas(m), b = atlas(m);
+  EXPECT_EQ(a.UV, b.UV);
+  EXPECT_EQ(a.FUV, b.FUV);
+  EXPECT_EQ(a.face_chart, b.face_chart);
+}
+
+TEST(Atlas, BadInputIsRefusedClearly) {
+  MeshData m;
+  m.V.resize(3, 3);
+  m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  m.F.resize(1, 3);
+  m.F << 0, 1, 5;
+  test::expect_error([&] { atlas(m); }, ErrorKind::Input, "refers to vertex 5");
+  m.F << 0, 1, 2;
+  m.V(1, 0) = NAN;
+  test::expect_error([&] { atlas(m); }, ErrorKind::Input, "non-finite");
+  m.V(1, 0) = 1;
+  AtlasOptions o;
+  o.padding = -1;
+  test::expect_error([&] { atlas(m, o); }, ErrorKind::Usage, "padding");
+  MeshData empty;
+  test::expect_error([&] { atlas(empty); }, ErrorKind::Input, "no vertices");
+}
+
+TEST(Atlas, SmallPatchesAndAssets) {
+  for (const char* name : {"cat_head.obj", "snail.obj", "camel_b.obj", "inspired_mesh.obj", "alligator.obj",
+                           "maze.obj", "fairing-cross.off", "assets/decimated-knight.off", "assets/suzanne.obj",
+                           "assets/horse_quad.obj", "assets/spot.obj", "assets/teapot.obj", "assets/truck.obj",
+                           "assets/3holes.off", "assets/fertility.off", "assets/screwdriver.off"})
+    check_file(name);
+}
+
+TEST(Atlas, LargePatches) {
+  for (const char* name : {"animal.obj", "beetle.off", "camelhead.off", "face-bff.obj", "inverted-triangles.obj",
+                           "max-planck-partial.obj", "stanford-bunny.obj"})
+    check_file(name);
+}
+
+TEST(Atlas, LargeAssets) {
+  for (const char* name : {"assets/cheburashka.obj", "assets/decimated-max.obj", "assets/arm.obj",
+                           "assets/bumpy-cube.obj", "assets/beast.obj.gz", "assets/rocker-arm.obj",
+                           "assets/ogre.obj.gz"})
+    check_file(name);
+}
+
+TEST(Atlas, LargeAssetIgea) {
+  // igea.ply stores its faces as one `tristrips` element, which read_mesh
+  // does not read yet ("no faces"): not an atlas failure, but not covered.
+  GTEST_SKIP() << "assets/igea.ply.gz: the PLY reader does not support the tristrips element yet";
+}
+
+TEST(AtlasCli, KeepsVerticesWritesCornersDeterministic) {
+  test::TempDir dir;
+  const std::string in = test::shared_mesh("assets/teapot.obj");
+  const std::string a = dir / "a.obj", b = dir / "b.obj", rep = dir / "r.json";
+  ASSERT_EQ(test::run_cli("atlas " + in + " -o " + a + " --report " + rep + " -q", dir).code, 0);
+  ASSERT_EQ(test::run_cli("atlas " + in + " -o " + b + " -q", dir).code, 0);
+  EXPECT_EQ(test::slurp(a), test::slurp(b));  // same input, same bytes
+  const MeshData src = read_mesh(in), out = read_mesh(a);
+  EXPECT_EQ(out.V, src.V);  // positions and order unchanged
+  EXPECT_EQ(out.F, src.F);
+  ASSERT_TRUE(out.has_uv());
+  AtlasResult r;
+  r.UV = out.TC;
+  r.FUV = out.FTC;
+  const AtlasResult lib = atlas(src);
+  r.face_chart = lib.face_chart;
+  r.face_reversed = lib.face_reversed;
+  r.utilization = lib.utilization;
+  expect_valid_atlas(src, r);  // what the file holds, read back
+  const std::string report = test::slurp(rep);
+  for (const char* key : {"\"charts\"", "\"utilization\"", "\"flipped\": 0", "\"overlapping\": 0", "\"cleaning\"",
+                          "\"nonmanifold_vertices\"", "\"timings_ms\"", "\"flatten\"", "\"chart_list\""})
+    EXPECT_NE(report.find(key), std::string::npos) << key;
+}
+
+TEST(AtlasCli, ClosedSurfaceFromGenerateAndErrors) {
+  test::TempDir dir;
+  const std::string g = dir / "g.obj", out = dir / "out.obj";
+  ASSERT_EQ(test::run_cli("generate genus2 --rings 8 -o " + g, dir).code, 0);
+  const test::CliResult param = test::run_cli("param " + g + " -o " + out, dir);
+  EXPECT_EQ(param.code, 2);
+  EXPECT_NE(param.err.find("intrinsic atlas"), std::string::npos) << param.err;
+  EXPECT_EQ(test::run_cli("atlas " + g + " -o " + out + " -q", dir).code, 0);
+  const test::CliResult missing = test::run_cli("atlas " + dir / "none.obj -o " + dir / "x.obj", dir);
+  EXPECT_EQ(missing.code, 2);
+  const test::CliResult ply = test::run_cli("atlas " + g + " -o " + dir / "x.ply", dir);
+  EXPECT_EQ(ply.code, 1);
+  EXPECT_NE(ply.err.find(".obj"), std::string::npos);
+  EXPECT_FALSE(std::ifstream(dir / "x.obj").good());
+  EXPECT_FALSE(std::ifstream(dir / "x.ply").good());
+}
+
+}  // namespace
+}  // namespace intrinsic
