@@ -309,9 +309,8 @@ TEST(Atlas, LargeAssets) {
 }
 
 TEST(Atlas, LargeAssetIgea) {
-  // igea.ply stores its faces as one `tristrips` element, which read_mesh
-  // does not read yet ("no faces"): not an atlas failure, but not covered.
-  GTEST_SKIP() << "assets/igea.ply.gz: the PLY reader does not support the tristrips element yet";
+  // igea.ply stores its faces as one `tristrips` element (134k vertices).
+  check_file("assets/igea.ply.gz");
 }
 
 TEST(AtlasCli, KeepsVerticesWritesCornersDeterministic) {

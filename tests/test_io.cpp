@@ -433,6 +433,27 @@ TEST(IoPly, AsciiExtraElementsAndNoUv) {
   EXPECT_FALSE(m.has_uv());
 }
 
+// Scanners' PLY files (igea.ply) store faces as triangle strips: -1 ends a
+// strip, every second triangle is reversed to keep the strip's orientation,
+// and triangles with a repeated vertex (strip joins) are dropped.
+TEST(IoPly, TriangleStrips) {
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+                           "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+                           "0 0 0\n0 1 0\n1 0 0\n1 1 0\n2 0 0\n2 1 0\n";
+  MeshData m = read_text(head + "11 0 1 2 3 4 5 -1 0 2 2 4\n", "s.ply");
+  ASSERT_EQ(m.F.rows(), 4);
+  EXPECT_EQ(m.F.row(0), Eigen::RowVector3i(0, 1, 2));
+  EXPECT_EQ(m.F.row(1), Eigen::RowVector3i(2, 1, 3));
+  EXPECT_EQ(m.F.row(2), Eigen::RowVector3i(2, 3, 4));
+  EXPECT_EQ(m.F.row(3), Eigen::RowVector3i(4, 3, 5));
+  // One orientation throughout: every triangle has the same signed area sign.
+  for (int f = 0; f < 4; ++f) {
+    const Eigen::Vector3d a = m.V.row(m.F(f, 0)), b = m.V.row(m.F(f, 1)), c = m.V.row(m.F(f, 2));
+    EXPECT_LT((b - a).cross(c - a).z(), 0) << f;
+  }
+  EXPECT_NE(input_error(head + "3 0 1 9\n", "s.ply", "s.ply").find("strip index 9 out of range"), std::string::npos);
+}
+
 TEST(IoPly, BinaryBothEndiannessAndAllIndexTypes) {
   ASSERT_TRUE(host_little());
   const T counts[] = {T::u8, T::i8, T::u16, T::i16, T::i32, T::u32};

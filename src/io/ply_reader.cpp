@@ -171,6 +171,7 @@ struct Layout {
   int xyz[3] = {-1, -1, -1};  // property positions in the vertex element
   int uv[2] = {-1, -1};
   int indices = -1;  // the vertex index list in the face element
+  bool strips = false;  // the faces are a 'tristrips' element (-1 ends a strip)
 };
 
 // Skips one property of an element that is not read (a list or a scalar).
@@ -231,6 +232,39 @@ void read_face(Cursor& cur, const Property& p, const Where& w, std::int64_t nv, 
   }
 }
 
+// One triangle strip list (the 'tristrips' element of scanners' PLY files):
+// -1 ends a strip; triangle i of a strip is (s_i, s_i+1, s_i+2), every second
+// one reversed so all keep the strip's orientation. Triangles with a repeated
+// vertex only join strips and are dropped.
+template <class Cursor>
+void read_strip(Cursor& cur, const Property& p, const Where& w, std::int64_t nv, MeshBuilder& b,
+                const ReadOptions& opt) {
+  const std::int64_t n = integer(cur.value(p.count_type, w), "strip length", cur, w);
+  if (!cur.can_hold(p.type, n)) cur.fail(w, "strip of " + std::to_string(n) + " indices runs past the end of the file");
+  int a = -1, c = -1;  // the previous two indices of the current strip
+  std::int64_t in_strip = 0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int64_t idx = integer(cur.value(p.type, w), "vertex index", cur, w);
+    if (idx == -1) {
+      in_strip = 0;
+      continue;
+    }
+    if (idx < 0 || idx >= nv)
+      cur.fail(w, "strip index " + std::to_string(idx) + " out of range (file has " + std::to_string(nv) + " vertices)");
+    const int v = static_cast<int>(idx);
+    if (in_strip >= 2 && a != c && c != v && v != a) {
+      if (b.triangle_count() + 1 > face_limit(opt))
+        cur.fail(w, "more than " + std::to_string(face_limit(opt)) + " faces (the limit)");
+      if (in_strip % 2 == 0) b.tri.insert(b.tri.end(), {a, c, v});
+      else b.tri.insert(b.tri.end(), {c, a, v});
+      b.line.push_back(cur.line());
+    }
+    a = c;
+    c = v;
+    ++in_strip;
+  }
+}
+
 template <class Cursor>
 void read_faces(Cursor& cur, const Element& e, const Layout& lay, MeshBuilder& b, const ReadOptions& opt) {
   b.tri.reserve(static_cast<std::size_t>(e.count) * 3);
@@ -239,8 +273,9 @@ void read_faces(Cursor& cur, const Element& e, const Layout& lay, MeshBuilder& b
   Where w{&e.name, 0};
   for (w.index = 0; w.index < e.count; ++w.index) {
     for (std::size_t k = 0; k < e.props.size(); ++k) {
-      if (static_cast<int>(k) == lay.indices) read_face(cur, e.props[k], w, lay.vertex->count, b, opt, poly);
-      else skip_property(cur, e.props[k], w);
+      if (static_cast<int>(k) != lay.indices) skip_property(cur, e.props[k], w);
+      else if (lay.strips) read_strip(cur, e.props[k], w, lay.vertex->count, b, opt);
+      else read_face(cur, e.props[k], w, lay.vertex->count, b, opt, poly);
     }
   }
 }
@@ -365,9 +400,10 @@ Layout find_layout(const TextScanner& s, const std::vector<Element>& elements, c
     if (e.name == "vertex") {
       if (lay.vertex) s.fail_at(e.line, "more than one 'vertex' element");
       lay.vertex = &e;
-    } else if (e.name == "face") {
-      if (lay.face) s.fail_at(e.line, "more than one 'face' element");
+    } else if (e.name == "face" || e.name == "tristrips") {
+      if (lay.face) s.fail_at(e.line, "more than one 'face' or 'tristrips' element");
       lay.face = &e;
+      lay.strips = e.name == "tristrips";
     }
   }
   if (!lay.vertex || lay.vertex->count == 0) throw_input(name + ": no vertices");
