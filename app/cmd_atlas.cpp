@@ -3,15 +3,14 @@
 // (atlas.h), write the input's vertices in input order with one `vt` per atlas
 // UV and faces `f v/vt` (seams only through the per-corner texture
 // coordinates), and the report.
-#include <charconv>
 #include <iostream>
 
 #include "command.h"
 #include "intrinsic/atlas.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
+#include "atlas_job.h"
 #include "pictures.h"
-#include <nlohmann/json.hpp>
 
 namespace intrinsic::app {
 namespace {
@@ -22,86 +21,6 @@ struct AtlasArgs {
   bool quiet = false;
   std::int64_t max_vertices = ReadOptions().max_vertices;
 };
-
-void put(std::string& s, double x) {
-  char b[32];
-  s.append(b, std::to_chars(b, b + sizeof b, x).ptr);
-}
-
-void put(std::string& s, long x) {
-  char b[24];
-  s.append(b, std::to_chars(b, b + sizeof b, x).ptr);
-}
-
-// The OBJ, streamed in blocks of lines.
-void write_obj(const std::string& path, const MeshData& m, const AtlasResult& r) {
-  write_file_atomically(path, [&](const ByteSink& sink) {
-    std::string s = "# intrinsic atlas: " + std::to_string(r.charts.size()) + " charts\n";
-    auto flush = [&](bool force) {
-      if (force || s.size() > (1 << 20)) sink(s.data(), s.size()), s.clear();
-    };
-    for (int v = 0; v < m.V.rows(); ++v) {
-      s += "v";
-      for (int c = 0; c < 3; ++c) s += ' ', put(s, m.V(v, c));
-      s += '\n';
-      flush(false);
-    }
-    for (int t = 0; t < r.UV.rows(); ++t) {
-      s += "vt ";
-      put(s, r.UV(t, 0));
-      s += ' ';
-      put(s, r.UV(t, 1));
-      s += '\n';
-      flush(false);
-    }
-    for (int f = 0; f < m.F.rows(); ++f) {
-      s += "f";
-      for (int c = 0; c < 3; ++c) {
-        s += ' ';
-        put(s, static_cast<long>(m.F(f, c)) + 1);
-        s += '/';
-        put(s, static_cast<long>(r.FUV(f, c)) + 1);
-      }
-      s += '\n';
-      flush(false);
-    }
-    flush(true);
-  });
-}
-
-nlohmann::json report_json(const AtlasArgs& a, const MeshData& m, const AtlasResult& r) {
-  nlohmann::json j;
-  j["input"] = a.input;
-  j["output"] = a.output;
-  j["vertices"] = m.V.rows();
-  j["faces"] = m.F.rows();
-  j["components"] = r.components;
-  j["charts"] = r.charts.size();
-  j["splits"] = r.splits;
-  const AtlasSplits& sr = r.split_reasons;
-  j["split_reasons"] = {{"not_disk", sr.not_disk}, {"refused", sr.refused}, {"solve_failed", sr.solve_failed},
-                        {"flipped", sr.flipped}, {"boundary_crossing", sr.boundary_crossing}, {"sparse", sr.sparse}};
-  j["utilization"] = r.utilization;
-  j["flipped"] = r.flipped;
-  j["overlapping"] = r.overlapping;
-  j["resolution"] = a.options.resolution;
-  j["padding"] = a.options.padding;
-  j["cleaning"] = {{"degenerate_faces", r.cleaning.degenerate_faces},
-                   {"nonmanifold_edges", r.cleaning.nonmanifold_edges},
-                   {"nonmanifold_vertices", r.cleaning.nonmanifold_vertices},
-                   {"inconsistent_edges", r.cleaning.inconsistent_edges},
-                   {"reversed_faces", r.cleaning.reversed_faces},
-                   {"nonorientable_cuts", r.cleaning.nonorientable_cuts},
-                   {"unreferenced_vertices", r.cleaning.unreferenced_vertices}};
-  nlohmann::json charts = nlohmann::json::array();
-  for (const AtlasChart& c : r.charts)
-    charts.push_back({{"component", c.component}, {"faces", c.faces}, {"vertices", c.vertices},
-                      {"method", chart_method_name(c.method)}, {"flipped", c.flipped},
-                      {"angle_distortion_mean", c.angle_distortion_mean}, {"stretch_l2_mean", c.stretch_l2_mean},
-                      {"area_3d", c.area_3d}, {"rotated", c.rotated}});
-  j["chart_list"] = charts;
-  return j;
-}
 
 int run_atlas(const AtlasArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -114,9 +33,11 @@ int run_atlas(const AtlasArgs& a) {
   const double read_ms = elapsed_ms(t0);
   const AtlasResult r = atlas(data, a.options);
   const auto t1 = std::chrono::steady_clock::now();
-  write_obj(a.output, data, r);
+  write_atlas_obj(a.output, data, r);
   const double write_ms = elapsed_ms(t1);
-  nlohmann::json j = report_json(a, data, r);
+  nlohmann::json j = atlas_report(data, a.options, r);
+  j["input"] = a.input;
+  j["output"] = a.output;
   j["timings_ms"] = {{"read", read_ms},       {"clean", r.timings.clean_ms}, {"segment", r.timings.segment_ms},
                      {"flatten", r.timings.flatten_ms}, {"merge", r.timings.merge_ms}, {"pack", r.timings.pack_ms}, {"write", write_ms},
                      {"total", elapsed_ms(t0)}};

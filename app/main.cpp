@@ -15,16 +15,6 @@ double elapsed_ms(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::string mesh_extension(const std::string& path) {
-  std::string p = path;
-  std::transform(p.begin(), p.end(), p.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (p.size() > 3 && p.compare(p.size() - 3, 3, ".gz") == 0) p.resize(p.size() - 3);
-  const size_t dot = p.rfind('.');
-  const size_t slash = p.rfind('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  return p.substr(dot);
-}
-
 void check_output_mesh_path(const std::string& path) {
   const std::string ext = mesh_extension(path);
   if (ext != ".obj" && ext != ".ply")

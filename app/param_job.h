@@ -41,6 +41,10 @@ struct ParamArgs {
   bool has_constraints() const { return !constraints.empty() || given_constraints != nullptr; }
 };
 
+// The lower-case extension of a mesh path, ".gz" removed ("" when none;
+// also declared in command.h).
+std::string mesh_extension(const std::string& path);
+
 // The face cap that goes with a vertex cap (also declared in command.h).
 std::int64_t faces_for_vertices(std::int64_t max_vertices);
 

@@ -27,6 +27,7 @@ from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
 from . import _intrinsic
 from ._intrinsic import (  # noqa: F401  (re-exported)
+    Atlas,
     BoundaryEditor,
     Error,
     InputError,
@@ -38,15 +39,16 @@ from ._intrinsic import (  # noqa: F401  (re-exported)
     metrics,
     read_mesh,
     render,
+    write_atlas,
     write_mesh,
 )
 
 __version__ = _intrinsic.__version__
 
 __all__ = [
-    "BoundaryEditor", "Error", "InputError", "NumericalError", "OutputError", "Parameterizer", "Result",
+    "Atlas", "BoundaryEditor", "Error", "InputError", "NumericalError", "OutputError", "Parameterizer", "Result",
     "UsageError", "metrics", "optimal_lambda", "optimize_boundary", "parameterize", "read_mesh", "render",
-    "write_mesh",
+    "write_atlas", "write_mesh", "atlas",
 ]
 
 Path = Union[str, PathLike]
@@ -148,3 +150,28 @@ def optimize_boundary(V: Any, F: Any = None, energy: str = "edge", **options: An
     ``result.report["boundary_optimization"]`` holds the energy history.
     """
     return parameterize(V, F, optimize_boundary=energy, **options)
+
+
+def atlas(
+    V: Any,
+    F: Any = None,
+    *,
+    padding: float = 2,
+    resolution: int = 1024,
+    max_normal_deviation: float = 60,
+    min_chart_faces: int = 20,
+    max_vertices: int = 50_000_000,
+) -> Atlas:
+    """`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or a mesh file (atlas(path)).
+
+    Any triangle mesh (closed, higher genus, several components, non-manifold bits, zero-area faces) is
+    cut into disk charts, each flattened by the paper's natural conformal map, and packed into [0,1]^2
+    with `padding` texels (of a `resolution`-wide texture) between charts, without flipped or
+    overlapping triangles. Returns an Atlas: uv (k x 2), uv_index (#F x 3, per face corner a row of
+    uv), face_chart (#F, -1 for degenerate faces), V, F (the input, unchanged) and report (the
+    command line's report as a dict). write_atlas(path, atlas) writes the command line's .obj.
+    Raises UsageError for bad options and InputError for unreadable or invalid input.
+    """
+    return _intrinsic.atlas(V, F, padding=padding, resolution=resolution,
+                            max_normal_deviation=max_normal_deviation, min_chart_faces=min_chart_faces,
+                            max_vertices=max_vertices)

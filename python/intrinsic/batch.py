@@ -1,5 +1,6 @@
 """``python3 -m intrinsic.batch INPUT_DIR OUTPUT_DIR [options]``: ``intrinsic param``
-over every mesh file of a folder, on a Dask cluster (README "Batches").
+(or, with ``--command atlas``, ``intrinsic atlas``) over every mesh file of a
+folder, on a Dask cluster (README "Batches").
 
 Every ``.obj``, ``.off`` and ``.ply`` file of INPUT_DIR (optionally ``.gz``; not
 recursive) is one task: the worker runs :func:`intrinsic.parameterize` on the
@@ -103,8 +104,20 @@ def is_complete(job: Dict[str, str]) -> bool:
 
 # --------------------------------------------------------------------------- the task
 
-def run_param(job: Dict[str, str], options: Dict[str, Any], binary: bool) -> Dict[str, Any]:
-    """One file, in a worker: parameterize, write the mesh, then the report.
+def _solve_and_write(command: str, job: Dict[str, str], options: Dict[str, Any], binary: bool) -> Dict[str, Any]:
+    """The command's result written to job["output"]; returns its report (timings without the write)."""
+    import intrinsic
+    if command == "atlas":
+        r = intrinsic.atlas(job["input"], **options)
+        intrinsic.write_atlas(job["output"], r)  # temp file + rename
+    else:
+        r = intrinsic.parameterize(job["input"], **options)
+        intrinsic.write_mesh(job["output"], r.V, r.F, uv=r.uv, binary=binary)  # temp file + rename
+    return r.report
+
+
+def run_job(command: str, job: Dict[str, str], options: Dict[str, Any], binary: bool) -> Dict[str, Any]:
+    """One file, in a worker: `param` or `atlas`, write the mesh, then the report.
     Never raises: failures become the entry's kind, exit_code and message."""
     t0 = time.perf_counter()
     entry: Dict[str, Any] = dict(input=job["input"], status="done", kind=None, exit_code=0, message="",
@@ -112,14 +125,15 @@ def run_param(job: Dict[str, str], options: Dict[str, Any], binary: bool) -> Dic
     try:
         import intrinsic
         try:
-            r = intrinsic.parameterize(job["input"], **options)
-            t_write = time.perf_counter()
-            intrinsic.write_mesh(job["output"], r.V, r.F, uv=r.uv, binary=binary)  # temp file + rename
-            report = r.report
+            t_solve = time.perf_counter()
+            report = _solve_and_write(command, job, options, binary)
             report["output"] = job["output"]
             timings = dict(report.get("timings_ms") or {})
-            timings["render"] = 0.0
-            timings["write"] = (time.perf_counter() - t_write) * 1e3
+            solved = sum(v for k, v in timings.items() if k not in ("total", "read"))
+            if command == "param":
+                timings["render"] = 0.0
+            # What the library did not time: the write (and, for param, nothing else).
+            timings["write"] = max(0.0, (time.perf_counter() - t_solve) * 1e3 - solved)
             timings["total"] = (time.perf_counter() - t0) * 1e3
             report["timings_ms"] = timings
             write_atomic(job["report"], json.dumps(report, indent=2) + "\n")
@@ -157,7 +171,8 @@ def make_parser() -> argparse.ArgumentParser:
                     "Exit code 0 when every file is done or skipped, 1 otherwise, 2 for a bad command line.")
     p.add_argument("input_dir", metavar="INPUT_DIR")
     p.add_argument("output_dir", metavar="OUTPUT_DIR")
-    p.add_argument("--command", default="param", help="param (atlas once the module binds it)")
+    p.add_argument("--command", default="param", choices=("param", "atlas"),
+                   help="param (default) or atlas (whole assets: disk charts packed into [0,1]^2)")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS", help="an existing Dask scheduler, e.g. tcp://host:8786")
     where.add_argument("--workers", type=int, metavar="N", help="local worker processes (default 2)")
@@ -187,10 +202,16 @@ def make_parser() -> argparse.ArgumentParser:
     g.add_argument("--max-residual", type=float, default=S)
     g.add_argument("--max-vertices", type=int, default=S)
     g.add_argument("--binary", action="store_true", help="binary little-endian PLY output")
+    t = p.add_argument_group("atlas options (as `intrinsic atlas`)")
+    t.add_argument("--padding", type=float, default=S)
+    t.add_argument("--resolution", type=int, default=S)
+    t.add_argument("--max-normal-deviation", type=float, default=S)
+    t.add_argument("--min-chart-faces", type=int, default=S)
     return p
 
 
 BATCH_KEYS = {"input_dir", "output_dir", "command", "scheduler", "workers", "format", "force", "quiet", "binary"}
+ATLAS_KEYS = {"padding", "resolution", "max_normal_deviation", "min_chart_faces", "max_vertices"}
 
 # A small disk (hexagon fan around one interior vertex): the options are tried on
 # it first, so a usage error (--lambda without --method mixed, an unknown value)
@@ -200,12 +221,16 @@ _PROBE_V = [[0.0, 0.0, 0.0]] + [[float(x), float(y), 0.0] for x, y in
 _PROBE_F = [[0, i, i % 6 + 1] for i in range(1, 7)]
 
 
-def check_options(parser: argparse.ArgumentParser, options: Dict[str, Any]) -> None:
+def check_options(parser: argparse.ArgumentParser, command: str, options: Dict[str, Any]) -> None:
     import numpy as np
 
     import intrinsic
+    for key in options:
+        if (key in ATLAS_KEYS) != (command == "atlas") and key != "max_vertices":
+            parser.error(f"--{key.replace('_', '-')} does not apply to --command {command}")
+    solve = intrinsic.atlas if command == "atlas" else intrinsic.parameterize
     try:
-        intrinsic.parameterize(np.array(_PROBE_V), np.array(_PROBE_F, dtype=np.int32), **options)
+        solve(np.array(_PROBE_V), np.array(_PROBE_F, dtype=np.int32), **options)
     except intrinsic.UsageError as e:
         parser.error(str(e))
     except intrinsic.Error:
@@ -215,12 +240,6 @@ def check_options(parser: argparse.ArgumentParser, options: Dict[str, Any]) -> N
 def parse(argv: Optional[List[str]]):
     parser = make_parser()
     a = parser.parse_args(argv)
-    if a.command != "param":
-        import intrinsic
-        if a.command == "atlas":
-            parser.error("--command atlas: " + ("the batch does not run intrinsic.atlas yet" if hasattr(intrinsic, "atlas")
-                                                else "this intrinsic module has no atlas binding yet; only param"))
-        parser.error(f"--command: {a.command} not in {{param}}")
     if a.workers is not None and a.workers < 1:
         parser.error("--workers: at least 1")
     if not Path(a.input_dir).is_dir():
@@ -228,11 +247,13 @@ def parse(argv: Optional[List[str]]):
     fmt = a.format or ("ply" if a.binary else "obj")
     if a.binary and fmt != "ply":
         parser.error("--binary writes PLY: use --format ply")
+    if a.command == "atlas" and fmt != "obj":
+        parser.error("--command atlas writes .obj (one texture coordinate per corner)")
     options = {k: v for k, v in vars(a).items() if k not in BATCH_KEYS}
     for key in ("boundary", "constraints"):  # files: absolute, so that workers find them
         if key in options and os.path.exists(options[key]):
             options[key] = os.path.abspath(options[key])
-    check_options(parser, options)
+    check_options(parser, a.command, options)
     return a, options, fmt
 
 
@@ -307,7 +328,7 @@ def run(argv: Optional[List[str]] = None) -> int:
                                    dashboard_address=None)
             client = Client(cluster)
         try:
-            futures = {client.submit(mod.run_param, jobs[i], options, a.binary, key=f"intrinsic-{i}-{os.getpid()}",
+            futures = {client.submit(mod.run_job, a.command, jobs[i], options, a.binary, key=f"intrinsic-{i}-{os.getpid()}",
                                      pure=False): i for i in todo}
             last_write = 0.0
             for fut in as_completed(futures):

@@ -53,5 +53,6 @@ void register_errors(py::module_& m);
 void register_io(py::module_& m);
 void register_param(py::module_& m);
 void register_render(py::module_& m);
+void register_atlas(py::module_& m);
 
 }  // namespace intrinsic::python

@@ -105,8 +105,36 @@ def test_incomplete_output_is_redone(folder, tmp_path):
     assert files["cat_head.obj"]["status"] == "done" and (out / "cat_head.obj").exists()
 
 
+def test_atlas_batch_equals_cli(folder, tmp_path):
+    """--command atlas: the broken file fails as `intrinsic atlas` says, the
+    others give the CLI's bytes."""
+    cli = cli_path()
+    out = tmp_path / "out"
+    r = batch(folder, out, "--command", "atlas", "--padding", "3", "--workers", 2, "-q")
+    assert r.returncode == 1, r.stderr
+    doc, files = load_manifest(out)
+    assert doc["counts"] == {"done": 4, "skipped": 0, "failed": 1}
+    for m in MESHES:
+        c_out = tmp_path / ("cli-" + m)
+        p = subprocess.run([cli, "atlas", str(folder / m), "--padding", "3", "-o", str(c_out), "-q"],
+                           capture_output=True, text=True)
+        assert p.returncode == 0, p.stderr
+        # The same charts and corners; UVs equal up to the rounding of the
+        # factorization, which follows the thread count (Dask workers run one).
+        mine, theirs = (out / m).read_text().splitlines(), c_out.read_text().splitlines()
+        assert [x for x in mine if not x.startswith("vt ")] == [x for x in theirs if not x.startswith("vt ")]
+        uv = lambda lines: np.array([x.split()[1:] for x in lines if x.startswith("vt ")], dtype=float)  # noqa: E731
+        assert np.abs(uv(mine) - uv(theirs)).max() < 1e-9
+        assert json.loads((out / (m[:-4] + ".report.json")).read_text())["flipped"] == 0
+    p = subprocess.run([cli, "atlas", str(folder / "broken.obj"), "-o", str(tmp_path / "x.obj"), "-q"],
+                       capture_output=True, text=True)
+    assert files["broken.obj"]["kind"] == "input" and files["broken.obj"]["message"] == cli_message(p.stderr)
+
+
 @pytest.mark.parametrize("args,needle", [
-    (["--command", "atlas"], "atlas"),
+    (["--command", "atlas", "--method", "authalic"], "--method does not apply to --command atlas"),
+    (["--padding", "3"], "--padding does not apply to --command param"),
+    (["--command", "atlas", "--format", "ply"], "atlas writes .obj"),
     (["--no-such-option"], "unrecognized arguments"),
     (["--method", "mixed"], "--lambda"),               # intrinsic param's usage check, before any work
     (["--lambda", "0.5"], "lambda"),

@@ -1,0 +1,21 @@
+// The atlas job shared by `intrinsic atlas` and the Python module: writing
+// the atlas OBJ and building its report from the result only.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "intrinsic/atlas.h"
+
+namespace intrinsic::app {
+
+// The input's vertices in input order, one `vt` per atlas UV, faces `f v/vt`
+// (seams only through the per-corner texture coordinates); atomically.
+void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r);
+
+// vertices, faces, components, charts, splits, split_reasons, utilization,
+// flipped, overlapping, resolution, padding, cleaning, chart_list (README
+// "intrinsic atlas"). The caller adds input, output and timings_ms.
+nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& options, const AtlasResult& r);
+
+}  // namespace intrinsic::app

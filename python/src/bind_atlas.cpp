@@ -1,0 +1,110 @@
+// intrinsic.atlas and intrinsic.write_atlas: `intrinsic atlas` on arrays or a
+// file, with the same report and the same OBJ bytes (app/atlas_job.h).
+#include "atlas_job.h"
+#include "common.h"
+#include "intrinsic/error.h"
+#include "intrinsic/io.h"
+
+namespace intrinsic::python {
+namespace {
+
+struct AtlasOutput {
+  MeshData data;
+  AtlasResult result;
+  py::object uv, uv_index, face_chart, report;
+};
+
+AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices) {
+  AtlasOptions o;
+  for (const auto& [key, value] : kwargs) {
+    const std::string k = py::str(key);
+    if (k == "padding") o.padding = value.cast<double>();
+    else if (k == "resolution") o.resolution = value.cast<int>();
+    else if (k == "max_normal_deviation") o.max_normal_deviation_deg = value.cast<double>();
+    else if (k == "min_chart_faces") o.min_chart_faces = value.cast<int>();
+    else if (k == "max_vertices") max_vertices = value.cast<std::int64_t>();
+    else throw_usage("unknown option '" + k + "'");
+  }
+  if (o.resolution < 1 || o.resolution > (1 << 20)) throw_usage("--resolution: value out of range [1, 1048576]");
+  if (!(o.max_normal_deviation_deg >= 1 && o.max_normal_deviation_deg <= 180))
+    throw_usage("--max-normal-deviation: value out of range [1, 180]");
+  if (o.min_chart_faces < 0) throw_usage("--min-chart-faces: must be non-negative");
+  return o;
+}
+
+AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs& kwargs) {
+  std::int64_t max_vertices = ReadOptions().max_vertices;
+  const AtlasOptions o = atlas_options(kwargs, max_vertices);
+  AtlasOutput out;
+  const bool from_file = F.is_none();
+  const std::string path = from_file ? to_path(V) : "";
+  if (!from_file) {
+    out.data.V = to_V(V);
+    out.data.F = to_F(F);
+  }
+  {
+    py::gil_scoped_release release;
+    if (from_file) {
+      ReadOptions ro;
+      ro.max_vertices = max_vertices;
+      ro.max_faces = app::faces_for_vertices(max_vertices);
+      out.data = read_mesh(path, ro);
+    }
+    out.result = atlas(out.data, o);
+  }
+  nlohmann::json report = app::atlas_report(out.data, o, out.result);
+  report["input"] = from_file ? nlohmann::json(path) : nlohmann::json(nullptr);
+  report["output"] = nullptr;
+  const AtlasTimings& t = out.result.timings;
+  report["timings_ms"] = {{"clean", t.clean_ms},     {"segment", t.segment_ms}, {"flatten", t.flatten_ms},
+                          {"merge", t.merge_ms},     {"pack", t.pack_ms},       {"total", t.total_ms}};
+  out.uv = from_UV(out.result.UV);
+  out.uv_index = from_F(out.result.FUV);
+  py::array_t<std::int32_t> chart(static_cast<py::ssize_t>(out.result.face_chart.size()));
+  std::copy(out.result.face_chart.begin(), out.result.face_chart.end(), chart.mutable_data());
+  out.face_chart = chart;
+  out.report = to_python(report);
+  return out;
+}
+
+}  // namespace
+
+void register_atlas(py::module_& m) {
+  py::class_<AtlasOutput>(m, "Atlas",
+                          "An atlas: uv (k x 2 float64 in [0,1]^2), uv_index (#F x 3 int32: per face corner, a row\n"
+                          "of uv), face_chart (#F int32, -1 for degenerate faces), V and F (the input as read,\n"
+                          "never changed) and report (the dict `intrinsic atlas --report` writes; 'input' is the\n"
+                          "path or None, 'output' None).")
+      .def_readonly("uv", &AtlasOutput::uv)
+      .def_readonly("uv_index", &AtlasOutput::uv_index)
+      .def_readonly("face_chart", &AtlasOutput::face_chart)
+      .def_readonly("report", &AtlasOutput::report)
+      .def_property_readonly("V", [](const AtlasOutput& a) { return from_V(a.data.V); })
+      .def_property_readonly("F", [](const AtlasOutput& a) { return from_F(a.data.F); })
+      .def("__repr__", [](const AtlasOutput& a) {
+        return "<intrinsic.Atlas " + std::to_string(a.result.charts.size()) + " charts, utilization " +
+               std::to_string(static_cast<int>(100 * a.result.utilization + 0.5)) + "%>";
+      });
+  m.def("atlas", &run_atlas, py::arg("V"), py::arg("F") = py::none(),
+        "atlas(V, F=None, *, padding=2, resolution=1024, max_normal_deviation=60, min_chart_faces=20,\n"
+        "      max_vertices=50000000) -> Atlas\n\n"
+        "`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or on a mesh file (atlas(path)):\n"
+        "any triangle mesh (closed, higher genus, several components, non-manifold bits) cut into disk\n"
+        "charts, each flattened by the natural conformal map, packed into [0,1]^2 without flips or\n"
+        "overlaps. Options as the command line's. The GIL is released while it runs. Raises\n"
+        "UsageError / InputError as the command line exits 1 / 2.");
+  m.def(
+      "write_atlas",
+      [](const py::object& path, const AtlasOutput& a) {
+        const std::string p = to_path(path);
+        if (app::mesh_extension(p) != ".obj")
+          throw_usage("output '" + p + "': the atlas is written as .obj (one texture coordinate per corner)");
+        py::gil_scoped_release release;
+        app::write_atlas_obj(p, a.data, a.result);
+      },
+      py::arg("path"), py::arg("atlas"),
+      "write_atlas(path, atlas)\n\nWrites the .obj `intrinsic atlas -o path` writes (same bytes): the input's\n"
+      "vertices in input order, one vt per atlas UV, faces f v/vt; atomically. Raises OutputError.");
+}
+
+}  // namespace intrinsic::python
