@@ -46,6 +46,9 @@ int main(int argc, char** argv) {
   app::register_edit(app, run);
   app::register_render(app, run);
   app::register_compare(app, run);
+#ifdef INTRINSIC_HAVE_SERVE
+  app::register_serve(app, run);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
