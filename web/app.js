@@ -233,7 +233,7 @@ function resize(canvas) {
 function view2d() {
   const c = $('view2d'), w = c.clientWidth, h = c.clientHeight;
   const side = Math.min(w, h) / 1.3;
-  return { ox: (w - side) / 2 + 0.15 * side, oy: (h + side) / 2 - 0.15 * side, side };
+  return { ox: (w - 1.3 * side) / 2 + 0.15 * side, oy: (h + 1.3 * side) / 2 - 0.15 * side, side };
 }
 const toScreen = (v, u, w) => [v.ox + u * v.side, v.oy - w * v.side];
 const toUV = (v, x, y) => [(x - v.ox) / v.side, (v.oy - y) / v.side];
