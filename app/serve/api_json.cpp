@@ -44,13 +44,34 @@ std::string uv_array(const MatrixX2d& uv) {
   return out;
 }
 
+struct Figures {
+  int flipped = 0;
+  double angle_mean = 0;  // area-weighted over finite values, as summarize_distortion's angle_distortion.mean
+};
+
+// The two figures the page shows, without the rest of summarize_distortion
+// (its edge statistics cost more than the update itself on large meshes).
+Figures figures(const Mesh& mesh, const MatrixX2d& uv) {
+  const FaceDistortion d = face_distortion(mesh.V, mesh.F, uv);
+  Figures f;
+  double sum = 0, wsum = 0;
+  for (Eigen::Index i = 0; i < d.angle.size(); ++i) {
+    f.flipped += d.flipped[i] ? 1 : 0;
+    if (!std::isfinite(d.angle[i])) continue;
+    sum += d.area_3d[i] * d.angle[i];
+    wsum += d.area_3d[i];
+  }
+  if (wsum > 0) f.angle_mean = sum / wsum;
+  return f;
+}
+
 }  // namespace
 
 std::string solve_api_json(const Mesh& mesh, const SolveAnswer& a) {
-  const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, a.uv);
+  const Figures d = figures(mesh, a.uv);
   nlohmann::json out{{"uv", nullptr},
-                     {"flipped_triangles", d.flipped_triangles},
-                     {"angle_distortion_mean", d.angle_distortion.mean},
+                     {"flipped_triangles", d.flipped},
+                     {"angle_distortion_mean", d.angle_mean},
                      {"update_ms", a.update_ms},
                      {"path", a.path}};
   if (!a.pins.empty()) {

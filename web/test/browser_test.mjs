@@ -28,7 +28,7 @@ function startServer() {
       if (m) resolve(m[0]);
     });
     child.on('exit', (code) => reject(new Error('intrinsic serve exited with ' + code)));
-    setTimeout(() => reject(new Error('intrinsic serve printed no URL')), 60000);
+    setTimeout(() => reject(new Error('intrinsic serve printed no URL')), 60000).unref();
   });
   return { child, url };
 }
