@@ -15,6 +15,8 @@ PACKAGES=(
   libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
   libstb-dev               # stb_easy_font for picture labels
   libgtest-dev libbenchmark-dev
+  libcpp-httplib-dev       # `intrinsic serve` (the browser editor)
+  chromium                 # the editor's browser test (headless; node + npm from the system)
   # The Python module and its tests (Debian's /usr/bin/python3 and its packages)
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-distributed
 )
@@ -26,4 +28,9 @@ done
 if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+# playwright-core for the browser test (web/test/package-lock.json).
+if command -v npm >/dev/null; then
+  (cd "$(dirname "$0")/../web/test" && npm ci --no-audit --no-fund) ||
+    echo "install-deps: npm ci failed in web/test: the browser test will not be registered" >&2
 fi

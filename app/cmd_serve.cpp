@@ -1,0 +1,154 @@
+// `intrinsic serve MESH`: the interactive editor (paper section 4.2) as a
+// local web server. GET / serves the page (web/index.html and web/app.js,
+// embedded at build time), GET /api/mesh the mesh, POST /api/solve a map
+// (README "intrinsic serve"). No file is read after the mesh. Every request
+// is answered: errors become HTTP 400/413/422/500 with {"error": message}.
+#include <iostream>
+#include <new>
+#include <nlohmann/json.hpp>
+
+#include "command.h"
+#include "intrinsic/error.h"
+#include "intrinsic/io.h"
+#include "serve/api_json.h"
+#include "serve/session_store.h"
+#include "web_assets.h"
+
+// Last: httplib.h includes <resolv.h>, whose macro _res breaks Eigen's headers.
+#include <httplib.h>
+
+namespace intrinsic::app {
+namespace {
+
+struct ServeArgs {
+  std::string input, host = "127.0.0.1";
+  int port = 8080;
+  int max_sessions = 16;
+  double max_body_mib = 16;
+  std::int64_t max_vertices = ReadOptions().max_vertices;
+};
+
+// What the server keeps for its whole life.
+struct ServeState {
+  MeshData data;
+  Mesh mesh;
+  std::string mesh_json;
+  std::unique_ptr<SessionStore> sessions;
+};
+
+// Not plain "application/json": httplib compresses that exact type (gzip or
+// brotli, when the client accepts it), which costs 10x the update itself for
+// a large map and gains nothing on a local connection.
+const char* const kJson = "application/json; charset=utf-8";
+
+int status_for(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::Usage:
+    case ErrorKind::Input: return 400;
+    case ErrorKind::Numerical: return 422;
+    default: return 500;
+  }
+}
+
+void reply_error(httplib::Response& res, int status, const std::string& message) {
+  res.status = status;
+  res.set_content(error_api_json(message), kJson);
+}
+
+// X-Session header, else the `session` query parameter, else "default".
+std::string session_id(const httplib::Request& req) {
+  std::string id = req.get_header_value("X-Session");
+  if (id.empty() && req.has_param("session")) id = req.get_param_value("session");
+  if (id.empty()) return "default";
+  if (id.size() > 64) throw_usage("session id longer than 64 characters");
+  for (const char c : id)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_')
+      throw_usage("session id may hold letters, digits, '-' and '_' only");
+  return id;
+}
+
+void handle_solve(ServeState& s, const httplib::Request& req, httplib::Response& res) {
+  try {
+    const SolveRequest request = parse_solve_request(req.body, s.mesh, s.data.F);
+    const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
+    SolveAnswer answer;
+    {
+      std::lock_guard<std::mutex> lock(session->mutex);
+      answer = session->state.solve(request);
+    }
+    res.set_content(solve_api_json(s.mesh, answer), kJson);
+  } catch (const Error& e) {
+    reply_error(res, status_for(e.kind()), e.what());
+  } catch (const nlohmann::json::exception& e) {
+    reply_error(res, 400, e.what());
+  } catch (const std::bad_alloc&) {
+    reply_error(res, 500, "out of memory");
+  } catch (const std::exception& e) {
+    reply_error(res, 500, std::string("internal error: ") + e.what());
+  }
+}
+
+void add_routes(httplib::Server& server, ServeState& s) {
+  server.Get("/", [](const httplib::Request&, httplib::Response& res) {
+    res.set_content(web::index_html, "text/html; charset=utf-8");
+  });
+  server.Get("/app.js", [](const httplib::Request&, httplib::Response& res) {
+    res.set_content(web::app_js, "text/javascript; charset=utf-8");
+  });
+  server.Get("/api/mesh", [&s](const httplib::Request&, httplib::Response& res) {
+    res.set_content(s.mesh_json, kJson);
+  });
+  server.Post("/api/solve",
+              [&s](const httplib::Request& req, httplib::Response& res) { handle_solve(s, req, res); });
+  server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+    reply_error(res, 500, "internal error");
+  });
+  server.set_error_handler([](const httplib::Request&, httplib::Response& res) {
+    if (res.body.empty()) {
+      const int status = res.status;
+      reply_error(res, status, status == 413 ? "request body too large" : "HTTP " + std::to_string(status));
+    }
+  });
+}
+
+int run_serve(const ServeArgs& a) {
+  if (a.max_sessions < 1) throw_usage("--max-sessions must be at least 1");
+  if (!(a.max_body_mib > 0)) throw_usage("--max-body must be positive");
+  if (a.port < 0 || a.port > 65535) throw_usage("--port must be in 0..65535");
+  ServeState s;
+  ReadOptions ro;
+  ro.max_vertices = a.max_vertices;
+  ro.max_faces = faces_for_vertices(a.max_vertices);
+  s.data = read_mesh(a.input, ro);
+  s.mesh = make_mesh(s.data);
+  s.mesh_json = mesh_api_json(s.mesh);
+  s.sessions = std::make_unique<SessionStore>(s.mesh, static_cast<size_t>(a.max_sessions));
+
+  httplib::Server server;
+  server.set_payload_max_length(static_cast<size_t>(a.max_body_mib * 1024 * 1024));
+  add_routes(server, s);
+  const int port = a.port == 0 ? server.bind_to_any_port(a.host) : (server.bind_to_port(a.host, a.port) ? a.port : -1);
+  if (port < 0) throw_usage("cannot listen on " + a.host + ":" + std::to_string(a.port));
+  std::cout << "intrinsic serve: " << a.input << " (" << s.mesh.V.rows() << " vertices) at http://" << a.host << ":"
+            << port << "/" << std::endl;
+  if (!server.listen_after_bind()) throw_usage("server stopped listening");
+  return 0;
+}
+
+}  // namespace
+
+void register_serve(CLI::App& app, Runner& run) {
+  auto a = std::make_shared<ServeArgs>();
+  CLI::App* cmd = app.add_subcommand("serve", "Interactive editor in the browser: a local web server");
+  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
+  cmd->add_option("--port", a->port, "Port (0: any free port)")->capture_default_str();
+  cmd->add_option("--host", a->host, "Address to bind (127.0.0.1: this machine only)")->capture_default_str();
+  cmd->add_option("--max-sessions", a->max_sessions, "Sessions kept (least recently used dropped)")
+      ->capture_default_str();
+  cmd->add_option("--max-body", a->max_body_mib, "Largest request body in MiB (larger: HTTP 413)")
+      ->capture_default_str();
+  cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();
+  cmd->callback([&run, a] { run = [a] { return run_serve(*a); }; });
+}
+
+}  // namespace intrinsic::app

@@ -1,0 +1,94 @@
+// JSON bodies of the serve API (api_json.h).
+#include "serve/api_json.h"
+
+#include <charconv>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "intrinsic/metrics.h"
+
+namespace intrinsic::app {
+
+std::string mesh_api_json(const Mesh& mesh) {
+  nlohmann::json positions = nlohmann::json::array(), triangles = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
+    for (int k = 0; k < 3; ++k) positions.push_back(mesh.V(i, k));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) triangles.push_back(mesh.F(f, k));
+  return nlohmann::json{{"vertices", mesh.V.rows()},
+                        {"faces", mesh.F.rows()},
+                        {"positions", positions},
+                        {"triangles", triangles},
+                        {"boundary_loops", mesh.topology.boundary_loops}}
+      .dump();
+}
+
+namespace {
+
+// "[[u0,v0],[u1,v1],...]" with shortest round-trip numbers (exact when read
+// back), written directly: a json array of arrays costs 10x more at 100k vertices.
+std::string uv_array(const MatrixX2d& uv) {
+  std::string out;
+  out.reserve(static_cast<size_t>(uv.rows()) * 48 + 2);
+  out += '[';
+  char buf[64];
+  for (Eigen::Index i = 0; i < uv.rows(); ++i) {
+    out += i ? ",[" : "[";
+    for (int k = 0; k < 2; ++k) {
+      const double x = std::isfinite(uv(i, k)) ? uv(i, k) : 0.0;  // JSON has no NaN; the solver refuses them anyway
+      out.append(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+      out += k ? ']' : ',';
+    }
+  }
+  out += ']';
+  return out;
+}
+
+struct Figures {
+  int flipped = 0;
+  double angle_mean = 0;  // area-weighted over finite values, as summarize_distortion's angle_distortion.mean
+};
+
+// The two figures the page shows, without the rest of summarize_distortion
+// (its edge statistics cost more than the update itself on large meshes).
+Figures figures(const Mesh& mesh, const MatrixX2d& uv) {
+  const FaceDistortion d = face_distortion(mesh.V, mesh.F, uv);
+  Figures f;
+  double sum = 0, wsum = 0;
+  for (Eigen::Index i = 0; i < d.angle.size(); ++i) {
+    f.flipped += d.flipped[i] ? 1 : 0;
+    if (!std::isfinite(d.angle[i])) continue;
+    sum += d.area_3d[i] * d.angle[i];
+    wsum += d.area_3d[i];
+  }
+  if (wsum > 0) f.angle_mean = sum / wsum;
+  return f;
+}
+
+}  // namespace
+
+std::string solve_api_json(const Mesh& mesh, const SolveAnswer& a) {
+  const Figures d = figures(mesh, a.uv);
+  nlohmann::json out{{"uv", nullptr},
+                     {"flipped_triangles", d.flipped},
+                     {"angle_distortion_mean", d.angle_mean},
+                     {"update_ms", a.update_ms},
+                     {"path", a.path}};
+  if (!a.pins.empty()) {
+    nlohmann::json pins = nlohmann::json::array();
+    for (const FixedVertex& p : a.pins) pins.push_back({p.vertex, p.uv.x(), p.uv.y()});
+    out["pins"] = pins;
+  }
+  // The UVs replace the placeholder (keys are sorted: "uv" is last).
+  std::string text = out.dump();
+  const std::string placeholder = "\"uv\":null";
+  text.replace(text.rfind(placeholder), placeholder.size(), "\"uv\":" + uv_array(a.uv));
+  return text;
+}
+
+std::string error_api_json(const std::string& message) {
+  // A message may quote bytes of the request: never fail on invalid UTF-8.
+  return nlohmann::json{{"error", message}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+}  // namespace intrinsic::app

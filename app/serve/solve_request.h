@@ -1,0 +1,31 @@
+// The body of `POST /api/solve` (README "intrinsic serve"): every key
+// optional, unknown keys and wrong types refused. Every request body goes
+// through parse_solve_request, which throws Error(Usage) for malformed JSON,
+// unknown keys, wrong types, non-finite numbers and vertices out of range,
+// and Error(Input) for a bad constraint object (the constraint file's parser).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "intrinsic/boundary.h"
+#include "intrinsic/constraints.h"
+#include "intrinsic/mesh.h"
+#include "weight_args.h"
+
+namespace intrinsic::app {
+
+struct SolveRequest {
+  WeightArgs weights;              // method, lambda, mu as `intrinsic param` takes them
+  std::string boundary = "circle";  // circle | square | natural
+  std::vector<FixedVertex> pins;   // natural only; empty: the default pins
+  Constraints constraints;         // face points already in mesh.F corner order
+  std::string constraints_key;     // canonical JSON of the constraints ("" when none)
+  std::vector<FixedVertex> moves;  // fixed boundary only: new positions of base boundary vertices
+};
+
+// `file_faces` are the faces as the mesh file lists them (constraint
+// barycentrics refer to their corners).
+SolveRequest parse_solve_request(const std::string& body, const Mesh& mesh, const MatrixX3i& file_faces);
+
+}  // namespace intrinsic::app

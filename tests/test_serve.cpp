@@ -1,0 +1,278 @@
+// `intrinsic serve` end to end: the built executable runs on a free port as a
+// child process (killed at the end of every test, also on failure) and is
+// driven over HTTP; its maps must equal `intrinsic param` with the same
+// settings (moved boundary written to a boundary file, moved pins as --pin)
+// to 1e-9 on shared meshes; bad requests get 400/413 and the server keeps
+// answering; two sessions stay independent.
+#include <poll.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
+#include "intrinsic/io.h"
+#include "intrinsic/mesh.h"
+#include "test_support.h"
+
+// Last: httplib.h includes <resolv.h>, whose macro _res breaks Eigen's headers.
+#include <httplib.h>
+
+namespace intrinsic {
+namespace {
+
+using nlohmann::json;
+
+// `intrinsic serve MESH --port 0` with its stdout on a pipe; the port is read
+// from the URL it prints.
+class ServerProcess {
+ public:
+  explicit ServerProcess(const std::string& mesh) {
+    int fds[2];
+    if (pipe(fds) != 0) return;
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(fds[1], STDOUT_FILENO);
+      close(fds[0]);
+      close(fds[1]);
+      execl(INTRINSIC_CLI, INTRINSIC_CLI, "serve", mesh.c_str(), "--port", "0", "--max-sessions", "4",
+            static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    close(fds[1]);
+    port_ = read_port(fds[0]);
+    close(fds[0]);
+  }
+  ~ServerProcess() {
+    if (pid_ <= 0) return;
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+  }
+  int port() const { return port_; }
+  bool alive() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
+
+ private:
+  static int read_port(int fd) {
+    std::string line;
+    char c;
+    pollfd p{fd, POLLIN, 0};
+    while (line.find('\n') == std::string::npos && poll(&p, 1, 60000) > 0 && read(fd, &c, 1) == 1) line += c;
+    const size_t at = line.find("http://127.0.0.1:");
+    return at == std::string::npos ? -1 : std::atoi(line.c_str() + at + 17);
+  }
+  pid_t pid_ = -1;
+  int port_ = -1;
+};
+
+struct Reply {
+  int status = -1;
+  json body;
+};
+
+Reply post(int port, const std::string& body, const std::string& session = "s1") {
+  httplib::Client client("127.0.0.1", port);
+  client.set_read_timeout(300, 0);
+  client.set_write_timeout(300, 0);
+  auto res = client.Post("/api/solve", {{"X-Session", session}}, body, "application/json");
+  Reply r;
+  if (!res) return r;
+  r.status = res->status;
+  r.body = json::parse(res->body, nullptr, false);
+  return r;
+}
+
+MatrixX2d uv_of(const json& answer) {
+  MatrixX2d uv(answer.at("uv").size(), 2);
+  for (size_t i = 0; i < answer["uv"].size(); ++i) uv.row(i) << answer["uv"][i][0], answer["uv"][i][1];
+  return uv;
+}
+
+// Per-vertex UVs of a mesh written by `intrinsic param`.
+MatrixX2d uv_of_file(const std::string& path) {
+  const MeshData d = read_mesh(path);
+  MatrixX2d uv = MatrixX2d::Zero(d.V.rows(), 2);
+  for (Eigen::Index f = 0; f < d.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) uv.row(d.F(f, k)) = d.TC.row(d.FTC(f, k));
+  return uv;
+}
+
+std::string g17(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+MatrixX2d run_param(const std::string& args, const test::TempDir& dir) {
+  const test::CliResult r = test::run_cli("param " + args + " -o " + (dir / "out.obj") + " -q", dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  return uv_of_file(dir / "out.obj");
+}
+
+// The outer loop at the positions of `base` (an unmoved answer), with `moves` applied.
+std::string boundary_file(const Mesh& mesh, const MatrixX2d& base, const json& moves) {
+  std::map<int, Eigen::Vector2d> pos;
+  for (const int v : mesh.topology.boundary_loops[0]) pos[v] = base.row(v).transpose();
+  for (const auto& m : moves) pos[m[0].get<int>()] = {m[1].get<double>(), m[2].get<double>()};
+  std::string text;
+  for (const auto& [v, p] : pos) text += std::to_string(v) + " " + g17(p.x()) + " " + g17(p.y()) + "\n";
+  return text;
+}
+
+double max_diff(const MatrixX2d& a, const MatrixX2d& b) {
+  return a.rows() == b.rows() ? (a - b).cwiseAbs().maxCoeff() : 1e300;
+}
+
+class ServeTest : public ::testing::Test {
+ protected:
+  void start(const std::string& name) {
+    path_ = test::shared_mesh(name);
+    mesh_ = make_mesh(read_mesh(path_));
+    server_ = std::make_unique<ServerProcess>(path_);
+    ASSERT_GT(server_->port(), 0) << "intrinsic serve did not print its URL";
+  }
+  int port() const { return server_->port(); }
+
+  // Solves `options` + moves through the server, then `intrinsic param` with
+  // the moved boundary in a file, and compares.
+  void expect_fixed_equals_param(json options, const std::string& cli_options, const json& moves,
+                                 const std::string& constraints_file = "") {
+    const Reply base = post(port(), options.dump());
+    ASSERT_EQ(base.status, 200) << base.body.dump();
+    EXPECT_EQ(base.body["path"], "factor");
+    options["moves"] = moves;
+    const Reply moved = post(port(), options.dump());
+    ASSERT_EQ(moved.status, 200) << moved.body.dump();
+    EXPECT_EQ(moved.body["path"], "responses");
+    test::write_text(dir_ / "b.txt", boundary_file(mesh_, uv_of(base.body), moves));
+    const std::string extra = constraints_file.empty() ? "" : " --constraints " + constraints_file;
+    const MatrixX2d cli = run_param(path_ + " --boundary " + (dir_ / "b.txt") + " " + cli_options + extra, dir_);
+    EXPECT_LT(max_diff(uv_of(moved.body), cli), 1e-9);
+  }
+
+  test::TempDir dir_;
+  std::string path_;
+  Mesh mesh_;
+  std::unique_ptr<ServerProcess> server_;
+};
+
+TEST_F(ServeTest, MeshCountsEqualTheMesh) {
+  start("cat_head.obj");
+  httplib::Client client("127.0.0.1", port());
+  auto res = client.Get("/api/mesh");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200);
+  const json m = json::parse(res->body);
+  EXPECT_EQ(m["vertices"], mesh_.V.rows());
+  EXPECT_EQ(m["faces"], mesh_.F.rows());
+  EXPECT_EQ(m["positions"].size(), 3 * mesh_.V.rows());
+  EXPECT_EQ(m["triangles"].size(), 3 * mesh_.F.rows());
+  EXPECT_EQ(m["boundary_loops"].size(), mesh_.topology.boundary_loops.size());
+  auto page = client.Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_NE(page->body.find("<canvas"), std::string::npos);
+}
+
+TEST_F(ServeTest, FixedCircleWithMovesEqualsParam) {
+  start("cat_head.obj");
+  const int v = mesh_.topology.boundary_loops[0][3], w = mesh_.topology.boundary_loops[0][10];
+  expect_fixed_equals_param(json::object(), "", json::array({json::array({v, 0.55, 0.02})}));
+  // The next drag from the same base: v goes back, w moves.
+  const json moves = json::array({json::array({w, 0.9, 0.95})});
+  const Reply again = post(port(), json{{"moves", moves}}.dump());
+  ASSERT_EQ(again.status, 200);
+  EXPECT_EQ(again.body["path"], "responses");
+  const Reply base = post(port(), "{}");
+  test::write_text(dir_ / "b2.txt", boundary_file(mesh_, uv_of(base.body), moves));
+  EXPECT_LT(max_diff(uv_of(again.body), run_param(path_ + " --boundary " + (dir_ / "b2.txt"), dir_)), 1e-9);
+}
+
+TEST_F(ServeTest, MixedSquareEqualsParam) {
+  start("camel_b.obj");
+  const int v = mesh_.topology.boundary_loops[0][5];
+  expect_fixed_equals_param({{"method", "mixed"}, {"lambda", 0.3}, {"mu", 0.7}, {"boundary", "square"}},
+                            "--method mixed --lambda 0.3 --mu 0.7", json::array({json::array({v, 0.1, -0.05})}));
+}
+
+TEST_F(ServeTest, ConstraintsEqualParam) {
+  start("cat_head.obj");
+  std::vector<char> on_boundary(mesh_.V.rows(), 0);
+  for (const auto& loop : mesh_.topology.boundary_loops)
+    for (const int i : loop) on_boundary[i] = 1;
+  int interior = 0;
+  while (on_boundary[interior]) ++interior;
+  const json c = {{"points", {{{"vertex", interior}, {"uv", {0.45, 0.55}}}}}};
+  test::write_text(dir_ / "c.json", c.dump());
+  const int v = mesh_.topology.boundary_loops[0][0];
+  expect_fixed_equals_param({{"constraints", c}}, "", json::array({json::array({v, 1.02, 0.5})}), dir_ / "c.json");
+}
+
+TEST_F(ServeTest, NaturalWithMovedPinsEqualsParam) {
+  start("cat_head.obj");
+  const Reply first = post(port(), R"({"boundary": "natural"})");
+  ASSERT_EQ(first.status, 200) << first.body.dump();
+  json pins = first.body.at("pins");
+  ASSERT_EQ(pins.size(), 2u);
+  const Reply given = post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump());  // builds with given pins
+  ASSERT_EQ(given.status, 200);
+  EXPECT_EQ(given.body["path"], "factor");
+  EXPECT_LT(max_diff(uv_of(given.body), uv_of(first.body)), 1e-9);
+  pins[1][1] = pins[1][1].get<double>() + 0.1;
+  pins[1][2] = pins[1][2].get<double>() - 0.2;
+  const Reply moved = post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump());
+  ASSERT_EQ(moved.status, 200);
+  EXPECT_EQ(moved.body["path"], "resolve");
+  std::string args = path_ + " --boundary natural";
+  for (const auto& p : pins)
+    args += " --pin " + std::to_string(p[0].get<int>()) + ":" + g17(p[1].get<double>()) + "," + g17(p[2].get<double>());
+  EXPECT_LT(max_diff(uv_of(moved.body), run_param(args, dir_)), 1e-9);
+}
+
+TEST_F(ServeTest, BadRequestsGet400AndTheServerKeepsServing) {
+  start("cat_head.obj");
+  const std::string n = std::to_string(mesh_.V.rows());
+  const char* const bad[] = {
+      "{", "[]", "nonsense", R"({"method": "fancy"})", R"({"unknown": 1})", R"({"boundary": 3})",
+      R"({"moves": [[-1, 0, 0]]})", R"({"moves": [[0, NaN, 0]]})", R"({"moves": [[0, 1e999, 0]]})",
+      R"({"moves": [[0, "a", 0]]})", R"({"moves": [[0.5, 0, 0]]})", R"({"moves": {"a": 1}})",
+      R"({"lambda": 0.5})", R"({"method": "mixed", "lambda": 0, "mu": 0})", R"({"pins": [[0, 0, 0], [1, 1, 1]]})",
+      R"({"boundary": "natural", "pins": [[0, 0, 0]]})", R"({"constraints": {"points": [{"vertex": 0}]}})",
+      R"({"constraints": {"points": [{"vertex": 99999999, "uv": [0, 0]}]}})", R"({"constraints": 5})"};
+  for (const char* body : bad) {
+    const Reply r = post(port(), body);
+    EXPECT_EQ(r.status, 400) << body << " -> " << r.body.dump();
+    EXPECT_TRUE(r.body.is_object() && r.body.contains("error")) << body;
+  }
+  EXPECT_EQ(post(port(), "{\"moves\": [[" + n + ", 0, 0]]}").status, 400);
+  const int interior_or_not = 0;  // vertex 0 may or may not be fixed: 200 or 400, never a crash
+  const int s = post(port(), "{\"moves\": [[" + std::to_string(interior_or_not) + ", 0.5, 0.5]]}").status;
+  EXPECT_TRUE(s == 200 || s == 400);
+  EXPECT_EQ(post(port(), std::string(200, '[') + std::string(200, ']')).status, 400);
+  const Reply big = post(port(), "{\"moves\": [" + std::string(17 << 20, ' ') + "]}");
+  EXPECT_EQ(big.status, 413);
+  const Reply ok = post(port(), "{}");
+  EXPECT_EQ(ok.status, 200);
+  EXPECT_TRUE(server_->alive());
+}
+
+TEST_F(ServeTest, TwoSessionsAreIndependent) {
+  start("cat_head.obj");
+  const Reply base_a = post(port(), "{}", "tab-a");
+  const Reply base_b = post(port(), R"({"boundary": "square"})", "tab-b");
+  ASSERT_EQ(base_a.status, 200);
+  ASSERT_EQ(base_b.status, 200);
+  const int v = mesh_.topology.boundary_loops[0][7];
+  const std::string move = "{\"moves\": [[" + std::to_string(v) + ", 0.3, 0.3]]}";
+  const Reply moved_a = post(port(), move, "tab-a");
+  ASSERT_EQ(moved_a.status, 200);
+  EXPECT_EQ(moved_a.body["path"], "responses");
+  const Reply again_b = post(port(), R"({"boundary": "square"})", "tab-b");
+  EXPECT_EQ(again_b.body["path"], "responses");  // b's factorization was kept
+  EXPECT_LT(max_diff(uv_of(again_b.body), uv_of(base_b.body)), 1e-12);
+  const Reply again_a = post(port(), move, "tab-a");
+  EXPECT_EQ(again_a.body["path"], "responses");
+  EXPECT_LT(max_diff(uv_of(again_a.body), uv_of(moved_a.body)), 1e-12);
+}
+
+}  // namespace
+}  // namespace intrinsic

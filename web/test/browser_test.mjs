@@ -1,0 +1,150 @@
+// Browser test of `intrinsic serve` (registered in CTest when node, Debian's
+// /usr/bin/chromium and this folder's node_modules exist): opens the editor in
+// headless Chromium, drags a boundary handle of the 2D layout with real mouse
+// events, waits for the update, reads the UVs back through the API (same
+// session) and compares them with `intrinsic param --boundary FILE` for the
+// dragged position (1e-9); then checks a screenshot is not blank.
+// Usage: node browser_test.mjs PATH/TO/intrinsic MESH
+import { spawn, execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { chromium } from 'playwright-core';
+
+const [binary, mesh] = process.argv.slice(2);
+if (!binary || !mesh) {
+  console.error('usage: node browser_test.mjs INTRINSIC MESH');
+  process.exit(2);
+}
+
+// Starts the server on a free port; resolves with its URL.
+function startServer() {
+  const child = spawn(binary, ['serve', mesh, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+  const url = new Promise((resolve, reject) => {
+    let out = '';
+    child.stdout.on('data', (d) => {
+      out += d;
+      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
+      if (m) resolve(m[0]);
+    });
+    child.on('exit', (code) => reject(new Error('intrinsic serve exited with ' + code)));
+    setTimeout(() => reject(new Error('intrinsic serve printed no URL')), 60000).unref();
+  });
+  return { child, url };
+}
+
+async function api(url, route, body, session) {
+  const res = await fetch(url.replace(/\/$/, '') + route, body === undefined ? {} : {
+    method: 'POST', headers: { 'Content-Type': 'application/json', 'X-Session': session }, body: JSON.stringify(body),
+  });
+  if (!res.ok) throw new Error(`${route}: HTTP ${res.status} ${await res.text()}`);
+  return res.json();
+}
+
+// Per-vertex UVs of an OBJ written by `intrinsic param`.
+function objUV(file, n) {
+  const vt = [], uv = new Array(n).fill(null);
+  for (const line of fs.readFileSync(file, 'utf8').split('\n')) {
+    const w = line.trim().split(/\s+/);
+    if (w[0] === 'vt') vt.push([Number(w[1]), Number(w[2])]);
+    if (w[0] === 'f') for (const c of w.slice(1)) { const [v, t] = c.split('/').map(Number); uv[v - 1] = vt[t - 1]; }
+  }
+  return uv;
+}
+
+function maxDiff(a, b) {
+  let d = 0;
+  for (let i = 0; i < a.length; i++) if (b[i]) d = Math.max(d, Math.abs(a[i][0] - b[i][0]), Math.abs(a[i][1] - b[i][1]));
+  return d;
+}
+
+// Standard deviation of the grey levels of a PNG, decoded by the page itself.
+async function pixelSpread(page, png) {
+  return page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = 'data:image/png;base64,' + b64;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width; c.height = img.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    let s = 0, s2 = 0, n = 0;
+    for (let i = 0; i < d.length; i += 4) { const g = (d[i] + d[i + 1] + d[i + 2]) / 3; s += g; s2 += g * g; n++; }
+    return Math.sqrt(Math.max(0, s2 / n - (s / n) ** 2));
+  }, png.toString('base64'));
+}
+
+async function dragHandle(page) {
+  const handles = await page.evaluate(() => window.__intrinsic.handles());
+  if (!handles.length) throw new Error('no boundary handles on the page');
+  const h = handles[Math.floor(handles.length / 3)];
+  const before = await page.evaluate(() => window.__intrinsic.state.updates);
+  await page.mouse.move(h.x, h.y);
+  await page.mouse.down();
+  await page.mouse.move(h.x + 25, h.y - 15, { steps: 6 });
+  await page.mouse.move(h.x + 40, h.y - 30, { steps: 6 });
+  await page.mouse.up();
+  await page.waitForFunction((n) => {
+    const s = window.__intrinsic.state;
+    return s.updates > n && !s.inFlight && !s.queued && s.moves.size > 0;
+  }, before, { timeout: 30000 });
+  return h.vertex;
+}
+
+async function main() {
+  const { child, url: urlPromise } = startServer();
+  let browser = null;
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'intrinsic-browser-'));
+  try {
+    const url = await urlPromise;
+    browser = await chromium.launch({
+      executablePath: '/usr/bin/chromium', headless: true,
+      args: ['--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--ignore-gpu-blocklist'],
+    });
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    page.on('pageerror', (e) => console.error('page error:', e.message));
+    await page.goto(url);
+    await page.waitForFunction(() => window.__intrinsic && window.__intrinsic.state.updates >= 1 &&
+      window.__intrinsic.state.frames >= 1, null, { timeout: 60000 });
+    const vertex = await dragHandle(page);
+    const { session, request, pageUV } = await page.evaluate(() => ({
+      session: window.__intrinsic.session, request: window.__intrinsic.request(),
+      pageUV: window.__intrinsic.state.answer.uv,
+    }));
+    const served = await api(url, '/api/solve', request, session);
+    if (served.path !== 'responses') throw new Error('expected the editor path, got ' + served.path);
+    const meshInfo = await api(url, '/api/mesh');
+    const base = await api(url, '/api/solve', {}, 'browser-test-base');
+    const moved = new Map(request.moves.map((m) => [m[0], [m[1], m[2]]]));
+    if (!moved.has(vertex)) throw new Error('the dragged vertex was not moved');
+    const lines = meshInfo.boundary_loops[0].map((v) => {
+      const p = moved.get(v) || base.uv[v];
+      return `${v} ${p[0]} ${p[1]}`;
+    });
+    fs.writeFileSync(path.join(dir, 'b.txt'), lines.join('\n') + '\n');
+    execFileSync(binary, ['param', mesh, '--boundary', path.join(dir, 'b.txt'), '-o', path.join(dir, 'out.obj'), '-q']);
+    const cli = objUV(path.join(dir, 'out.obj'), meshInfo.vertices);
+    const dServed = maxDiff(served.uv, cli), dPage = maxDiff(pageUV, cli);
+    console.log(`dragged vertex ${vertex}: |served - param| = ${dServed}, |page - param| = ${dPage}`);
+    if (!(dServed < 1e-9) || !(dPage < 1e-9)) throw new Error('served UVs differ from intrinsic param');
+
+    const shot = await page.screenshot({ path: path.join(os.tmpdir(), 'intrinsic-editor.png') });
+    const spread = await pixelSpread(page, shot);
+    const box = await page.locator('#view3d').boundingBox();
+    const spread3d = await pixelSpread(page, await page.screenshot({ clip: box }));
+    console.log(`screenshot grey-level spread: page ${spread.toFixed(1)}, 3D view ${spread3d.toFixed(1)}`);
+    if (!(spread > 5)) throw new Error('the screenshot is blank');
+    if (!(spread3d > 5)) throw new Error('the 3D view is blank');
+    console.log('browser test passed');
+  } finally {
+    if (browser) await browser.close();
+    child.kill('SIGKILL');
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+}
+
+main().catch((e) => {
+  console.error('browser test failed:', e.message);
+  process.exit(1);
+});
