@@ -12,30 +12,9 @@
 #include "intrinsic/parameterizer.h"
 #include "intrinsic/mesh.h"
 
-namespace {
-
-intrinsic::Mesh grid_with_hole() {
-  using namespace intrinsic;
-  MatrixX3d V(25, 3);
-  for (int y = 0; y < 5; ++y)
-    for (int x = 0; x < 5; ++x) V.row(y * 5 + x) << x, y, 0.3 * ((x * y) % 3);
-  MatrixX3i F(30, 3);
-  int f = 0;
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 4; ++x) {
-      if (x == 1 && y == 1) continue;  // the hole
-      const int a = y * 5 + x;
-      F.row(f++) << a, a + 1, a + 6;
-      F.row(f++) << a, a + 6, a + 5;
-    }
-  return make_mesh(V, F);
-}
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace intrinsic;
-  static const Mesh mesh = grid_with_hole();
+  static const Mesh mesh = fuzz::bumped_grid(true);
   return fuzz::expect_only_error([&] {
     Constraints c = parse_constraints_json(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
     match_face_corners(c, mesh.F, mesh);

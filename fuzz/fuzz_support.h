@@ -9,6 +9,7 @@
 
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
+#include "intrinsic/mesh.h"
 
 namespace intrinsic::fuzz {
 
@@ -18,6 +19,25 @@ inline ReadOptions small_limits() {
   o.max_vertices = 2000;
   o.max_faces = 4000;
   return o;
+}
+
+// A bumped 5 x 5 vertex grid (vertex y * 5 + x; two faces per quad, row by
+// row), optionally without its quad at (1, 1) so paths can leave the surface
+// through that hole too (30 faces; fuzz/make_corpus.py assumes that count).
+inline Mesh bumped_grid(bool with_hole) {
+  MatrixX3d V(25, 3);
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 5; ++x) V.row(y * 5 + x) << x, y, 0.3 * ((x * y) % 3);
+  MatrixX3i F(with_hole ? 30 : 32, 3);
+  int f = 0;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      if (with_hole && x == 1 && y == 1) continue;
+      const int a = y * 5 + x;
+      F.row(f++) << a, a + 1, a + 6;
+      F.row(f++) << a, a + 6, a + 5;
+    }
+  return make_mesh(V, F);
 }
 
 // Runs `body`; Error is expected, every other exception aborts (a finding).

@@ -14,14 +14,6 @@
 namespace intrinsic {
 namespace {
 
-Mesh two_disks() {
-  GenerateOptions g;
-  g.rings = 8;
-  ValidateOptions vo;
-  vo.allow_several_components = true;
-  return make_mesh(generate_two_disks(g), vo);
-}
-
 bool disjoint(const ChartSummary& a, const ChartSummary& b) {
   return a.box_max.x() < b.box_min.x() || b.box_max.x() < a.box_min.x() || a.box_max.y() < b.box_min.y() ||
          b.box_max.y() < a.box_min.y();
@@ -43,7 +35,7 @@ void check_boxes(const Mesh& mesh, const ParamResult& r) {
 }
 
 TEST(Charts, TwoDisksGiveTwoDisjointChartsWithoutFlips) {
-  const Mesh mesh = two_disks();
+  const Mesh mesh = test::two_disks();
   ASSERT_EQ(mesh.topology.num_components, 2);
   for (BoundaryShape s : {BoundaryShape::Circle, BoundaryShape::Square, BoundaryShape::Natural}) {
     ParamOptions o;
@@ -70,7 +62,7 @@ TEST(Charts, TwoDisksGiveTwoDisjointChartsWithoutFlips) {
 TEST(Charts, CommonScaleAndNaturalChartsAreExactCopies) {
   // Two identical flat disks, natural map: each chart is its disk up to a
   // similarity, and both have the same size (one scale for all charts).
-  const Mesh mesh = two_disks();
+  const Mesh mesh = test::two_disks();
   ParamOptions o;
   o.boundary = BoundaryShape::Natural;
   o.scale = ScaleMode::Surface;
@@ -84,7 +76,7 @@ TEST(Charts, CommonScaleAndNaturalChartsAreExactCopies) {
 }
 
 TEST(Charts, PinnedChartStaysWhereThePinsPutIt) {
-  const Mesh mesh = two_disks();
+  const Mesh mesh = test::two_disks();
   const int a = mesh.F(0, 0), b = mesh.F(0, 1);  // in component 0
   ParamOptions o;
   o.boundary = BoundaryShape::Natural;

@@ -176,14 +176,6 @@ Mesh cap_and_disk() {
   return make_mesh(both, vo);
 }
 
-Mesh two_disks() {
-  GenerateOptions g;
-  g.rings = 8;
-  ValidateOptions vo;
-  vo.allow_several_components = true;
-  return make_mesh(generate_two_disks(g), vo);
-}
-
 // Each chart of parameterize_charts equals parameterize() of its component
 // alone, up to a uniform scale and a translation (the packing); the natural
 // map's pins are placed by a similarity, so a rotation is allowed there.
@@ -202,7 +194,7 @@ void check_charts_match_components(const Mesh& mesh, const ParamOptions& o, bool
 }
 
 TEST(Independent, EachChartIsItsComponentAloneUpToASimilarity) {
-  for (const Mesh& mesh : {two_disks(), cap_and_disk()}) {
+  for (const Mesh& mesh : {test::two_disks(), cap_and_disk()}) {
     ParamOptions o;
     check_charts_match_components(mesh, o, false);
     o.weights = {Method::Authalic, 0, 1};

@@ -35,6 +35,16 @@ inline std::string gzip(const std::string& data, int level = 6, int mem_level = 
   return out;
 }
 
+// Two irregular flat disks side by side (generate_two_disks, rings 8): a mesh
+// of two components, validated with several components allowed.
+inline Mesh two_disks() {
+  GenerateOptions g;
+  g.rings = 8;
+  ValidateOptions vo;
+  vo.allow_several_components = true;
+  return make_mesh(generate_two_disks(g), vo);
+}
+
 inline std::string shared_mesh(const std::string& name) { return std::string(INTRINSIC_SHARED_MESHES) + "/" + name; }
 
 // The shared real meshes small enough to solve in every test that loops over
