@@ -47,6 +47,15 @@ class LinearSolver {
   // UMFPACK, Eigen's solvers and the iterative ones do not refine.
   void set_ill_conditioned(bool on);
 
+  // Declares the matrix the real form [K -B; B K] of a Hermitian matrix
+  // K + iB (the natural map's system in blocked ordering, docs/maths.md
+  // §3.6). CHOLMOD then factors the complex n x n form: half the unknowns to
+  // order and analyse and fewer flops than the real 2n x 2n matrix. Solves
+  // still take and return the real form. Checked exactly at factor(); a
+  // matrix without that structure is factored as given. Other backends
+  // ignore it.
+  void set_complex_form(bool on);
+
   SolverKind kind() const;        // the backend actually used (never Auto after factor)
   std::string name() const;       // solver_name(kind())
   int factorizations() const;     // how many numeric factorizations so far

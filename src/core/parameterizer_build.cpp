@@ -53,7 +53,7 @@ void Parameterizer::Impl::build_natural(const std::vector<FixedVertex>& given) {
     const SparseMatrix K = assemble_weight_matrix(mesh->V, mesh->F, o.weights);
     std::vector<std::vector<int>> loops;
     for (size_t k = 1; k < t.component_loops[0].size(); ++k) loops.push_back(t.boundary_loops[t.component_loops[0][k]]);
-    Q = block_diagonal2(K) - natural_hole_weight(o.weights) * area_hessian(n, loops);
+    Q = real_form_matrix(K, natural_hole_weight(o.weights) * area_coupling(n, loops));
     symmetric = is_symmetric(o.weights);
   }
   std::vector<char> fixed2(2 * n, 0), used2(2 * n, 0);
@@ -74,7 +74,12 @@ void Parameterizer::Impl::factor(const SparseMatrix& K, const std::vector<char>&
   const auto t_factor = std::chrono::steady_clock::now();
   sys.reset();
   try {
-    sys = std::make_unique<detail::EliminatedSystem>(K, is_fixed, is_used, o.solver, symmetric, natural);
+    detail::EliminatedSystem::Factoring how;
+    how.kind = o.solver;
+    how.symmetric = symmetric;
+    how.ill_conditioned = natural;
+    how.complex_form = natural && symmetric;  // docs/maths.md §3.6
+    sys = std::make_unique<detail::EliminatedSystem>(K, is_fixed, is_used, how);
   } catch (const Error& e) {
     throw_diagnosed(e);
   }

@@ -7,12 +7,14 @@
 namespace intrinsic::detail {
 
 EliminatedSystem::EliminatedSystem(const SparseMatrix& K, const std::vector<char>& is_known,
-                                   const std::vector<char>& is_used, SolverKind kind, bool symmetric,
-                                   bool ill_conditioned)
-    : solver_(kind, symmetric) {
+                                   const std::vector<char>& is_used, const Factoring& how)
+    : solver_(how.kind, how.symmetric) {
   p_ = intrinsic::partition(static_cast<int>(K.rows()), is_known, is_used);
   split_matrix(K, p_, A_, K_IB_);
-  solver_.set_ill_conditioned(ill_conditioned);
+  solver_.set_ill_conditioned(how.ill_conditioned);
+  // The free unknowns keep K's order, u's before v's: with u and v of a
+  // vertex known together, A is again a real form.
+  solver_.set_complex_form(how.complex_form);
   if (A_.rows() > 0) {
     solver_.factor(A_);
     factored_ = true;

@@ -15,10 +15,17 @@ namespace intrinsic::detail {
 
 class EliminatedSystem {
  public:
+  // How A is factored (see LinearSolver).
+  struct Factoring {
+    SolverKind kind = SolverKind::Auto;
+    bool symmetric = true;
+    bool ill_conditioned = false;
+    bool complex_form = false;  // K is a real form [K' -B; B K'] and the known unknowns come in pairs
+  };
   // Partitions the unknowns of K (known where is_known, absent where not
-  // is_used) and factors A. `ill_conditioned`: see LinearSolver.
+  // is_used) and factors A.
   EliminatedSystem(const SparseMatrix& K, const std::vector<char>& is_known, const std::vector<char>& is_used,
-                   SolverKind kind, bool symmetric, bool ill_conditioned);
+                   const Factoring& how);
 
   const Partition& partition() const { return p_; }
   const SparseMatrix& A() const { return A_; }

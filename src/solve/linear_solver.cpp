@@ -68,6 +68,7 @@ struct LinearSolver::Impl {
   bool symmetric;
   double tolerance;
   bool ill_conditioned = false;
+  bool complex_form = false;
   SparseMatrix A;
   SolverKind used = SolverKind::Auto;
   int factorizations = 0;
@@ -86,7 +87,8 @@ struct LinearSolver::Impl {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
     if (requested != SolverKind::EigenLLT) {
       cholmod = std::make_unique<Cholmod>();
-      if (cholmod->factor(A)) { used = SolverKind::Cholmod; return true; }
+      const auto structure = complex_form ? detail::Structure::ComplexPairs : detail::Structure::Real;
+      if (cholmod->factor(A, structure)) { used = SolverKind::Cholmod; return true; }
       cholmod.reset();
       return false;
     }
@@ -213,6 +215,7 @@ Eigen::MatrixXd LinearSolver::solve_transposed(const Eigen::MatrixXd& B) const {
 }
 
 void LinearSolver::set_ill_conditioned(bool on) { impl_->ill_conditioned = on; }
+void LinearSolver::set_complex_form(bool on) { impl_->complex_form = on; }
 
 SolverKind LinearSolver::kind() const { return impl_->used; }
 std::string LinearSolver::name() const { return solver_name(impl_->used); }
