@@ -327,6 +327,8 @@ Eigen::MatrixXd UmfpackFactor::solve(const Eigen::MatrixXd& B, bool transposed) 
   return X;
 }
 
+double UmfpackFactor::flops() const { return impl_->numeric ? impl_->info[UMFPACK_FLOPS] : 0; }
+
 double UmfpackFactor::factor_nonzeros() const {
   return impl_->numeric ? impl_->info[UMFPACK_LNZ] + impl_->info[UMFPACK_UNZ] : 0;
 }

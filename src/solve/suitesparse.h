@@ -66,6 +66,7 @@ class UmfpackFactor {
   // A X = B, or A^T X = B with the same factors.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B, bool transposed = false) const;
   double factor_nonzeros() const;  // nnz(L) + nnz(U)
+  double flops() const;            // of the numeric factorization, as UMFPACK counts them
   double analyse_ms = 0, factor_ms = 0;
 
  private:
