@@ -32,6 +32,8 @@ class LinearSolver {
   // Throws Error(Numerical) when the matrix is singular (or not positive
   // definite for an explicit Cholesky choice).
   void factor(const SparseMatrix& A);
+  // The same, taking A over (no copy: the 1M-vertex natural system is 170 MB).
+  void factor(SparseMatrix&& A);
   // Solves A X = B column by column with the kept factorization.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   // Solves A^T X = B (adjoint gradients); same factorization.

@@ -33,7 +33,7 @@ void Parameterizer::Impl::build_fixed(const std::vector<FixedVertex>& given) {
   } else {
     K = assemble_weight_matrix(mesh->V, mesh->F, o.weights);
   }
-  factor(K, is_fixed, is_used, is_symmetric(o.weights), t_assemble);
+  factor(std::move(K), is_fixed, is_used, is_symmetric(o.weights), t_assemble);
   UB.resize(sys->known_count(), 2);
   for (const FixedVertex& fv : given) UB.row(p().fixed_index[fv.vertex]) = fv.uv.transpose();
   update_fixed_list();
@@ -59,7 +59,7 @@ void Parameterizer::Impl::build_natural(const std::vector<FixedVertex>& given) {
   std::vector<char> fixed2(2 * n, 0), used2(2 * n, 0);
   for (int v = 0; v < n; ++v) used2[v] = used2[n + v] = t.is_used[v];
   for (const FixedVertex& fv : given) fixed2[fv.vertex] = fixed2[n + fv.vertex] = 1;
-  factor(Q, fixed2, used2, symmetric, t_assemble);
+  factor(std::move(Q), fixed2, used2, symmetric, t_assemble);
   UB.resize(sys->known_count(), 1);
   for (const FixedVertex& fv : given) set_fixed_uv(UB, fv.vertex, fv.uv);
   update_fixed_list();
@@ -67,7 +67,7 @@ void Parameterizer::Impl::build_natural(const std::vector<FixedVertex>& given) {
 
 // The natural layout's system is ill-conditioned (two pins only): its
 // solves always refine (LinearSolver::set_ill_conditioned).
-void Parameterizer::Impl::factor(const SparseMatrix& K, const std::vector<char>& is_fixed,
+void Parameterizer::Impl::factor(SparseMatrix&& K, const std::vector<char>& is_fixed,
                                  const std::vector<char>& is_used, bool symmetric,
                                  std::chrono::steady_clock::time_point t_assemble) {
   timings.assemble_ms = detail::elapsed_ms(t_assemble);
@@ -79,7 +79,7 @@ void Parameterizer::Impl::factor(const SparseMatrix& K, const std::vector<char>&
     how.symmetric = symmetric;
     how.ill_conditioned = natural;
     how.complex_form = natural && symmetric;  // docs/maths.md §3.6
-    sys = std::make_unique<detail::EliminatedSystem>(K, is_fixed, is_used, how);
+    sys = std::make_unique<detail::EliminatedSystem>(std::move(K), is_fixed, is_used, how);
   } catch (const Error& e) {
     throw_diagnosed(e);
   }

@@ -127,10 +127,13 @@ LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
 LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 
-void LinearSolver::factor(const SparseMatrix& A) {
+void LinearSolver::factor(const SparseMatrix& A) { factor(SparseMatrix(A)); }
+
+void LinearSolver::factor(SparseMatrix&& matrix) {
   Impl& s = *impl_;
-  s.A = A;
+  s.A = std::move(matrix);
   s.A.makeCompressed();
+  const SparseMatrix& A = s.A;
   s.transposed.reset();
   s.llt.reset(); s.lu.reset(); s.cg.reset(); s.bicg.reset();
 #ifdef INTRINSIC_HAVE_SUITESPARSE
