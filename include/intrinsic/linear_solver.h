@@ -45,7 +45,7 @@ class LinearSolver {
   // Declaring the system ill-conditioned (the natural map's, with only two
   // pinned vertices) makes every solve refine with residuals accumulated in
   // long double, at least one step and at most 5, stopping when the
-  // correction is below 1e-13 of the solution or no longer halves.
+  // correction is below 1e-12 of the solution or no longer halves.
   // UMFPACK, Eigen's solvers and the iterative ones do not refine.
   void set_ill_conditioned(bool on);
 

@@ -231,11 +231,15 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& B, bool refine_alway
     const Eigen::MatrixXd D = cholmod_solve(s.L, s.c, s.complex, R);
     X += D;
     if (refine_always) {
-      // Stop below 1e-13 of X, or when a step no longer halves the
+      // Stop below 1e-12 of X, or when a step no longer halves the
       // correction: it has reached the noise of the solves (about 1e-12 at
-      // 300k vertices) and further steps only cost time.
+      // 300k vertices; the next correction measured there was 2.3e-12 after
+      // 7.9e-13, i.e. noise) and further steps only cost a complex solve
+      // each. Each step shrinks the error by about the ratio of successive
+      // corrections (1e-3 to 1e-4 here), so X after a correction below
+      // 1e-12 is far within the natural map's 1e-11 accuracy budget.
       const double correction = D.cwiseAbs().maxCoeff() / X.cwiseAbs().maxCoeff();
-      if (!(correction > 1e-13) || !(correction < 0.5 * previous_correction)) break;
+      if (!(correction > 1e-12) || !(correction < 0.5 * previous_correction)) break;
       previous_correction = correction;
     }
   }
