@@ -1,4 +1,4 @@
-// Who runs in parallel while CHOLMOD factors or solves (issue 14). The
+// Who runs in parallel while a sparse factorization runs (issue 14). The
 // solver libraries each assume the whole machine: OpenBLAS starts a thread
 // per core for every BLAS call, and Debian's CHOLMOD opens OpenMP teams of 4
 // threads per supernode (a compiled-in num_threads clause). Idle threads of
@@ -14,9 +14,7 @@
 // its spinning workers cost more than they give (measured in
 // docs/benchmarks.md). The settings are process-wide in the libraries, so
 // the first live scope saves them and the last restores them: nested and
-// concurrent scopes (two Parameterizers in two threads) are safe. UMFPACK
-// has no OpenMP teams and runs without a scope: BLAS's threads are its
-// parallelism.
+// concurrent scopes (two Parameterizers in two threads) are safe.
 #pragma once
 
 namespace intrinsic::detail {

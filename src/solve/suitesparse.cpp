@@ -301,9 +301,10 @@ bool UmfpackFactor::factor(const SparseMatrix& input) {
   if (status != UMFPACK_OK) throw_numerical("UMFPACK analysis failed (status " + std::to_string(status) + ")");
   analyse_ms = ms_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
-  // UMFPACK has no OpenMP teams: BLAS's threads are its only parallelism,
-  // so they keep the caller's setting (no SolverThreads).
-  status = umfpack_dl_numeric(s.p.data(), s.i.data(), s.A.valuePtr(), symbolic, &s.numeric, s.control, s.info);
+  {
+    SolverThreads threads;
+    status = umfpack_dl_numeric(s.p.data(), s.i.data(), s.A.valuePtr(), symbolic, &s.numeric, s.control, s.info);
+  }
   umfpack_dl_free_symbolic(&symbolic);
   factor_ms = ms_since(t1);
   if (status == UMFPACK_WARNING_singular_matrix) {
