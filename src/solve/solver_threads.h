@@ -14,7 +14,10 @@
 // its spinning workers cost more than they give (measured in
 // docs/benchmarks.md). The settings are process-wide in the libraries, so
 // the first live scope saves them and the last restores them: nested and
-// concurrent scopes (two Parameterizers in two threads) are safe.
+// concurrent scopes (two Parameterizers in two threads) are safe. UMFPACK
+// (no OpenMP) runs in a scope too: on a loaded machine (load 5, 2 cores) its
+// 1M-vertex authalic factorization took 22 s with OpenBLAS's threads, 6.9 s
+// of it system time spent spinning, and 11 s with one.
 #pragma once
 
 namespace intrinsic::detail {
