@@ -29,4 +29,38 @@ UvMesh split_by_texcoord(const MeshData& data) {
   return m;
 }
 
+MatrixX2d unmirrored_uv(const UvMesh& m, const UvAtlasMetrics& atlas) {
+  MatrixX2d UV = m.UV;
+  std::vector<char> done(UV.rows(), 0);
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int t = m.F(f, c);
+      if (done[t]) continue;
+      done[t] = 1;
+      if (atlas.charts[atlas.face_chart[f]].mirrored) UV(t, 0) = -UV(t, 0);
+    }
+  return UV;
+}
+
+nlohmann::json atlas_metrics_json(const UvAtlasMetrics& a) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const UvChart& c : a.charts)
+    list.push_back({{"faces", c.faces}, {"uv_area", c.uv_area}, {"area_3d", c.area_3d},
+                    {"mirrored", c.mirrored}, {"flipped", c.flipped}, {"collapsed", c.collapsed}});
+  return {{"charts", a.charts.size()},
+          {"utilization", a.utilization},
+          {"utilization_of", a.utilization_in_unit_square ? "unit_square" : "bounding_square"},
+          {"utilization_bbox", a.utilization_bbox},
+          {"uv_area", a.uv_area},
+          {"mirrored_charts", a.mirrored_charts},
+          {"mirrored_faces", a.mirrored_faces},
+          {"flipped_triangles", a.flipped_triangles},
+          {"collapsed_triangles", a.collapsed_triangles},
+          {"degenerate_faces", a.degenerate_faces},
+          {"overlapping_triangles", a.overlapping_triangles},
+          {"overlapping_pairs_within_charts", a.overlapping_pairs_within_charts},
+          {"overlapping_pairs_between_charts", a.overlapping_pairs_between_charts},
+          {"chart_list", list}};
+}
+
 }  // namespace intrinsic::app

@@ -6,7 +6,10 @@
 
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "intrinsic/mesh.h"
+#include "intrinsic/metrics.h"
 
 namespace intrinsic::app {
 
@@ -21,5 +24,15 @@ struct UvMesh {
 // texture index is out of range, or one coordinate is used by corners at
 // different positions.
 UvMesh split_by_texcoord(const MeshData& data);
+
+// The UVs with every chart that `metrics` found mirrored as a whole reflected
+// (u -> -u) back, so distortion figures and their normalisation (total UV
+// area) see each chart in its own orientation and count only local folds as
+// flipped. A texture coordinate takes the chart of the first face using it.
+MatrixX2d unmirrored_uv(const UvMesh& m, const UvAtlasMetrics& atlas);
+
+// The atlas part of the `metrics` report: charts, utilization, mirrored
+// charts, flipped, collapsed and overlapping triangles, per-chart list.
+nlohmann::json atlas_metrics_json(const UvAtlasMetrics& atlas);
 
 }  // namespace intrinsic::app
