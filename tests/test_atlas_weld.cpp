@@ -8,6 +8,8 @@
 #include <fstream>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_support.h"
 #include "intrinsic/atlas.h"
 #include "intrinsic/io.h"

@@ -8,6 +8,10 @@
 #include <filesystem>
 #include <set>
 
+// The same configuration as src/io/glb_writer.cpp, which holds the implementation.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
 
 #include "cli_support.h"

@@ -1,6 +1,7 @@
 // Public entry points: validate, pick the pass, and assemble the page.
 #include "intrinsic/render.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
