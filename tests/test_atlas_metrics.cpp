@@ -143,7 +143,7 @@ TEST(AtlasMetrics, TouchingIsNotOverlapping) {
 
 TEST(AtlasMetrics, OverlapsAgreeWithClippingOnRandomTriangles) {
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(0, 1), r(0.01, 0.12);
+  std::uniform_real_distribution<double> u(0, 1), r(0.005, 0.05);
   Soup s;
   const int n = 300;
   s.P = MatrixX3d::Random(3 * n, 3);
