@@ -113,5 +113,26 @@ TEST(Glb, AtlasCliWritesGlb) {
   EXPECT_FALSE(std::filesystem::exists(std::string(dir / "t.glb.gz")));
 }
 
+TEST(Glb, ParamWritesGlbWithOneUvPerVertex) {
+  test::TempDir dir;
+  const std::string in = test::shared_mesh("cat_head.obj");
+  const auto r = test::run_cli("param " + in + " -o " + (dir / "p.glb") + " -q", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(test::run_cli("param " + in + " -o " + (dir / "p.obj") + " -q", dir).code, 0);
+  const MeshData obj = read_mesh(dir / "p.obj");
+  const tinygltf::Model model = load_glb(dir / "p.glb");
+  const tinygltf::Primitive& p = model.meshes.at(0).primitives.at(0);
+  ASSERT_EQ(model.accessors.at(p.attributes.at("POSITION")).count, static_cast<size_t>(obj.V.rows()));
+  const auto* idx = accessor_data<std::uint32_t>(model, p.indices);
+  const auto* tex = accessor_data<float>(model, p.attributes.at("TEXCOORD_0"));
+  for (int f = 0; f < obj.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      // Without seams the glTF vertices are the mesh's, in order of first use.
+      const std::uint32_t i = idx[3 * f + c];
+      EXPECT_NEAR(tex[2 * i], obj.TC(obj.FTC(f, c), 0), 1e-6);
+      EXPECT_NEAR(tex[2 * i + 1], 1 - obj.TC(obj.FTC(f, c), 1), 1e-6);
+    }
+}
+
 }  // namespace
 }  // namespace intrinsic

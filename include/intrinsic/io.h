@@ -34,7 +34,8 @@ struct WriteOptions {
 };
 
 // Writes V, F and one UV per vertex (UV may be empty: no texture coordinates).
-// Format from the extension: .obj or .ply. Throws Error(Output) on failure,
+// Format from the extension: .obj, .ply or .glb (write_glb with the corners
+// indexing UV like V; needs UV). Throws Error(Output) on failure,
 // leaving no file behind.
 void write_mesh(const std::string& path, const MatrixX3d& V, const MatrixX3i& F,
                 const MatrixX2d& UV, const WriteOptions& options = {});
