@@ -32,7 +32,7 @@ nlohmann::json mesh_report(const UvMesh& uv, const MeshData& data) {
     report = {{"input", data.path}, {"faces", uv.F.rows()}, {"not_a_manifold_mesh", e.what()}};
   }
   report["vertices"] = data.V.rows();
-  report["texture_coordinates"] = uv.UV.rows();
+  report["texture_coordinates"] = data.TC.rows();
   return report;
 }
 

@@ -14,15 +14,15 @@
 namespace intrinsic::app {
 
 struct UvMesh {
-  MatrixX3d V;   // #TC x 3: the position of each texture coordinate's corners
-  MatrixX3i F;   // the input's FTC
-  MatrixX2d UV;  // the input's TC, one row per row of V
+  MatrixX3d V;   // the position of each texture coordinate's corners (#TC rows, then the extra ones)
+  MatrixX3i F;   // the input's FTC (re-pointed to the extra rows where needed)
+  MatrixX2d UV;  // the input's TC, then the extra rows' copies; one row per row of V
   Eigen::Index input_vertices = 0;  // rows of V in the file, for reports
 };
 
-// Throws Error(Input) naming the file when it has no texture coordinates, a
-// texture index is out of range, or one coordinate is used by corners at
-// different positions.
+// A coordinate used by corners at different positions gets a row per
+// position (appended). Throws Error(Input) naming the file when it has no
+// texture coordinates or a texture index is out of range.
 UvMesh split_by_texcoord(const MeshData& data);
 
 // The UVs with every chart that `metrics` found mirrored as a whole reflected

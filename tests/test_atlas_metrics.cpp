@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.h"
+#include "intrinsic/atlas.h"
+#include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
 #include "intrinsic/render.h"
 #include "test_support.h"
@@ -237,6 +239,49 @@ TEST(AtlasMetrics, CornersJoinOnlyThroughEdgesWithTheSamePosition) {
   EXPECT_EQ(uv_atlas_metrics(s.P, s.F, s.UV).charts.size(), 1u);
 }
 
+TEST(AtlasMetrics, AtlasWithoutPaddingNeverOverlaps) {
+  // fuzz_atlas's first finding: with padding 0 a chart was placed at
+  // (top - height) of the box below it, which rounded an ulp into that box.
+  const std::string text =
+      "# seed\n"
+      "v 0.7 0 -0\n"
+      "v 1.3 0 0\n"
+      "v 0.511122 0.511122 -0.114805\n"
+      "v 0.903091 0.903092 0.114805\n"
+      "v 4.8243e-17 0.787868 -0.212132\n"
+      "v 7.42217e-17 1.21213 0.212132\n"
+      "v -0.625927 0.625927 -0.277164\n"
+      "v -0.788286 0.788286 0.277164\n"
+      "v -1 1.22465e-16 -0.3\n"
+      "v -1 1.22465e-16 0.3\n"
+      "v -0.788286 -0.788286 -0.277164\n"
+      "v -0.625927 -0.625927 0.277164\n"
+      "v -2.22665e-16 -1.21213 -0.212132\n"
+      "v -1.44729e-16 -0.787868 0.212132\n"
+      "v 0.903091 -0.903091 -0.114805\n"
+      "v 0.511122 -0.0 11 12\n"
+      "f 11 13 12\n"
+      "f 12 13 14\n"
+      "f 13 15 14\n"
+      "f 14 15 16\n"
+      "f 15 2 16\n"
+      "f 16 2 1\n";
+  const MeshData m = read_mesh_from_memory(text, "finding.obj");
+  for (double padding : {0.0, 2.0}) {
+    AtlasOptions o;
+    o.padding = padding;
+    o.min_chart_faces = 0;
+    const AtlasResult r = atlas(m, o);
+    EXPECT_EQ(r.overlapping, 0) << padding;
+    MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
+    for (int f = 0; f < m.F.rows(); ++f)
+      for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(m.F(f, c));
+    const UvAtlasMetrics um = uv_atlas_metrics(PT, r.FUV, r.UV);
+    EXPECT_GT(um.charts.size(), 1u);
+    EXPECT_EQ(um.overlapping_triangles, 0) << padding;
+  }
+}
+
 // An OBJ soup like xatlas's output (vertices split at seams, v/vt per corner)
 // with a chart pinched at one vertex, which make_mesh refuses as non-manifold.
 std::string pinched_soup_obj() {
@@ -261,6 +306,25 @@ TEST(AtlasMetricsCli, MetricsAcceptsANonManifoldSoup) {
   EXPECT_NEAR(a.at("utilization").get<double>(), 3 * 0.5 * 0.04, 1e-12);
   EXPECT_EQ(j.at("flipped_triangles"), 0);
   EXPECT_NEAR(j.at("angle_distortion").at("mean").get<double>(), 1.0, 1e-9);
+}
+
+TEST(AtlasMetricsCli, OneCoordinateAtSeveralPositions) {
+  // As `intrinsic atlas` writes a zero-area face: all its corners on one
+  // coordinate of a neighbour (here face 3, on a line, all at vt 1).
+  test::TempDir dir;
+  std::ofstream(dir / "c.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n"
+                                  "vt 0.1 0.1\nvt 0.5 0.1\nvt 0.5 0.5\nvt 0.1 0.5\n"
+                                  "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\nf 1/1 2/1 5/1\n";
+  const auto r = test::run_cli("metrics " + (dir / "c.obj") + " --report " + (dir / "m.json"), dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(dir / "m.json"));
+  EXPECT_EQ(j.at("texture_coordinates"), 4);
+  const nlohmann::json& a = j.at("atlas");
+  EXPECT_EQ(a.at("degenerate_faces"), 1);
+  EXPECT_EQ(a.at("flipped_triangles"), 0);
+  EXPECT_EQ(a.at("collapsed_triangles"), 0);
+  EXPECT_EQ(a.at("overlapping_triangles"), 0);
+  EXPECT_NEAR(a.at("uv_area").get<double>(), 0.16, 1e-12);
 }
 
 TEST(AtlasMetricsCli, LayoutGivesEachChartItsOwnColour) {
