@@ -44,7 +44,9 @@ void register_metrics(CLI::App& app, Runner& run) {
     std::int64_t max_vertices = ReadOptions().max_vertices;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("metrics", "Distortion and atlas report (charts, flips per chart, overlaps, utilization) of a mesh with UVs (OBJ vt or PLY u,v)");
+  CLI::App* cmd = app.add_subcommand("metrics",
+                                     "Distortion and atlas report (charts, flips per chart, overlaps, utilization) "
+                                     "of a mesh with UVs (OBJ vt or PLY u,v)");
   cmd->add_option("input", args->input, "Mesh with texture coordinates (.obj, .off, .ply, optionally .gz)")->required();
   cmd->add_option("--report", args->report, "Write the report as JSON to this file (default: print it)");
   cmd->add_option("--max-vertices", args->max_vertices, "Refuse inputs with more vertices")

@@ -118,8 +118,8 @@ void register_render(CLI::App& app, Runner& run) {
   cmd->add_option("input", a->input, "Mesh with texture coordinates (OBJ vt or PLY u,v; optionally .gz)")->required();
   cmd->add_option("-o,--output", a->output, "Output picture (.png)")->required();
   cmd->add_option("--mode", a->mode,
-                  "checker: textured 3D surface | layout: the flattened mesh, flipped triangles red (an atlas: one colour per "
-                  "chart, folded or overlapping triangles red) | "
+                  "checker: textured 3D surface | layout: the flattened mesh, flipped triangles red (an atlas: "
+                  "one colour per chart, folded or overlapping triangles red) | "
                   "angle, area, stretch: distortion per triangle with a colour bar")
       ->check(CLI::IsMember({"checker", "layout", "angle", "area", "stretch"}))
       ->capture_default_str();

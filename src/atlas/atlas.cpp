@@ -29,7 +29,8 @@ void check_options(const AtlasOptions& o) {
   if (o.min_chart_faces < 0) throw_usage("the minimum chart size must be at least 0 faces");
   if (!(o.max_stretch >= 1)) throw_usage("the stretch bound for merging must be at least 1");
   if (!(o.degenerate_ratio >= 0 && o.degenerate_ratio < 1)) throw_usage("the degenerate ratio must be in [0, 1)");
-  if (!(o.weld >= 0 && o.weld < 1)) throw_usage("the weld distance must be in [0, 1) (a fraction of the bounding box diagonal)");
+  if (!(o.weld >= 0 && o.weld < 1))
+    throw_usage("the weld distance must be in [0, 1) (a fraction of the bounding box diagonal)");
 }
 
 void count_split(detail::ChartStatus status, AtlasResult& r) {
