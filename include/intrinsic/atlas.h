@@ -44,6 +44,11 @@ struct AtlasOptions {
   // A face with area below this fraction of its longest edge squared (or a
   // repeated vertex) is degenerate: it gets UVs but takes no part in a solve.
   double degenerate_ratio = 1e-12;
+  // Weld vertices closer than this fraction of the bounding box diagonal
+  // (unwelded seams, as in teapot.obj) for the computation only: the output
+  // keeps the input's vertices, and welded corners share texture
+  // coordinates. 0: no welding.
+  double weld = 0;
 };
 
 struct AtlasChart {
@@ -65,6 +70,7 @@ struct AtlasCleaning {
   int reversed_faces = 0;         // faces listed against their piece's orientation (the fewer), reversed for the solve
   int nonorientable_cuts = 0;     // edges cut because the orientations could not agree (a Moebius band)
   int unreferenced_vertices = 0;  // written unchanged, no UV
+  int welded_vertices = 0;        // --weld: vertices merged into an earlier one within the distance
 };
 
 // Why charts were split (each split counted once, by the first check that failed).

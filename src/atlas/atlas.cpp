@@ -29,6 +29,8 @@ void check_options(const AtlasOptions& o) {
   if (o.min_chart_faces < 0) throw_usage("the minimum chart size must be at least 0 faces");
   if (!(o.max_stretch >= 1)) throw_usage("the stretch bound for merging must be at least 1");
   if (!(o.degenerate_ratio >= 0 && o.degenerate_ratio < 1)) throw_usage("the degenerate ratio must be in [0, 1)");
+  if (!(o.weld >= 0 && o.weld < 1))
+    throw_usage("the weld distance must be in [0, 1) (a fraction of the bounding box diagonal)");
 }
 
 void count_split(detail::ChartStatus status, AtlasResult& r) {
@@ -106,12 +108,18 @@ void assemble(const MeshData& input, const std::vector<detail::FlatChart>& chart
 
 }  // namespace
 
-AtlasResult atlas(const MeshData& input, const AtlasOptions& options) {
+AtlasResult atlas(const MeshData& given, const AtlasOptions& options) {
   check_options(options);
   const auto t0 = std::chrono::steady_clock::now();
   AtlasResult r;
+  // --weld: the computation sees welded faces; the result's rows stay the input's faces.
+  int welded = 0;
+  MeshData welded_mesh;
+  if (options.weld > 0) welded_mesh = detail::weld_vertices(given, options.weld, welded);
+  const MeshData& input = options.weld > 0 ? welded_mesh : given;
   const detail::CleanMesh clean = detail::clean_mesh(input, options);
   r.cleaning = clean.cleaning;
+  r.cleaning.welded_vertices = welded;
   r.components = clean.components;
   r.timings.clean_ms = ms_since(t0);
   auto t = std::chrono::steady_clock::now();

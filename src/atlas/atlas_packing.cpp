@@ -87,14 +87,17 @@ std::vector<Eigen::Vector2d> skyline(const std::vector<Eigen::Vector2d>& sizes, 
   for (int b : order) {
     const double w = sizes[b].x(), h = sizes[b].y();
     size_t best = sky.size();
-    double best_y = INFINITY;
+    double best_y = INFINITY, base = 0;
     for (size_t i = 0; i < sky.size(); ++i) {
       if (sky[i].x + w > width * (1 + 1e-12)) break;
       double y = 0;
       for (size_t j = i; j < sky.size() && sky[j].x < sky[i].x + w; ++j) y = std::max(y, sky[j].y);
-      if (y + h < best_y) best_y = y + h, best = i;
+      if (y + h < best_y) best_y = y + h, best = i, base = y;
     }
-    const double x = sky[best].x, y = best_y - h;
+    // The box sits exactly on the skyline (base), not at best_y - h, which
+    // can round below it and overlap the box underneath by an ulp (fuzz_atlas
+    // found this with padding 0).
+    const double x = sky[best].x, y = base;
     corner[b] = Eigen::Vector2d(x, y);
     height = std::max(height, best_y);
     // Replace the covered part of the skyline by the box's top.
