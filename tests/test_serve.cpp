@@ -314,9 +314,10 @@ TEST_F(ServeTest, NaturalConstraintsAndPinsReuseTheFactorization) {
   const Reply first = post(port(), R"({"boundary": "natural"})");
   ASSERT_EQ(first.status, 200);
   json pins = first.body.at("pins");
+  ASSERT_EQ(post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump()).status, 200);  // given pins: built once
   const json c1 = {{"points", {{{"face", faces[0]}, {"bary", {0.3, 0.3, 0.4}}, {"uv", {0.5, 0.4}}}}}};
   const json c2 = {{"points", {{{"face", faces[0]}, {"bary", {0.3, 0.3, 0.4}}, {"uv", {0.55, 0.35}}}}}};
-  const Reply a = post(port(), json{{"boundary", "natural"}, {"constraints", c1}}.dump());
+  const Reply a = post(port(), json{{"boundary", "natural"}, {"constraints", c1}, {"pins", pins}}.dump());
   ASSERT_EQ(a.status, 200) << a.body.dump();
   EXPECT_EQ(a.body["path"], "constraints");
   pins[1][1] = pins[1][1].get<double>() + 0.05;
