@@ -39,7 +39,9 @@ export function handles() {
 export function draw2d() {
   const c = $('view2d');
   resize(c);
-  const ctx = c.getContext('2d'), dpr = window.devicePixelRatio || 1, v = view2d();
+  // willReadFrequently: a CPU canvas, many times faster for thousands of thin paths than GPU raster
+  // (which in headless Chromium is SwiftShader).
+  const ctx = c.getContext('2d', { willReadFrequently: true }), dpr = window.devicePixelRatio || 1, v = view2d();
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.clearRect(0, 0, c.clientWidth, c.clientHeight);
   if (!state.uv) return;
@@ -63,27 +65,66 @@ export function draw2d() {
   }
 }
 
-// Edges in one path, flipped triangles in another, and with colouring one
-// path per colour bin (a few fills instead of one per triangle).
-function drawTriangles(ctx, v, colour) {
-  const uv = state.uv, tri = state.mesh.triangles, edges = new Path2D(), flipped = new Path2D();
-  const values = colour === 'none' ? null : faceDistortion(state.mesh, uv, colour);
-  const bins = values ? Array.from({ length: BINS }, () => new Path2D()) : null;
-  for (let f = 0; f < tri.length; f += 3) {
-    const a = toScreen(v, uv[2 * tri[f]], uv[2 * tri[f] + 1]);
-    const b = toScreen(v, uv[2 * tri[f + 1]], uv[2 * tri[f + 1] + 1]);
-    const d = toScreen(v, uv[2 * tri[f + 2]], uv[2 * tri[f + 2] + 1]);
-    const isFlipped = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]) > 0;
-    const targets = [isFlipped ? flipped : edges];
-    if (bins && !isFlipped) targets.push(bins[Math.min(BINS - 1, Math.floor(scaleOf(values[f / 3], VMAX[colour]) * BINS))]);
-    for (const t of targets) { t.moveTo(a[0], a[1]); t.lineTo(b[0], b[1]); t.lineTo(d[0], d[1]); t.closePath(); }
+// Each mesh edge once (cached), as pairs of vertices.
+function edgeList() {
+  if (!state.edges) {
+    const tri = state.mesh.triangles, seen = new Set(), out = [];
+    for (let f = 0; f < tri.length; f += 3)
+      for (let k = 0; k < 3; k++) {
+        const a = tri[f + k], b = tri[f + (k + 1) % 3], key = a < b ? a * 4294967296 + b : b * 4294967296 + a;
+        if (!seen.has(key)) { seen.add(key); out.push(a, b); }
+      }
+    state.edges = Int32Array.from(out);
   }
-  if (bins) bins.forEach((p, k) => { ctx.fillStyle = colourOf((k + 0.5) / BINS); ctx.fill(p); });
+  return state.edges;
+}
+
+// Paths are drawn in chunks of CHUNK pieces without closePath: one huge
+// path, or closed subpaths, make Chrome's canvas many times slower (seconds
+// at 30k vertices in headless Chromium).
+const CHUNK = 500;
+
+function fillFaces(ctx, v, faces, style) {
+  const uv = state.uv, tri = state.mesh.triangles, { ox, oy, side } = v;
+  ctx.fillStyle = style;
+  for (let i = 0; i < faces.length; i += CHUNK) {
+    ctx.beginPath();
+    for (let j = i; j < Math.min(faces.length, i + CHUNK); j++) {
+      const a = 2 * tri[3 * faces[j]], b = 2 * tri[3 * faces[j] + 1], c = 2 * tri[3 * faces[j] + 2];
+      ctx.moveTo(ox + uv[a] * side, oy - uv[a + 1] * side);
+      ctx.lineTo(ox + uv[b] * side, oy - uv[b + 1] * side);
+      ctx.lineTo(ox + uv[c] * side, oy - uv[c + 1] * side);
+    }
+    ctx.fill();
+  }
+}
+
+// Triangles by colour bin (distortion colouring), flipped ones in red, then the edges.
+function drawTriangles(ctx, v, colour) {
+  const uv = state.uv, tri = state.mesh.triangles, m = tri.length / 3;
+  const values = colour === 'none' ? null : faceDistortion(state.mesh, uv, colour);
+  const bins = Array.from({ length: BINS }, () => []), flipped = [];
+  for (let f = 0; f < m; f++) {
+    const a = 2 * tri[3 * f], b = 2 * tri[3 * f + 1], c = 2 * tri[3 * f + 2];
+    // Counter-clockwise in the (u, v) plane is positive.
+    if ((uv[b] - uv[a]) * (uv[c + 1] - uv[a + 1]) - (uv[b + 1] - uv[a + 1]) * (uv[c] - uv[a]) < 0) flipped.push(f);
+    else if (values) bins[Math.min(BINS - 1, Math.floor(scaleOf(values[f], VMAX[colour]) * BINS))].push(f);
+  }
+  if (values) bins.forEach((faces, k) => fillFaces(ctx, v, faces, colourOf((k + 0.5) / BINS)));
+  fillFaces(ctx, v, flipped, 'rgba(220, 0, 0, 0.6)');
+  const edges = edgeList();
   ctx.lineWidth = 0.5;
-  ctx.strokeStyle = bins ? 'rgba(60, 60, 80, 0.35)' : '#8896aa';
-  ctx.stroke(edges);
-  ctx.fillStyle = 'rgba(220, 0, 0, 0.6)';
-  ctx.fill(flipped);
+  ctx.strokeStyle = values ? 'rgba(60, 60, 80, 0.35)' : '#8896aa';
+  const { ox, oy, side } = v;
+  for (let i = 0; i < edges.length; i += 2 * CHUNK) {
+    ctx.beginPath();
+    for (let e = i; e < Math.min(edges.length, i + 2 * CHUNK); e += 2) {
+      const a = 2 * edges[e], b = 2 * edges[e + 1];
+      ctx.moveTo(ox + uv[a] * side, oy - uv[a + 1] * side);
+      ctx.lineTo(ox + uv[b] * side, oy - uv[b + 1] * side);
+    }
+    ctx.stroke();
+  }
 }
 
 function colourBar(ctx, width, colour) {

@@ -125,6 +125,7 @@ const settled = (n) => {
 async function addAndDragConstraint(page) {
   await page.selectOption('#click3d', 'point');
   const [x, y] = await surfacePoint(page);
+  const uvBefore = await page.evaluate(() => window.__intrinsic.state.answer.uv);
   let before = await page.evaluate(() => window.__intrinsic.state.updates);
   await page.mouse.click(x, y);
   await page.waitForFunction(settled, before, { timeout: 30000 });
@@ -139,6 +140,9 @@ async function addAndDragConstraint(page) {
   await page.waitForFunction(settled, before, { timeout: 30000 });
   const answer = await page.evaluate(() => ({ path: window.__intrinsic.state.answer.path, factorizations: window.__intrinsic.state.answer.factorizations }));
   if (answer.path !== 'targets' || answer.factorizations !== 1) throw new Error('dragging the target: ' + JSON.stringify(answer));
+  const moved = maxDiff(uvBefore, await page.evaluate(() => window.__intrinsic.state.answer.uv));
+  console.log(`the dragged constraint target moved the map by up to ${moved}`);
+  if (!(moved > 1e-4)) throw new Error('dragging the constraint target did not change the map');
 }
 
 // Writes the request's boundary (moves over the unmoved base) and constraints, runs `intrinsic param`.
