@@ -29,8 +29,8 @@ const mouseUV = (e) => {
 export function falloffWeights(from, to, width, n) {
   const out = [];
   const len = (to - from + n) % n;
+  width = Math.max(0, Math.min(width, Math.floor((n - len - 1) / 2)));  // the falloff never wraps onto the range
   for (let d = -width; d <= len + width; d++) {
-    if (len + 1 + 2 * width > n && (d < 0 || d > len)) continue;  // the range and its falloff cover the loop
     const outside = d < 0 ? -d : d > len ? d - len : 0;
     out.push([(from + d + n) % n, outside ? 0.5 * (1 + Math.cos(Math.PI * outside / (width + 1))) : 1]);
   }
