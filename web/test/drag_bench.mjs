@@ -46,16 +46,21 @@ async function browserSide() {
     await page.waitForFunction(() => window.__intrinsic && window.__intrinsic.state.frames >= 1 && window.__intrinsic.state.updates >= 1, null, { timeout: 120000 });
     const hs = await page.evaluate(() => window.__intrinsic.handles());
     const h = hs[Math.floor(hs.length / 3)];
-    await page.mouse.move(h.x, h.y);
-    await page.mouse.down();
-    for (let i = 1; i <= runs + 3; i++) {
-      const n = await page.evaluate(() => window.__intrinsic.state.latencies.length);
-      await page.mouse.move(h.x + (i % 20), h.y - (i % 13));
-      await page.waitForFunction((k) => window.__intrinsic.state.latencies.length > k, n, { timeout: 60000 });
+    // Second pass with the 3D view hidden: what the WebGL draw (software, SwiftShader, when headless) costs.
+    for (const pass of ['3D and 2D views', '2D view only']) {
+      if (pass === '2D view only') await page.evaluate(() => { document.getElementById('view3d').style.display = 'none'; });
+      const start = await page.evaluate(() => window.__intrinsic.state.latencies.length);
+      await page.mouse.move(h.x, h.y);
+      await page.mouse.down();
+      for (let i = 1; i <= runs + 3; i++) {
+        const n = await page.evaluate(() => window.__intrinsic.state.latencies.length);
+        await page.mouse.move(h.x + (i % 20), h.y - (i % 13));
+        await page.waitForFunction((k) => window.__intrinsic.state.latencies.length > k, n, { timeout: 60000 });
+      }
+      await page.mouse.up();
+      const lat = (await page.evaluate(() => window.__intrinsic.state.latencies)).slice(start + 3);  // the first moves compute responses
+      console.log(`browser (${pass}): mouse event to frame median ${med(lat).toFixed(1)} ms (min ${Math.min(...lat).toFixed(1)}, max ${Math.max(...lat).toFixed(1)}) over ${lat.length} moves`);
     }
-    await page.mouse.up();
-    const lat = (await page.evaluate(() => window.__intrinsic.state.latencies)).slice(3);  // the first moves compute responses
-    console.log(`browser: mouse event to frame median ${med(lat).toFixed(1)} ms (min ${Math.min(...lat).toFixed(1)}, max ${Math.max(...lat).toFixed(1)}) over ${lat.length} moves`);
   } finally {
     await browser.close();
   }
