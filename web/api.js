@@ -47,6 +47,7 @@ async function send(item) {
   const t0 = performance.now();
   try {
     const answer = await post('/api/solve', item.body);
+    state.roundTrips.push(performance.now() - t0);
     state.preview = null;
     show(answer, performance.now() - t0, item.stamp);
     setError(null);

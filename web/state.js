@@ -21,6 +21,7 @@ export const state = {
   inFlight: false, queued: null, lastRequest: null,
   updates: 0, frames: 0, error: null,
   latencies: [],       // mouse event to the frame after the new UVs are drawn (ms)
+  roundTrips: [],      // /api/solve request to parsed JSON answer, as the page sees it (ms)
 };
 
 // Outer loop index of each vertex (-1: not on it).

@@ -6,7 +6,8 @@
 // dragged position (1e-9); then, with the "click on surface" tool, clicks the
 // 3D view to add a point constraint, drags its target in the layout, and
 // compares the UVs again with `intrinsic param --boundary FILE --constraints
-// FILE` (and checks the session kept one factorization); then checks a
+// FILE` (and checks the session kept one factorization); then drags a
+// shift-click-selected boundary range with falloff and compares again; then checks a
 // screenshot (angle distortion colouring on) is not blank.
 // Usage: node browser_test.mjs PATH/TO/intrinsic MESH
 import { spawn, execFileSync } from 'node:child_process';
@@ -145,6 +146,27 @@ async function addAndDragConstraint(page) {
   if (!(moved > 1e-4)) throw new Error('dragging the constraint target did not change the map');
 }
 
+// Shift-clicks two boundary handles (a range), sets the falloff, drags the range's middle.
+async function dragRange(page) {
+  const b = (await page.evaluate(() => window.__intrinsic.handles())).filter((h) => h.kind === 'boundary');
+  const n = b.length, at = (i) => b[((i % n) + n) % n], k = Math.floor((2 * n) / 3);
+  if (n < 12) throw new Error('the range drag needs at least 12 boundary vertices');
+  await page.keyboard.down('Shift');
+  await page.mouse.click(at(k).x, at(k).y);
+  await page.mouse.click(at(k + 4).x, at(k + 4).y);
+  await page.keyboard.up('Shift');
+  await page.evaluate(() => { document.getElementById('falloff').value = '3'; });
+  const before = await page.evaluate(() => window.__intrinsic.state.updates);
+  await page.mouse.move(at(k + 2).x, at(k + 2).y);
+  await page.mouse.down();
+  await page.mouse.move(at(k + 2).x - 15, at(k + 2).y + 10, { steps: 5 });
+  await page.mouse.up();
+  await page.waitForFunction(settled, before, { timeout: 30000 });
+  const range = Array.from({ length: 11 }, (_, i) => at(k - 3 + i).vertex);
+  const moved = await page.evaluate(() => Array.from(window.__intrinsic.state.moves.keys()));
+  if (!range.every((v) => moved.includes(v))) throw new Error('the range and its falloff did not all move');
+}
+
 // Writes the request's boundary (moves over the unmoved base) and constraints, runs `intrinsic param`.
 function paramFor(request, base, meshInfo, dir) {
   const moved = new Map((request.moves || []).map((m) => [m[0], [m[1], m[2]]]));
@@ -198,6 +220,8 @@ async function main() {
     if (!request.moves.some((m) => m[0] === vertex)) throw new Error('the dragged vertex was not moved');
     await addAndDragConstraint(page);
     await compareWithParam(page, url, base, meshInfo, dir, 'point constraint added on the surface, target dragged');
+    await dragRange(page);
+    await compareWithParam(page, url, base, meshInfo, dir, 'boundary range (5 vertices, falloff 3) dragged');
 
     await page.selectOption('#colour', 'angle');
     await page.waitForTimeout(300);
