@@ -78,12 +78,18 @@ std::string session_id(const httplib::Request& req) {
   return id;
 }
 
-// Runs `answer` (which returns the JSON body) and maps every failure to a
-// status with {"error": message}: the server keeps serving whatever happens.
+struct Body {
+  std::string text;
+  const char* type = kJson;
+};
+
+// Runs `answer` (which returns the body) and maps every failure to a status
+// with {"error": message}: the server keeps serving whatever happens.
 template <class Answer>
 void reply(httplib::Response& res, Answer answer) {
   try {
-    res.set_content(answer(), kJson);
+    const Body body = answer();
+    res.set_content(body.text, body.type);
   } catch (const HttpError& e) {
     reply_error(res, e.status, e.what());
   } catch (const Error& e) {
@@ -97,7 +103,14 @@ void reply(httplib::Response& res, Answer answer) {
   }
 }
 
-std::string handle_solve(ServeState& s, const httplib::Request& req) {
+// `?uv=binary`: the UVs as raw little-endian float64 (the body) and the rest
+// of the answer as JSON in the X-Answer header (what the page uses).
+Body handle_solve(ServeState& s, const httplib::Request& req, httplib::Response& res) {
+  bool binary = false;
+  if (req.has_param("uv")) {
+    if (req.get_param_value("uv") != "binary") throw_usage("uv: the only format is binary");
+    binary = true;
+  }
   const SolveRequest request = parse_solve_request(req.body, s.mesh, s.data.F);
   const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
   SolveAnswer answer;
@@ -105,7 +118,9 @@ std::string handle_solve(ServeState& s, const httplib::Request& req) {
     std::lock_guard<std::mutex> lock(session->mutex);
     answer = session->state.solve(request);
   }
-  return solve_api_json(s.mesh, answer);
+  if (!binary) return {solve_api_json(s.mesh, answer)};
+  res.set_header("X-Answer", solve_api_header(s.mesh, answer));
+  return {uv_binary(answer.uv), "application/octet-stream"};
 }
 
 // The starting boundary of the optimization endpoints: the request's circle
@@ -125,7 +140,7 @@ ParamOptions start_options(Session& session, const SolveRequest& r) {
 
 // Paper section 5.1: the blend lambda U_conformal + (1 - lambda) U_authalic
 // minimising the energy; the answer's map is that blend (not the mixed map).
-std::string handle_optimal_lambda(ServeState& s, const httplib::Request& req) {
+Body handle_optimal_lambda(ServeState& s, const httplib::Request& req) {
   const OptimalLambdaRequest q = parse_optimal_lambda_request(req.body, s.mesh, s.data.F);
   const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
   OptimalLambdaOptions o;
@@ -137,18 +152,18 @@ std::string handle_optimal_lambda(ServeState& s, const httplib::Request& req) {
   a.update_ms = r.conformal_ms + r.authalic_ms + r.polynomial_ms;
   a.path = "blend";
   a.factorizations = r.map.factorizations;
-  return solve_api_json(s.mesh, a,
-                        {{"lambda", r.lambda},
-                         {"energy", r.energy},
-                         {"energy_at_0", r.energy_at_0},
-                         {"energy_at_1", r.energy_at_1},
-                         {"coefficients", r.coefficients},
-                         {"boundary_scale", r.boundary_scale}});
+  return {solve_api_json(s.mesh, a,
+                         {{"lambda", r.lambda},
+                          {"energy", r.energy},
+                          {"energy_at_0", r.energy_at_0},
+                          {"energy_at_1", r.energy_at_1},
+                          {"coefficients", r.coefficients},
+                          {"boundary_scale", r.boundary_scale}})};
 }
 
 // Paper section 5.2. Holds this request's thread until done; meanwhile
 // GET /api/optimize_boundary/progress reads the energies so far.
-std::string handle_optimize_boundary(ServeState& s, const httplib::Request& req) {
+Body handle_optimize_boundary(ServeState& s, const httplib::Request& req) {
   const OptimizeBoundaryRequest q = parse_optimize_boundary_request(req.body, s.mesh, s.data.F);
   const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
   OptimizeProgress& progress = session->progress;
@@ -176,20 +191,20 @@ std::string handle_optimize_boundary(ServeState& s, const httplib::Request& req)
   a.update_ms = r.setup_ms + r.optimize_ms;
   a.path = "optimize";
   a.factorizations = r.factorizations;
-  return solve_api_json(s.mesh, a,
-                        {{"energy_history", r.energy_history},
-                         {"iterations", r.iterations},
-                         {"stop_reason", r.stop_reason},
-                         {"flipped_initial", r.flipped_initial},
-                         {"flipped_final", r.flipped_final},
-                         {"setup_ms", r.setup_ms},
-                         {"optimize_ms", r.optimize_ms}});
+  return {solve_api_json(s.mesh, a,
+                         {{"energy_history", r.energy_history},
+                          {"iterations", r.iterations},
+                          {"stop_reason", r.stop_reason},
+                          {"flipped_initial", r.flipped_initial},
+                          {"flipped_final", r.flipped_final},
+                          {"setup_ms", r.setup_ms},
+                          {"optimize_ms", r.optimize_ms}})};
 }
 
-std::string handle_progress(ServeState& s, const httplib::Request& req) {
+Body handle_progress(ServeState& s, const httplib::Request& req) {
   const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
   std::lock_guard<std::mutex> lock(session->progress.mutex);
-  return nlohmann::json{{"running", session->progress.running}, {"energies", session->progress.energies}}.dump();
+  return {nlohmann::json{{"running", session->progress.running}, {"energies", session->progress.energies}}.dump()};
 }
 
 void add_routes(httplib::Server& server, ServeState& s) {
@@ -206,7 +221,7 @@ void add_routes(httplib::Server& server, ServeState& s) {
     res.set_content(s.mesh_json, kJson);
   });
   server.Post("/api/solve", [&s](const httplib::Request& req, httplib::Response& res) {
-    reply(res, [&] { return handle_solve(s, req); });
+    reply(res, [&] { return handle_solve(s, req, res); });
   });
   server.Post("/api/optimal_lambda", [&s](const httplib::Request& req, httplib::Response& res) {
     reply(res, [&] { return handle_optimal_lambda(s, req); });

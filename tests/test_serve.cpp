@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -428,6 +429,35 @@ TEST_F(ServeTest, BadRequestsGet400AndTheServerKeepsServing) {
   const Reply ok = post(port(), "{}");
   EXPECT_EQ(ok.status, 200);
   EXPECT_TRUE(server_->alive());
+}
+
+// ?uv=binary (what the page uses): the same UVs bit for bit as raw
+// little-endian float64, the rest of the answer in the X-Answer header.
+TEST_F(ServeTest, BinaryAnswerEqualsTheJsonAnswer) {
+  start("cat_head.obj");
+  const int v = mesh_.topology.boundary_loops[0][2];
+  const std::string body = "{\"moves\": [[" + std::to_string(v) + ", 0.4, 0.1]]}";
+  const Reply text = post(port(), body);
+  ASSERT_EQ(text.status, 200);
+  httplib::Client client("127.0.0.1", port());
+  auto res = client.Post("/api/solve?uv=binary", {{"X-Session", "s1"}}, body, "application/json");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200);
+  ASSERT_EQ(res->body.size(), static_cast<size_t>(16 * mesh_.V.rows()));
+  const MatrixX2d uv = uv_of(text.body);
+  for (Eigen::Index i = 0; i < uv.rows(); ++i)
+    for (int k = 0; k < 2; ++k) {
+      std::uint64_t bits = 0;
+      for (int b = 0; b < 8; ++b) bits |= std::uint64_t(static_cast<unsigned char>(res->body[16 * i + 8 * k + b])) << (8 * b);
+      double x;
+      std::memcpy(&x, &bits, 8);
+      ASSERT_EQ(x, uv(i, k)) << i;
+    }
+  const json header = json::parse(res->get_header_value("X-Answer"));
+  EXPECT_FALSE(header.contains("uv"));
+  EXPECT_EQ(header["flipped_triangles"], text.body["flipped_triangles"]);
+  EXPECT_EQ(header["path"], "responses");
+  EXPECT_EQ(client.Post("/api/solve?uv=text", {{"X-Session", "s1"}}, body, "application/json")->status, 400);
 }
 
 TEST_F(ServeTest, TwoSessionsAreIndependent) {

@@ -33,6 +33,18 @@ export async function post(route, body, sessionId = session) {
   return answer;
 }
 
+// /api/solve?uv=binary: the UVs as raw float64 (little-endian, as every
+// platform this runs on), the rest of the answer in the X-Answer header.
+async function postSolve(body) {
+  const res = await fetch('/api/solve?uv=binary', {
+    method: 'POST', headers: { 'Content-Type': 'application/json', 'X-Session': session }, body: JSON.stringify(body),
+  });
+  if (!res.ok) { const e = await res.json(); throw new Error(e.error || ('HTTP ' + res.status)); }
+  const answer = JSON.parse(res.headers.get('X-Answer'));
+  answer.uvFlat = new Float64Array(await res.arrayBuffer());
+  return answer;
+}
+
 // Sends now, or queues (replacing an older queued body) when one is in
 // flight. `stamp`: the time of the mouse event that asked for it.
 export function solve(stamp = null, onError = null) {
@@ -46,7 +58,7 @@ async function send(item) {
   state.lastRequest = item.body;
   const t0 = performance.now();
   try {
-    const answer = await post('/api/solve', item.body);
+    const answer = await postSolve(item.body);
     state.roundTrips.push(performance.now() - t0);
     state.preview = null;
     show(answer, performance.now() - t0, item.stamp);
@@ -65,13 +77,16 @@ export function setError(e) {
   $('error').textContent = state.error || '';
 }
 
-// Draws an answer of any endpoint (uv, figures) and updates the panel.
+// Draws an answer of any endpoint (uv pairs, or uvFlat from postSolve; figures) and updates the panel.
 export function show(answer, roundTrip, stamp = null) {
   state.answer = answer;
-  const n = state.mesh.vertices;
-  const uv = new Float64Array(2 * n);
-  answer.uv.forEach((p, i) => { uv[2 * i] = p[0]; uv[2 * i + 1] = p[1]; });
-  state.uv = uv;
+  if (answer.uvFlat) {
+    state.uv = answer.uvFlat;
+  } else {
+    const uv = new Float64Array(2 * state.mesh.vertices);
+    answer.uv.forEach((p, i) => { uv[2 * i] = p[0]; uv[2 * i + 1] = p[1]; });
+    state.uv = uv;
+  }
   if (answer.pins && !state.dragging) state.pins = answer.pins.map((p) => p.slice());
   $('flips').textContent = answer.flipped_triangles;
   $('angle').textContent = answer.angle_distortion_mean.toFixed(4);

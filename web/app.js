@@ -11,7 +11,9 @@ import { draw } from './view.js';
 import { handles } from './view2d.js';
 import { cameraMatrices, init3d } from './view3d.js';
 
-window.__intrinsic = { session, state, handles, request: () => requestBody(), cameraMatrices };
+// uv(): the drawn UVs as [[u, v], ...].
+const uvPairs = () => Array.from({ length: state.uv.length / 2 }, (_, i) => [state.uv[2 * i], state.uv[2 * i + 1]]);
+window.__intrinsic = { session, state, handles, request: () => requestBody(), cameraMatrices, uv: uvPairs };
 
 function downloadObj() {
   const m = state.mesh, uv = state.uv, lines = ['# intrinsic serve: ' + $('method').value + ', ' + $('boundary').value];

@@ -3,6 +3,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "intrinsic/metrics.h"
@@ -76,9 +78,7 @@ Figures figures(const Mesh& mesh, const MatrixX2d& uv) {
   return f;
 }
 
-}  // namespace
-
-std::string solve_api_json(const Mesh& mesh, const SolveAnswer& a, const nlohmann::json& extra) {
+nlohmann::json answer_json(const Mesh& mesh, const SolveAnswer& a) {
   const Figures d = figures(mesh, a.uv);
   nlohmann::json out{{"uv", nullptr},
                      {"flipped_triangles", d.flipped},
@@ -87,12 +87,39 @@ std::string solve_api_json(const Mesh& mesh, const SolveAnswer& a, const nlohman
                      {"update_ms", a.update_ms},
                      {"path", a.path},
                      {"factorizations", a.factorizations}};
-  for (const auto& item : extra.items()) out[item.key()] = item.value();
   if (!a.pins.empty()) {
     nlohmann::json pins = nlohmann::json::array();
     for (const FixedVertex& p : a.pins) pins.push_back({p.vertex, p.uv.x(), p.uv.y()});
     out["pins"] = pins;
   }
+  return out;
+}
+
+}  // namespace
+
+std::string solve_api_header(const Mesh& mesh, const SolveAnswer& a) {
+  nlohmann::json out = answer_json(mesh, a);
+  out.erase("uv");
+  return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+std::string uv_binary(const MatrixX2d& uv) {
+  static_assert(sizeof(double) == 8, "float64 expected");
+  std::string out(static_cast<size_t>(uv.rows()) * 16, '\0');
+  char* p = out.data();
+  for (Eigen::Index i = 0; i < uv.rows(); ++i)
+    for (int k = 0; k < 2; ++k, p += 8) {
+      const double x = std::isfinite(uv(i, k)) ? uv(i, k) : 0.0;
+      std::uint64_t bits;
+      std::memcpy(&bits, &x, 8);
+      for (int b = 0; b < 8; ++b) p[b] = static_cast<char>((bits >> (8 * b)) & 0xff);  // little-endian whatever the host
+    }
+  return out;
+}
+
+std::string solve_api_json(const Mesh& mesh, const SolveAnswer& a, const nlohmann::json& extra) {
+  nlohmann::json out = answer_json(mesh, a);
+  for (const auto& item : extra.items()) out[item.key()] = item.value();
   // The UVs replace the placeholder (keys are sorted: "uv" is last).
   std::string text = out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   const std::string placeholder = "\"uv\":null";

@@ -20,6 +20,11 @@ std::string mesh_api_json(const Mesh& mesh, const MatrixX3i& file_faces);
 // "pins": [[vertex, u, v], ...] for the natural map, plus the keys of `extra`.
 std::string solve_api_json(const Mesh& mesh, const SolveAnswer& answer,
                            const nlohmann::json& extra = nlohmann::json::object());
+// The same answer split for `POST /api/solve?uv=binary`: the JSON without
+// "uv" (sent in the X-Answer header) and the UVs as little-endian float64
+// u0 v0 u1 v1 ... (the body): no number printing or parsing on either side.
+std::string solve_api_header(const Mesh& mesh, const SolveAnswer& answer);
+std::string uv_binary(const MatrixX2d& uv);
 // {"error": message}
 std::string error_api_json(const std::string& message);
 

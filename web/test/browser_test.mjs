@@ -126,7 +126,7 @@ const settled = (n) => {
 async function addAndDragConstraint(page) {
   await page.selectOption('#click3d', 'point');
   const [x, y] = await surfacePoint(page);
-  const uvBefore = await page.evaluate(() => window.__intrinsic.state.answer.uv);
+  const uvBefore = await page.evaluate(() => window.__intrinsic.uv());
   let before = await page.evaluate(() => window.__intrinsic.state.updates);
   await page.mouse.click(x, y);
   await page.waitForFunction(settled, before, { timeout: 30000 });
@@ -141,7 +141,7 @@ async function addAndDragConstraint(page) {
   await page.waitForFunction(settled, before, { timeout: 30000 });
   const answer = await page.evaluate(() => ({ path: window.__intrinsic.state.answer.path, factorizations: window.__intrinsic.state.answer.factorizations }));
   if (answer.path !== 'targets' || answer.factorizations !== 1) throw new Error('dragging the target: ' + JSON.stringify(answer));
-  const moved = maxDiff(uvBefore, await page.evaluate(() => window.__intrinsic.state.answer.uv));
+  const moved = maxDiff(uvBefore, await page.evaluate(() => window.__intrinsic.uv()));
   console.log(`the dragged constraint target moved the map by up to ${moved}`);
   if (!(moved > 1e-4)) throw new Error('dragging the constraint target did not change the map');
 }
@@ -187,7 +187,7 @@ function paramFor(request, base, meshInfo, dir) {
 async function compareWithParam(page, url, base, meshInfo, dir, what) {
   const { session, request, pageUV } = await page.evaluate(() => ({
     session: window.__intrinsic.session, request: window.__intrinsic.request(),
-    pageUV: window.__intrinsic.state.answer.uv,
+    pageUV: window.__intrinsic.uv(),
   }));
   const served = await api(url, '/api/solve', request, session);
   if (served.path !== 'responses') throw new Error('expected the editor path, got ' + served.path);
