@@ -4,7 +4,7 @@
 // the 3D view, a click adds a point constraint or a point of the line being
 // drawn (a constraint starts where the map already puts it, so adding one
 // changes nothing until its target is dragged).
-import { $, loopIndex, natural, state } from './state.js';
+import { $, loopIndex, state } from './state.js';
 import { setError, solve } from './api.js';
 import { handles, toUV, view2d } from './view2d.js';
 import { pick } from './view3d.js';

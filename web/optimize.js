@@ -9,7 +9,7 @@
 // that same line. Boundary optimization runs as one request while the page
 // polls its energies and draws the curve.
 import { $, natural, session, state } from './state.js';
-import { post, requestBody, setError, show, solve } from './api.js';
+import { post, requestBody, setError, show } from './api.js';
 import { draw } from './view.js';
 
 let basis = null;  // {key, conformal: Float64Array, authalic: Float64Array}
@@ -119,4 +119,3 @@ function drawCurve(energies) {
   ctx.fillText(`E ${energies[energies.length - 1].toPrecision(4)} (it ${energies.length})`, 6, 12);
 }
 
-export { solve };
