@@ -42,7 +42,8 @@ function controls() {
   $('boundary').addEventListener('change', optionsChanged);
   $('reset').addEventListener('click', optionsChanged);
   // The slider: a preview blend while it moves, the exact mixed map on release.
-  $('lambda').addEventListener('pointerdown', () => { fetchBasis().catch(() => {}); });
+  // Both ends are fetched when the slider is taken (mouse or keyboard focus).
+  for (const e of ['pointerdown', 'focus']) $('lambda').addEventListener(e, () => { fetchBasis().catch(() => {}); });
   $('lambda').addEventListener('input', (e) => previewBlend(e.timeStamp));
   $('lambda').addEventListener('change', () => solve());
   $('download').addEventListener('click', downloadObj);
