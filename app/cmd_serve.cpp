@@ -1,16 +1,21 @@
 // `intrinsic serve MESH`: the interactive editor (paper section 4.2) as a
-// local web server. GET / serves the page (web/index.html and web/app.js,
-// embedded at build time), GET /api/mesh the mesh, POST /api/solve a map
+// local web server. GET / serves the page (web/, embedded at build time),
+// GET /api/mesh the mesh, POST /api/solve a map, POST /api/optimal_lambda
+// and POST /api/optimize_boundary the optimizations of paper section 5
 // (README "intrinsic serve"). No file is read after the mesh. Every request
-// is answered: errors become HTTP 400/413/422/500 with {"error": message}.
+// is answered: errors become HTTP 400/409/413/422/500 with {"error": message}.
 #include <iostream>
 #include <new>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
+#include "intrinsic/boundary_optimization.h"
+#include "intrinsic/optimal_lambda.h"
 #include "serve/api_json.h"
+#include "serve/optimize_request.h"
 #include "serve/session_store.h"
 #include "web_assets.h"
 
@@ -50,6 +55,12 @@ int status_for(ErrorKind kind) {
   }
 }
 
+// A refusal that is neither bad input nor a failure (409: busy).
+struct HttpError : std::runtime_error {
+  HttpError(int s, const std::string& message) : std::runtime_error(message), status(s) {}
+  int status;
+};
+
 void reply_error(httplib::Response& res, int status, const std::string& message) {
   res.status = status;
   res.set_content(error_api_json(message), kJson);
@@ -67,16 +78,20 @@ std::string session_id(const httplib::Request& req) {
   return id;
 }
 
-void handle_solve(ServeState& s, const httplib::Request& req, httplib::Response& res) {
+struct Body {
+  std::string text;
+  const char* type = kJson;
+};
+
+// Runs `answer` (which returns the body) and maps every failure to a status
+// with {"error": message}: the server keeps serving whatever happens.
+template <class Answer>
+void reply(httplib::Response& res, Answer answer) {
   try {
-    const SolveRequest request = parse_solve_request(req.body, s.mesh, s.data.F);
-    const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
-    SolveAnswer answer;
-    {
-      std::lock_guard<std::mutex> lock(session->mutex);
-      answer = session->state.solve(request);
-    }
-    res.set_content(solve_api_json(s.mesh, answer), kJson);
+    const Body body = answer();
+    res.set_content(body.text, body.type);
+  } catch (const HttpError& e) {
+    reply_error(res, e.status, e.what());
   } catch (const Error& e) {
     reply_error(res, status_for(e.kind()), e.what());
   } catch (const nlohmann::json::exception& e) {
@@ -88,18 +103,135 @@ void handle_solve(ServeState& s, const httplib::Request& req, httplib::Response&
   }
 }
 
+// `?uv=binary`: the UVs as raw little-endian float64 (the body) and the rest
+// of the answer as JSON in the X-Answer header (what the page uses).
+Body handle_solve(ServeState& s, const httplib::Request& req, httplib::Response& res) {
+  bool binary = false;
+  if (req.has_param("uv")) {
+    if (req.get_param_value("uv") != "binary") throw_usage("uv: the only format is binary");
+    binary = true;
+  }
+  const SolveRequest request = parse_solve_request(req.body, s.mesh, s.data.F);
+  const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
+  SolveAnswer answer;
+  {
+    std::lock_guard<std::mutex> lock(session->mutex);
+    answer = session->state.solve(request);
+  }
+  if (!binary) return {solve_api_json(s.mesh, answer)};
+  res.set_header("X-Answer", solve_api_header(s.mesh, answer));
+  return {uv_binary(answer.uv), "application/octet-stream"};
+}
+
+// The starting boundary of the optimization endpoints: the request's circle
+// or square, or, with moves, the session's boundary after them (given
+// positions in output coordinates, used exactly).
+ParamOptions start_options(Session& session, const SolveRequest& r) {
+  ParamOptions o;
+  o.weights = r.weights.options();
+  o.boundary = r.boundary == "square" ? BoundaryShape::Square : BoundaryShape::Circle;
+  if (!r.moves.empty()) {
+    std::lock_guard<std::mutex> lock(session.mutex);
+    o.given = session.state.boundary_after(r);
+    o.boundary = BoundaryShape::Given;
+  }
+  return o;
+}
+
+// Paper section 5.1: the blend lambda U_conformal + (1 - lambda) U_authalic
+// minimising the energy; the answer's map is that blend (not the mixed map).
+Body handle_optimal_lambda(ServeState& s, const httplib::Request& req) {
+  const OptimalLambdaRequest q = parse_optimal_lambda_request(req.body, s.mesh, s.data.F);
+  const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
+  OptimalLambdaOptions o;
+  o.base = start_options(*session, q.solve);
+  o.energy = q.energy;
+  const OptimalLambdaResult r = optimal_lambda(s.mesh, o);
+  SolveAnswer a;
+  a.uv = r.map.UV;
+  a.update_ms = r.conformal_ms + r.authalic_ms + r.polynomial_ms;
+  a.path = "blend";
+  a.factorizations = r.map.factorizations;
+  return {solve_api_json(s.mesh, a,
+                         {{"lambda", r.lambda},
+                          {"energy", r.energy},
+                          {"energy_at_0", r.energy_at_0},
+                          {"energy_at_1", r.energy_at_1},
+                          {"coefficients", r.coefficients},
+                          {"boundary_scale", r.boundary_scale}})};
+}
+
+// Paper section 5.2. Holds this request's thread until done; meanwhile
+// GET /api/optimize_boundary/progress reads the energies so far.
+Body handle_optimize_boundary(ServeState& s, const httplib::Request& req) {
+  const OptimizeBoundaryRequest q = parse_optimize_boundary_request(req.body, s.mesh, s.data.F);
+  const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
+  OptimizeProgress& progress = session->progress;
+  {
+    std::lock_guard<std::mutex> lock(progress.mutex);
+    if (progress.running) throw HttpError(409, "a boundary optimization is already running in this session");
+    progress.running = true;
+    progress.energies.clear();
+  }
+  struct Done {
+    OptimizeProgress& p;
+    ~Done() { std::lock_guard<std::mutex> lock(p.mutex); p.running = false; }
+  } done{progress};
+  BoundaryOptimizationOptions o;
+  o.base = start_options(*session, q.solve);
+  o.energy = q.energy;
+  o.max_iterations = q.max_iterations;
+  o.progress = [&progress](int, double energy) {
+    std::lock_guard<std::mutex> lock(progress.mutex);
+    progress.energies.push_back(energy);
+  };
+  const BoundaryOptimizationResult r = optimize_boundary(s.mesh, o);
+  SolveAnswer a;
+  a.uv = r.map.UV;
+  a.update_ms = r.setup_ms + r.optimize_ms;
+  a.path = "optimize";
+  a.factorizations = r.factorizations;
+  return {solve_api_json(s.mesh, a,
+                         {{"energy_history", r.energy_history},
+                          {"iterations", r.iterations},
+                          {"stop_reason", r.stop_reason},
+                          {"flipped_initial", r.flipped_initial},
+                          {"flipped_final", r.flipped_final},
+                          {"setup_ms", r.setup_ms},
+                          {"optimize_ms", r.optimize_ms}})};
+}
+
+Body handle_progress(ServeState& s, const httplib::Request& req) {
+  const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
+  std::lock_guard<std::mutex> lock(session->progress.mutex);
+  return {nlohmann::json{{"running", session->progress.running}, {"energies", session->progress.energies}}.dump()};
+}
+
 void add_routes(httplib::Server& server, ServeState& s) {
   server.Get("/", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(web::index_html, "text/html; charset=utf-8");
   });
-  server.Get("/app.js", [](const httplib::Request&, httplib::Response& res) {
-    res.set_content(web::app_js, "text/javascript; charset=utf-8");
-  });
+  for (const web::Asset& asset : web::assets) {
+    if (std::string(asset.name) == "index.html") continue;
+    server.Get("/" + std::string(asset.name), [&asset](const httplib::Request&, httplib::Response& res) {
+      res.set_content(asset.content, asset.type);
+    });
+  }
   server.Get("/api/mesh", [&s](const httplib::Request&, httplib::Response& res) {
     res.set_content(s.mesh_json, kJson);
   });
-  server.Post("/api/solve",
-              [&s](const httplib::Request& req, httplib::Response& res) { handle_solve(s, req, res); });
+  server.Post("/api/solve", [&s](const httplib::Request& req, httplib::Response& res) {
+    reply(res, [&] { return handle_solve(s, req, res); });
+  });
+  server.Post("/api/optimal_lambda", [&s](const httplib::Request& req, httplib::Response& res) {
+    reply(res, [&] { return handle_optimal_lambda(s, req); });
+  });
+  server.Post("/api/optimize_boundary", [&s](const httplib::Request& req, httplib::Response& res) {
+    reply(res, [&] { return handle_optimize_boundary(s, req); });
+  });
+  server.Get("/api/optimize_boundary/progress", [&s](const httplib::Request& req, httplib::Response& res) {
+    reply(res, [&] { return handle_progress(s, req); });
+  });
   server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
     reply_error(res, 500, "internal error");
   });
@@ -121,7 +253,7 @@ int run_serve(const ServeArgs& a) {
   ro.max_faces = faces_for_vertices(a.max_vertices);
   s.data = read_mesh(a.input, ro);
   s.mesh = make_mesh(s.data);
-  s.mesh_json = mesh_api_json(s.mesh);
+  s.mesh_json = mesh_api_json(s.mesh, s.data.F);
   s.sessions = std::make_unique<SessionStore>(s.mesh, static_cast<size_t>(a.max_sessions));
 
   httplib::Server server;

@@ -1,17 +1,31 @@
-# Writes OUT, a header holding web/index.html and web/app.js as raw string
-# literals (namespace intrinsic::app::web), so `intrinsic serve` needs no
-# files beside the mesh. Run as: cmake -DWEB_DIR=... -DOUT=... -P embed_web.cmake
+# Writes OUT, a header holding every web/*.html and web/*.js file as raw
+# string literals (namespace intrinsic::app::web: `assets`, and `index_html`
+# for the page), so `intrinsic serve` needs no files beside the mesh.
+# Run as: cmake -DWEB_DIR=... -DOUT=... -P embed_web.cmake
 set(_delim "INTRINSIC_WEB")
-set(_text "// Generated from web/ by cmake/embed_web.cmake: do not edit.\n#pragma once\n\nnamespace intrinsic::app::web {\n")
-foreach(_pair "index.html;index_html" "app.js;app_js")
-  list(GET _pair 0 _file)
-  list(GET _pair 1 _name)
+set(_text "// Generated from web/ by cmake/embed_web.cmake: do not edit.\n#pragma once\n\nnamespace intrinsic::app::web {\n\n")
+string(APPEND _text "struct Asset {\n  const char* name;     // path under /\n  const char* content;\n  const char* type;     // Content-Type\n};\n\n")
+file(GLOB _files RELATIVE ${WEB_DIR} ${WEB_DIR}/*.html ${WEB_DIR}/*.js)
+list(SORT _files)
+set(_list "")
+set(_k 0)
+foreach(_file ${_files})
   file(READ ${WEB_DIR}/${_file} _content)
   string(FIND "${_content}" ")${_delim}\"" _clash)
   if(NOT _clash EQUAL -1)
     message(FATAL_ERROR "${_file} contains the raw string delimiter )${_delim}\"")
   endif()
-  string(APPEND _text "inline const char* const ${_name} = R\"${_delim}(${_content})${_delim}\";\n")
+  if(_file MATCHES "\\.html$")
+    set(_type "text/html; charset=utf-8")
+  else()
+    set(_type "text/javascript; charset=utf-8")
+  endif()
+  string(APPEND _text "inline const char* const asset_${_k} = R\"${_delim}(${_content})${_delim}\";\n")
+  string(APPEND _list "    {\"${_file}\", asset_${_k}, \"${_type}\"},\n")
+  if(_file STREQUAL "index.html")
+    string(APPEND _text "inline const char* const index_html = asset_${_k};\n")
+  endif()
+  math(EXPR _k "${_k} + 1")
 endforeach()
-string(APPEND _text "}  // namespace intrinsic::app::web\n")
+string(APPEND _text "\ninline const Asset assets[] = {\n${_list}};\n\n}  // namespace intrinsic::app::web\n")
 file(WRITE ${OUT} "${_text}")

@@ -2,17 +2,25 @@
 // child process (killed at the end of every test, also on failure) and is
 // driven over HTTP; its maps must equal `intrinsic param` with the same
 // settings (moved boundary written to a boundary file, moved pins as --pin)
-// to 1e-9 on shared meshes; bad requests get 400/413 and the server keeps
-// answering; two sessions stay independent.
+// to 1e-9 on shared meshes, also when constraints change on the kept
+// factorization (path and factorization count checked); the optimization
+// endpoints equal the library's optimal_lambda and optimize_boundary; bad
+// requests get 400/413 and the server keeps answering; two sessions stay
+// independent.
 #include <poll.h>
 #include <signal.h>
 #include <unistd.h>
 
+#include <array>
 #include <cstdio>
+#include <cstring>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "cli_support.h"
+#include "intrinsic/boundary_optimization.h"
 #include "intrinsic/io.h"
+#include "intrinsic/optimal_lambda.h"
 #include "intrinsic/mesh.h"
 #include "test_support.h"
 
@@ -70,11 +78,12 @@ struct Reply {
   json body;
 };
 
-Reply post(int port, const std::string& body, const std::string& session = "s1") {
+Reply post(int port, const std::string& body, const std::string& session = "s1",
+           const std::string& route = "/api/solve") {
   httplib::Client client("127.0.0.1", port);
   client.set_read_timeout(300, 0);
   client.set_write_timeout(300, 0);
-  auto res = client.Post("/api/solve", {{"X-Session", session}}, body, "application/json");
+  auto res = client.Post(route.c_str(), {{"X-Session", session}}, body, "application/json");
   Reply r;
   if (!res) return r;
   r.status = res->status;
@@ -117,6 +126,31 @@ std::string boundary_file(const Mesh& mesh, const MatrixX2d& base, const json& m
   std::string text;
   for (const auto& [v, p] : pos) text += std::to_string(v) + " " + g17(p.x()) + " " + g17(p.y()) + "\n";
   return text;
+}
+
+std::vector<char> boundary_flags(const Mesh& mesh) {
+  std::vector<char> on(mesh.V.rows(), 0);
+  for (const auto& loop : mesh.topology.boundary_loops)
+    for (const int i : loop) on[i] = 1;
+  return on;
+}
+
+// Two faces sharing an edge, no corner on the boundary.
+std::array<int, 2> interior_face_pair(const Mesh& mesh) {
+  const std::vector<char> on = boundary_flags(mesh);
+  auto interior = [&](Eigen::Index f) { return !on[mesh.F(f, 0)] && !on[mesh.F(f, 1)] && !on[mesh.F(f, 2)]; };
+  std::map<std::pair<int, int>, int> edge_face;
+  for (Eigen::Index f = mesh.F.rows() / 3; f < mesh.F.rows(); ++f) {
+    if (!interior(f)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
+      const auto e = std::minmax(a, b);
+      auto it = edge_face.find(e);
+      if (it != edge_face.end()) return {it->second, static_cast<int>(f)};
+      edge_face[e] = static_cast<int>(f);
+    }
+  }
+  return {-1, -1};
 }
 
 double max_diff(const MatrixX2d& a, const MatrixX2d& b) {
@@ -228,6 +262,148 @@ TEST_F(ServeTest, NaturalWithMovedPinsEqualsParam) {
   EXPECT_LT(max_diff(uv_of(moved.body), run_param(args, dir_)), 1e-9);
 }
 
+// Adding, retargeting, extending and removing constraints: one
+// factorization throughout, each answer equal to `intrinsic param` with the
+// constraint file and the moved boundary.
+TEST_F(ServeTest, ConstraintChangesReuseTheFactorization) {
+  start("cat_head.obj");
+  const std::array<int, 2> faces = interior_face_pair(mesh_);
+  ASSERT_GE(faces[0], 0);
+  const Reply base = post(port(), "{}");
+  ASSERT_EQ(base.status, 200);
+  EXPECT_EQ(base.body["path"], "factor");
+  const int v = mesh_.topology.boundary_loops[0][4];
+  const json moves = json::array({json::array({v, 0.6, -0.03})});
+  test::write_text(dir_ / "b.txt", boundary_file(mesh_, uv_of(base.body), moves));
+  const json p0 = {{"face", faces[0]}, {"bary", {0.2, 0.3, 0.5}}};
+  const json p1 = {{"face", faces[1]}, {"bary", {0.6, 0.2, 0.2}}};
+  const json steps[] = {
+      {{"points", {{{"face", faces[0]}, {"bary", {0.2, 0.3, 0.5}}, {"uv", {0.45, 0.55}}}}}},
+      {{"points", {{{"face", faces[0]}, {"bary", {0.2, 0.3, 0.5}}, {"uv", {0.40, 0.62}}}}}},
+      {{"points", {{{"face", faces[0]}, {"bary", {0.2, 0.3, 0.5}}, {"uv", {0.40, 0.62}}}}},
+       {"lines", {{{"path", {p0, p1}}, {"to", {{0.40, 0.62}, {0.47, 0.60}}}}}}},
+      {{"points", {{{"face", faces[0]}, {"bary", {0.2, 0.3, 0.5}}, {"uv", {0.40, 0.62}}}}},
+       {"lines", {{{"path", {p0, p1}}, {"to", {{0.40, 0.62}, {0.50, 0.66}}}}}}},
+  };
+  const char* const paths[] = {"constraints", "targets", "constraints", "targets"};
+  for (int k = 0; k < 4; ++k) {
+    const Reply r = post(port(), json{{"constraints", steps[k]}, {"moves", moves}}.dump());
+    ASSERT_EQ(r.status, 200) << r.body.dump();
+    EXPECT_EQ(r.body["path"], paths[k]) << k;
+    EXPECT_EQ(r.body["factorizations"], 1) << k;
+    test::write_text(dir_ / "c.json", steps[k].dump());
+    const MatrixX2d cli =
+        run_param(path_ + " --boundary " + (dir_ / "b.txt") + " --constraints " + (dir_ / "c.json"), dir_);
+    EXPECT_LT(max_diff(uv_of(r.body), cli), 1e-9) << k;
+  }
+  const Reply cleared = post(port(), json{{"moves", moves}}.dump());
+  ASSERT_EQ(cleared.status, 200);
+  EXPECT_EQ(cleared.body["path"], "constraints");
+  EXPECT_EQ(cleared.body["factorizations"], 1);
+  EXPECT_LT(max_diff(uv_of(cleared.body), run_param(path_ + " --boundary " + (dir_ / "b.txt"), dir_)), 1e-9);
+  // A constraint the boundary cannot meet (on fixed vertices only, elsewhere): 400, and the session recovers.
+  const json bad = {{"points", {{{"vertex", v}, {"uv", {0.1, 0.1}}}}}};
+  EXPECT_EQ(post(port(), json{{"constraints", bad}}.dump()).status, 400);
+  EXPECT_EQ(post(port(), "{}").status, 200);
+}
+
+// Natural map: a constraint added and retargeted on the kept factorization,
+// then moved pins, against `intrinsic param --pin ... --constraints`.
+TEST_F(ServeTest, NaturalConstraintsAndPinsReuseTheFactorization) {
+  start("cat_head.obj");
+  const std::array<int, 2> faces = interior_face_pair(mesh_);
+  const Reply first = post(port(), R"({"boundary": "natural"})");
+  ASSERT_EQ(first.status, 200);
+  json pins = first.body.at("pins");
+  ASSERT_EQ(post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump()).status, 200);  // given pins: built once
+  const json c1 = {{"points", {{{"face", faces[0]}, {"bary", {0.3, 0.3, 0.4}}, {"uv", {0.5, 0.4}}}}}};
+  const json c2 = {{"points", {{{"face", faces[0]}, {"bary", {0.3, 0.3, 0.4}}, {"uv", {0.55, 0.35}}}}}};
+  const Reply a = post(port(), json{{"boundary", "natural"}, {"constraints", c1}, {"pins", pins}}.dump());
+  ASSERT_EQ(a.status, 200) << a.body.dump();
+  EXPECT_EQ(a.body["path"], "constraints");
+  pins[1][1] = pins[1][1].get<double>() + 0.05;
+  const Reply b = post(port(), json{{"boundary", "natural"}, {"constraints", c2}, {"pins", pins}}.dump());
+  ASSERT_EQ(b.status, 200) << b.body.dump();
+  EXPECT_EQ(b.body["path"], "targets");
+  EXPECT_EQ(b.body["factorizations"], 1);
+  test::write_text(dir_ / "c.json", c2.dump());
+  std::string args = path_ + " --boundary natural --constraints " + (dir_ / "c.json");
+  for (const auto& p : pins)
+    args += " --pin " + std::to_string(p[0].get<int>()) + ":" + g17(p[1].get<double>()) + "," + g17(p[2].get<double>());
+  EXPECT_LT(max_diff(uv_of(b.body), run_param(args, dir_)), 1e-9);
+}
+
+TEST_F(ServeTest, OptimalLambdaEqualsTheLibrary) {
+  start("camel_b.obj");
+  for (const char* energy : {"edge", "area"}) {
+    const Reply r = post(port(), json{{"energy", energy}, {"boundary", "square"}}.dump(), "s1", "/api/optimal_lambda");
+    ASSERT_EQ(r.status, 200) << r.body.dump();
+    OptimalLambdaOptions o;
+    o.base.boundary = BoundaryShape::Square;
+    o.energy = parse_lambda_energy(energy);
+    const OptimalLambdaResult lib = optimal_lambda(mesh_, o);
+    EXPECT_NEAR(r.body["lambda"].get<double>(), lib.lambda, 1e-9) << energy;
+    EXPECT_NEAR(r.body["energy"].get<double>(), lib.energy, 1e-9 * std::max(1.0, lib.energy)) << energy;
+    EXPECT_LT(max_diff(uv_of(r.body), lib.map.UV), 1e-9) << energy;
+    EXPECT_EQ(r.body["path"], "blend");
+  }
+  // With moves: the library with the moved boundary as given positions.
+  const Reply base = post(port(), "{}");
+  const int v = mesh_.topology.boundary_loops[0][6];
+  const json moves = json::array({json::array({v, 0.3, -0.1})});
+  const Reply r = post(port(), json{{"moves", moves}}.dump(), "s1", "/api/optimal_lambda");
+  ASSERT_EQ(r.status, 200) << r.body.dump();
+  OptimalLambdaOptions o;
+  o.base.boundary = BoundaryShape::Given;
+  for (const int i : mesh_.topology.boundary_loops[0])
+    o.base.given.push_back({i, i == v ? Eigen::Vector2d(0.3, -0.1) : Eigen::Vector2d(uv_of(base.body).row(i))});
+  const OptimalLambdaResult lib = optimal_lambda(mesh_, o);
+  EXPECT_NEAR(r.body["lambda"].get<double>(), lib.lambda, 1e-9);
+  EXPECT_LT(max_diff(uv_of(r.body), lib.map.UV), 1e-9);
+}
+
+TEST_F(ServeTest, BoundaryOptimizationEqualsTheLibraryAndReportsProgress) {
+  start("cat_head.obj");
+  const Reply r = post(port(), R"({"energy": "area", "max_iterations": 5})", "s1", "/api/optimize_boundary");
+  ASSERT_EQ(r.status, 200) << r.body.dump();
+  BoundaryOptimizationOptions o;
+  o.energy = BoundaryEnergy::Area;
+  o.max_iterations = 5;
+  const BoundaryOptimizationResult lib = optimize_boundary(mesh_, o);
+  ASSERT_EQ(r.body["energy_history"].size(), lib.energy_history.size());
+  for (size_t k = 0; k < lib.energy_history.size(); ++k)
+    EXPECT_NEAR(r.body["energy_history"][k].get<double>(), lib.energy_history[k], 1e-9 * lib.energy_history[0]);
+  EXPECT_LT(max_diff(uv_of(r.body), lib.map.UV), 1e-9);
+  EXPECT_EQ(r.body["iterations"], lib.iterations);
+  httplib::Client client("127.0.0.1", port());
+  auto progress = client.Get("/api/optimize_boundary/progress", {{"X-Session", "s1"}});
+  ASSERT_TRUE(progress);
+  const json p = json::parse(progress->body);
+  EXPECT_EQ(p["running"], false);
+  EXPECT_EQ(p["energies"].size(), static_cast<size_t>(lib.iterations));
+}
+
+TEST_F(ServeTest, BadOptimizationRequestsGet400) {
+  start("cat_head.obj");
+  const char* const bad_lambda[] = {"{", R"({"energy": "fancy"})", R"({"energy": 3})", R"({"boundary": "natural"})",
+                                    R"({"constraints": {"points": [{"vertex": 0, "uv": [0, 0]}]}})",
+                                    R"({"max_iterations": 3})", R"({"moves": [[-1, 0, 0]]})"};
+  for (const char* body : bad_lambda) {
+    const Reply r = post(port(), body, "s1", "/api/optimal_lambda");
+    EXPECT_EQ(r.status, 400) << body << " -> " << r.body.dump();
+    EXPECT_TRUE(r.body.is_object() && r.body.contains("error")) << body;
+  }
+  const char* const bad_boundary[] = {"[]", R"({"energy": "stretch"})", R"({"max_iterations": 0})",
+                                      R"({"max_iterations": 1.5})", R"({"max_iterations": 100000})",
+                                      R"({"boundary": "natural"})", R"({"moves": [[0, NaN, 0]]})"};
+  for (const char* body : bad_boundary) {
+    const Reply r = post(port(), body, "s1", "/api/optimize_boundary");
+    EXPECT_EQ(r.status, 400) << body << " -> " << r.body.dump();
+  }
+  EXPECT_EQ(post(port(), R"({"energy": "area"})", "s1", "/api/optimal_lambda").status, 200);
+  EXPECT_TRUE(server_->alive());
+}
+
 TEST_F(ServeTest, BadRequestsGet400AndTheServerKeepsServing) {
   start("cat_head.obj");
   const std::string n = std::to_string(mesh_.V.rows());
@@ -253,6 +429,35 @@ TEST_F(ServeTest, BadRequestsGet400AndTheServerKeepsServing) {
   const Reply ok = post(port(), "{}");
   EXPECT_EQ(ok.status, 200);
   EXPECT_TRUE(server_->alive());
+}
+
+// ?uv=binary (what the page uses): the same UVs bit for bit as raw
+// little-endian float64, the rest of the answer in the X-Answer header.
+TEST_F(ServeTest, BinaryAnswerEqualsTheJsonAnswer) {
+  start("cat_head.obj");
+  const int v = mesh_.topology.boundary_loops[0][2];
+  const std::string body = "{\"moves\": [[" + std::to_string(v) + ", 0.4, 0.1]]}";
+  const Reply text = post(port(), body);
+  ASSERT_EQ(text.status, 200);
+  httplib::Client client("127.0.0.1", port());
+  auto res = client.Post("/api/solve?uv=binary", {{"X-Session", "s1"}}, body, "application/json");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 200);
+  ASSERT_EQ(res->body.size(), static_cast<size_t>(16 * mesh_.V.rows()));
+  const MatrixX2d uv = uv_of(text.body);
+  for (Eigen::Index i = 0; i < uv.rows(); ++i)
+    for (int k = 0; k < 2; ++k) {
+      std::uint64_t bits = 0;
+      for (int b = 0; b < 8; ++b) bits |= std::uint64_t(static_cast<unsigned char>(res->body[16 * i + 8 * k + b])) << (8 * b);
+      double x;
+      std::memcpy(&x, &bits, 8);
+      ASSERT_EQ(x, uv(i, k)) << i;
+    }
+  const json header = json::parse(res->get_header_value("X-Answer"));
+  EXPECT_FALSE(header.contains("uv"));
+  EXPECT_EQ(header["flipped_triangles"], text.body["flipped_triangles"]);
+  EXPECT_EQ(header["path"], "responses");
+  EXPECT_EQ(client.Post("/api/solve?uv=text", {{"X-Session", "s1"}}, body, "application/json")->status, 400);
 }
 
 TEST_F(ServeTest, TwoSessionsAreIndependent) {

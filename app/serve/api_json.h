@@ -2,6 +2,7 @@
 // the mesh of GET /api/mesh and the map of POST /api/solve.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "intrinsic/mesh.h"
@@ -10,11 +11,20 @@
 namespace intrinsic::app {
 
 // {"vertices", "faces", "positions": [x0, y0, z0, ...], "triangles": [a0, b0, c0, ...],
-//  "boundary_loops": [[...], ...]}
-std::string mesh_api_json(const Mesh& mesh);
-// {"uv": [[u, v], ...], "flipped_triangles", "angle_distortion_mean", "update_ms", "path"}
-// plus "pins": [[vertex, u, v], ...] for the natural map.
-std::string solve_api_json(const Mesh& mesh, const SolveAnswer& answer);
+//  "boundary_loops": [[...], ...]} plus "file_triangles": {"f": [a, b, c], ...}
+// for faces whose corners the file lists in another order (constraint
+// barycentrics refer to the file's order).
+std::string mesh_api_json(const Mesh& mesh, const MatrixX3i& file_faces);
+// {"uv": [[u, v], ...], "flipped_triangles", "angle_distortion_mean",
+//  "area_distortion_mean", "update_ms", "path", "factorizations"} plus
+// "pins": [[vertex, u, v], ...] for the natural map, plus the keys of `extra`.
+std::string solve_api_json(const Mesh& mesh, const SolveAnswer& answer,
+                           const nlohmann::json& extra = nlohmann::json::object());
+// The same answer split for `POST /api/solve?uv=binary`: the JSON without
+// "uv" (sent in the X-Answer header) and the UVs as little-endian float64
+// u0 v0 u1 v1 ... (the body): no number printing or parsing on either side.
+std::string solve_api_header(const Mesh& mesh, const SolveAnswer& answer);
+std::string uv_binary(const MatrixX2d& uv);
 // {"error": message}
 std::string error_api_json(const std::string& message);
 

@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "intrinsic/error.h"
+
 namespace intrinsic::app {
 namespace {
 
@@ -13,14 +15,22 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // What must be equal for a request to reuse the session's factorization:
-// everything but the moves and (natural map) the pin positions.
+// everything but the moves, the constraints and (natural map) the pin positions.
 std::string options_key(const SolveRequest& r) {
   const WeightOptions w = r.weights.options();
   nlohmann::json pins = nlohmann::json::array();
   for (const FixedVertex& p : r.pins) pins.push_back(p.vertex);
   return nlohmann::json{{"method", static_cast<int>(w.method)}, {"lambda", w.lambda}, {"mu", w.mu},
-                        {"boundary", r.boundary}, {"pins", pins}, {"constraints", r.constraints_key}}
+                        {"boundary", r.boundary}, {"pins", pins}}
       .dump();
+}
+
+// The same rows (vertices and weights) as the kept ones: only targets differ.
+bool same_rows(const std::vector<LinearConstraint>& a, const std::vector<LinearConstraint>& b) {
+  if (a.empty() || a.size() != b.size()) return false;
+  for (size_t k = 0; k < a.size(); ++k)
+    if (a[k].terms != b[k].terms) return false;
+  return true;
 }
 
 ParamOptions to_param_options(const SolveRequest& r) {
@@ -41,6 +51,7 @@ void EditSession::reset() {
   editor_.reset();
   parameterizer_.reset();
   key_.clear();
+  constraints_key_.clear();
   base_.clear();
   base_index_.clear();
   moved_.clear();
@@ -49,12 +60,51 @@ void EditSession::reset() {
 SolveAnswer EditSession::solve(const SolveRequest& r) {
   const std::string key = options_key(r);
   try {
-    if (key != key_ || !parameterizer_) return rebuild(r, key);
-    return r.boundary == "natural" ? move_pins(r) : move_fixed(r);
+    SolveAnswer a;
+    if (key != key_ || !parameterizer_) {
+      a = rebuild(r, key);
+    } else {
+      const auto t0 = std::chrono::steady_clock::now();
+      const std::string path = r.constraints_key == constraints_key_ ? "" : update_constraints(r);
+      a = r.boundary == "natural" ? move_pins(r) : move_fixed(r);
+      if (!path.empty()) {
+        a.path = path;
+        a.update_ms = ms_since(t0);
+      }
+    }
+    a.factorizations = parameterizer_->factorizations();
+    return a;
   } catch (...) {
     reset();  // a failed update may leave the editor half-moved: start again next time
     throw;
   }
+}
+
+std::vector<FixedVertex> EditSession::boundary_after(const SolveRequest& r) {
+  if (r.boundary == "natural") throw_usage("the natural map has no fixed boundary");
+  solve(r);
+  return editor_->boundary();
+}
+
+// Same factorization, other constraints. The editor's responses depend on
+// the constraint rows (they keep the rows met), so it starts again from the
+// Parameterizer's current boundary: the moves carry over.
+std::string EditSession::update_constraints(const SolveRequest& r) {
+  editor_.reset();
+  std::vector<LinearConstraint> rows;
+  if (!r.constraints.empty()) rows = resolve_constraints(mesh_, r.constraints);
+  std::string path = "constraints";
+  if (same_rows(rows, parameterizer_->constraints())) {
+    std::vector<Eigen::Vector2d> targets;
+    for (const LinearConstraint& c : rows) targets.push_back(c.target);
+    parameterizer_->set_constraint_targets(targets);
+    path = "targets";
+  } else {
+    parameterizer_->set_constraints(std::move(rows));
+  }
+  constraints_key_ = r.constraints_key;
+  if (r.boundary != "natural") editor_ = std::make_unique<BoundaryEditor>(*parameterizer_);
+  return path;
 }
 
 SolveAnswer EditSession::rebuild(const SolveRequest& r, const std::string& key) {
@@ -69,6 +119,7 @@ SolveAnswer EditSession::rebuild(const SolveRequest& r, const std::string& key) 
     a.pins = p->boundary();
     parameterizer_ = std::move(p);
     key_ = key;
+    constraints_key_ = r.constraints_key;
     a.update_ms = ms_since(t0);
     return a;
   }
@@ -78,6 +129,7 @@ SolveAnswer EditSession::rebuild(const SolveRequest& r, const std::string& key) 
   base_index_.assign(mesh_.V.rows(), -1);
   for (size_t k = 0; k < base_.size(); ++k) base_index_[base_[k].vertex] = static_cast<int>(k);
   key_ = key;
+  constraints_key_ = r.constraints_key;
   if (!r.moves.empty()) {
     editor_->move(r.moves);
     for (const FixedVertex& m : r.moves) moved_.push_back(m.vertex);

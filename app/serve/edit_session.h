@@ -1,10 +1,19 @@
 // One browser tab's state in `intrinsic serve`: its Parameterizer, the
 // BoundaryEditor on it (fixed boundary) and the options they were built
-// with. A request with the same options is answered from the kept
-// factorization: moves through the editor's responses ("responses", or
-// "resolve" when the editor re-solves), new pin positions by a new
-// right-hand side ("resolve"); other options build a new Parameterizer
-// ("factor"). Not thread-safe: the caller holds the session's mutex.
+// with (paper section 4.2; docs/maths.md §5, §6). A request is answered from
+// the kept factorization whenever the system matrix is unchanged:
+//   responses    same options and constraints: the moves superposed from the
+//                editor's impulse responses, no solve;
+//   resolve      same, but one solve with the kept factorization (many
+//                vertices moved at once, or new pin positions);
+//   targets      same constraint rows with new targets (a constraint dragged
+//                in the plane): a new right-hand side, then as above;
+//   constraints  other constraints (added, removed, a new line): the
+//                constraint block re-set on the kept factorization (one
+//                solve per constraint row, a small dense factorization);
+//   factor       another method, lambda, mu, boundary shape or set of pins:
+//                a new Parameterizer (K itself changes: nothing to reuse).
+// Not thread-safe: the caller holds the session's mutex.
 #pragma once
 
 #include <memory>
@@ -20,8 +29,9 @@ namespace intrinsic::app {
 struct SolveAnswer {
   MatrixX2d uv;
   double update_ms = 0;             // the solve or update only (not parsing, metrics, JSON)
-  std::string path;                 // "responses" | "resolve" | "factor"
+  std::string path;                 // "responses" | "resolve" | "targets" | "constraints" | "factor"
   std::vector<FixedVertex> pins;    // natural map: the pins used (output coordinates)
+  int factorizations = 0;           // sparse factorizations of the session's Parameterizer so far
 };
 
 class EditSession {
@@ -31,17 +41,23 @@ class EditSession {
   // Throws intrinsic::Error as the library does; the session then keeps no
   // half-built state (the next request builds anew).
   SolveAnswer solve(const SolveRequest& request);
+  // Fixed boundary: the positions of the outer loop (output coordinates)
+  // after `request` (solved first). Error(Usage) for the natural map.
+  std::vector<FixedVertex> boundary_after(const SolveRequest& request);
 
  private:
   SolveAnswer rebuild(const SolveRequest& r, const std::string& key);
+  std::string update_constraints(const SolveRequest& r);
   SolveAnswer move_fixed(const SolveRequest& r);
   SolveAnswer move_pins(const SolveRequest& r);
+  void start_editor();
   void reset();
 
   const Mesh& mesh_;
   std::unique_ptr<Parameterizer> parameterizer_;
   std::unique_ptr<BoundaryEditor> editor_;  // fixed boundary only; destroyed before the parameterizer
-  std::string key_;                         // options the parameterizer was built with
+  std::string key_;                         // options the parameterizer was built with (constraints aside)
+  std::string constraints_key_;             // the constraints it holds now
   std::vector<FixedVertex> base_;           // fixed boundary: the base positions (output coordinates)
   std::vector<int> base_index_;             // vertex -> index in base_, -1 when not fixed
   std::vector<int> moved_;                  // vertices the last request moved away from base_

@@ -10,15 +10,26 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "serve/edit_session.h"
 
 namespace intrinsic::app {
 
+// A running boundary optimization's energies so far, read by the progress
+// endpoint while the optimization holds its request thread (own mutex: it
+// never waits for the session's).
+struct OptimizeProgress {
+  std::mutex mutex;
+  bool running = false;
+  std::vector<double> energies;  // after each iteration
+};
+
 struct Session {
   explicit Session(const Mesh& mesh) : state(mesh) {}
   std::mutex mutex;
   EditSession state;
+  OptimizeProgress progress;
 };
 
 class SessionStore {

@@ -76,14 +76,20 @@ void check_depth(const std::string& s, int max_depth) {
 
 }  // namespace
 
-SolveRequest parse_solve_request(const std::string& body_text, const Mesh& mesh, const MatrixX3i& file_faces) {
+nlohmann::json parse_request_body(const std::string& body_text) {
   check_depth(body_text, 32);
-  const json body = json::parse(body_text, nullptr, false);
+  json body = json::parse(body_text, nullptr, false);
   if (body.is_discarded()) throw_usage("request body is not valid JSON");
   if (!body.is_object()) throw_usage("request body must be a JSON object");
+  return body;
+}
+
+SolveRequest solve_request_from(const nlohmann::json& body, const Mesh& mesh, const MatrixX3i& file_faces,
+                                const std::vector<std::string>& extra_keys) {
   static const char* known[] = {"method", "lambda", "mu", "boundary", "pins", "constraints", "moves"};
   for (const auto& item : body.items())
-    if (std::find(std::begin(known), std::end(known), item.key()) == std::end(known))
+    if (std::find(std::begin(known), std::end(known), item.key()) == std::end(known) &&
+        std::find(extra_keys.begin(), extra_keys.end(), item.key()) == extra_keys.end())
       throw_usage("unknown key '" + item.key() + "'");
   SolveRequest r;
   read_weights(body, r.weights);
@@ -102,6 +108,10 @@ SolveRequest parse_solve_request(const std::string& body_text, const Mesh& mesh,
     match_face_corners(r.constraints, file_faces, mesh);
   }
   return r;
+}
+
+SolveRequest parse_solve_request(const std::string& body_text, const Mesh& mesh, const MatrixX3i& file_faces) {
+  return solve_request_from(parse_request_body(body_text), mesh, file_faces, {});
 }
 
 }  // namespace intrinsic::app

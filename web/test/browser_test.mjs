@@ -3,7 +3,12 @@
 // headless Chromium, drags a boundary handle of the 2D layout with real mouse
 // events, waits for the update, reads the UVs back through the API (same
 // session) and compares them with `intrinsic param --boundary FILE` for the
-// dragged position (1e-9); then checks a screenshot is not blank.
+// dragged position (1e-9); then, with the "click on surface" tool, clicks the
+// 3D view to add a point constraint, drags its target in the layout, and
+// compares the UVs again with `intrinsic param --boundary FILE --constraints
+// FILE` (and checks the session kept one factorization); then drags a
+// shift-click-selected boundary range with falloff and compares again; then checks a
+// screenshot (angle distortion colouring on) is not blank.
 // Usage: node browser_test.mjs PATH/TO/intrinsic MESH
 import { spawn, execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -92,6 +97,107 @@ async function dragHandle(page) {
   return h.vertex;
 }
 
+// Client position of the centroid of the face whose projection is nearest the 3D view's centre.
+async function surfacePoint(page) {
+  return page.evaluate(() => {
+    const { state, cameraMatrices } = window.__intrinsic;
+    const canvas = document.getElementById('view3d'), rect = canvas.getBoundingClientRect();
+    const { mvp } = cameraMatrices(canvas.width / canvas.height);
+    const m = state.mesh, tri = m.triangles, pos = m.positions;
+    let best = null, bestD = Infinity;
+    for (let f = 0; f < tri.length / 3; f++) {
+      let X = 0, Y = 0, Z = 0;
+      for (let k = 0; k < 3; k++) { X += pos[3 * tri[3 * f + k]] / 3; Y += pos[3 * tri[3 * f + k] + 1] / 3; Z += pos[3 * tri[3 * f + k] + 2] / 3; }
+      const w = mvp[3] * X + mvp[7] * Y + mvp[11] * Z + mvp[15];
+      const x = (mvp[0] * X + mvp[4] * Y + mvp[8] * Z + mvp[12]) / w, y = (mvp[1] * X + mvp[5] * Y + mvp[9] * Z + mvp[13]) / w;
+      const d = Math.hypot(x, y);
+      if (d < bestD) { bestD = d; best = [rect.left + (x + 1) / 2 * rect.width, rect.top + (1 - y) / 2 * rect.height]; }
+    }
+    return best;
+  });
+}
+
+const settled = (n) => {
+  const s = window.__intrinsic.state;
+  return s.updates > n && !s.inFlight && !s.queued;
+};
+
+// Clicks the surface (point constraint tool), waits, then drags the new target in the layout.
+async function addAndDragConstraint(page) {
+  await page.selectOption('#click3d', 'point');
+  const [x, y] = await surfacePoint(page);
+  const uvBefore = await page.evaluate(() => window.__intrinsic.uv());
+  let before = await page.evaluate(() => window.__intrinsic.state.updates);
+  await page.mouse.click(x, y);
+  await page.waitForFunction(settled, before, { timeout: 30000 });
+  const added = await page.evaluate(() => ({ n: window.__intrinsic.state.constraints.points.length, path: window.__intrinsic.state.answer.path }));
+  if (added.n !== 1 || added.path !== 'constraints') throw new Error('clicking the surface added no constraint: ' + JSON.stringify(added));
+  const target = (await page.evaluate(() => window.__intrinsic.handles())).find((h) => h.kind === 'point');
+  before = await page.evaluate(() => window.__intrinsic.state.updates);
+  await page.mouse.move(target.x, target.y);
+  await page.mouse.down();
+  await page.mouse.move(target.x + 12, target.y + 8, { steps: 5 });
+  await page.mouse.up();
+  await page.waitForFunction(settled, before, { timeout: 30000 });
+  const answer = await page.evaluate(() => ({ path: window.__intrinsic.state.answer.path, factorizations: window.__intrinsic.state.answer.factorizations }));
+  if (answer.path !== 'targets' || answer.factorizations !== 1) throw new Error('dragging the target: ' + JSON.stringify(answer));
+  const moved = maxDiff(uvBefore, await page.evaluate(() => window.__intrinsic.uv()));
+  console.log(`the dragged constraint target moved the map by up to ${moved}`);
+  if (!(moved > 1e-4)) throw new Error('dragging the constraint target did not change the map');
+}
+
+// Shift-clicks two boundary handles (a range), sets the falloff, drags the range's middle.
+async function dragRange(page) {
+  const b = (await page.evaluate(() => window.__intrinsic.handles())).filter((h) => h.kind === 'boundary');
+  const n = b.length, at = (i) => b[((i % n) + n) % n], k = Math.floor((2 * n) / 3);
+  if (n < 12) throw new Error('the range drag needs at least 12 boundary vertices');
+  await page.keyboard.down('Shift');
+  await page.mouse.click(at(k).x, at(k).y);
+  await page.mouse.click(at(k + 4).x, at(k + 4).y);
+  await page.keyboard.up('Shift');
+  await page.evaluate(() => { document.getElementById('falloff').value = '3'; });
+  const before = await page.evaluate(() => window.__intrinsic.state.updates);
+  await page.mouse.move(at(k + 2).x, at(k + 2).y);
+  await page.mouse.down();
+  await page.mouse.move(at(k + 2).x - 15, at(k + 2).y + 10, { steps: 5 });
+  await page.mouse.up();
+  await page.waitForFunction(settled, before, { timeout: 30000 });
+  const range = Array.from({ length: 11 }, (_, i) => at(k - 3 + i).vertex);
+  const moved = await page.evaluate(() => Array.from(window.__intrinsic.state.moves.keys()));
+  if (!range.every((v) => moved.includes(v))) throw new Error('the range and its falloff did not all move');
+}
+
+// Writes the request's boundary (moves over the unmoved base) and constraints, runs `intrinsic param`.
+function paramFor(request, base, meshInfo, dir) {
+  const moved = new Map((request.moves || []).map((m) => [m[0], [m[1], m[2]]]));
+  const lines = meshInfo.boundary_loops[0].map((v) => {
+    const p = moved.get(v) || base.uv[v];
+    return `${v} ${p[0]} ${p[1]}`;
+  });
+  fs.writeFileSync(path.join(dir, 'b.txt'), lines.join('\n') + '\n');
+  const args = ['param', mesh, '--boundary', path.join(dir, 'b.txt'), '-o', path.join(dir, 'out.obj'), '-q'];
+  if (request.constraints) {
+    fs.writeFileSync(path.join(dir, 'c.json'), JSON.stringify(request.constraints));
+    args.push('--constraints', path.join(dir, 'c.json'));
+  }
+  execFileSync(binary, args);
+  return objUV(path.join(dir, 'out.obj'), meshInfo.vertices);
+}
+
+async function compareWithParam(page, url, base, meshInfo, dir, what) {
+  const { session, request, pageUV } = await page.evaluate(() => ({
+    session: window.__intrinsic.session, request: window.__intrinsic.request(),
+    pageUV: window.__intrinsic.uv(),
+  }));
+  const served = await api(url, '/api/solve', request, session);
+  if (served.path !== 'responses') throw new Error('expected the editor path, got ' + served.path);
+  const cli = paramFor(request, base, meshInfo, dir);
+  const dServed = maxDiff(served.uv, cli), dPage = maxDiff(pageUV, cli);
+  console.log(`${what}: |served - param| = ${dServed}, |page - param| = ${dPage}`);
+  if (!(dServed < 1e-9) || !(dPage < 1e-9)) throw new Error('served UVs differ from intrinsic param');
+  return request;
+}
+
 async function main() {
   const { child, url: urlPromise } = startServer();
   let browser = null;
@@ -108,27 +214,17 @@ async function main() {
     await page.waitForFunction(() => window.__intrinsic && window.__intrinsic.state.updates >= 1 &&
       window.__intrinsic.state.frames >= 1, null, { timeout: 60000 });
     const vertex = await dragHandle(page);
-    const { session, request, pageUV } = await page.evaluate(() => ({
-      session: window.__intrinsic.session, request: window.__intrinsic.request(),
-      pageUV: window.__intrinsic.state.answer.uv,
-    }));
-    const served = await api(url, '/api/solve', request, session);
-    if (served.path !== 'responses') throw new Error('expected the editor path, got ' + served.path);
     const meshInfo = await api(url, '/api/mesh');
     const base = await api(url, '/api/solve', {}, 'browser-test-base');
-    const moved = new Map(request.moves.map((m) => [m[0], [m[1], m[2]]]));
-    if (!moved.has(vertex)) throw new Error('the dragged vertex was not moved');
-    const lines = meshInfo.boundary_loops[0].map((v) => {
-      const p = moved.get(v) || base.uv[v];
-      return `${v} ${p[0]} ${p[1]}`;
-    });
-    fs.writeFileSync(path.join(dir, 'b.txt'), lines.join('\n') + '\n');
-    execFileSync(binary, ['param', mesh, '--boundary', path.join(dir, 'b.txt'), '-o', path.join(dir, 'out.obj'), '-q']);
-    const cli = objUV(path.join(dir, 'out.obj'), meshInfo.vertices);
-    const dServed = maxDiff(served.uv, cli), dPage = maxDiff(pageUV, cli);
-    console.log(`dragged vertex ${vertex}: |served - param| = ${dServed}, |page - param| = ${dPage}`);
-    if (!(dServed < 1e-9) || !(dPage < 1e-9)) throw new Error('served UVs differ from intrinsic param');
+    const request = await compareWithParam(page, url, base, meshInfo, dir, `dragged vertex ${vertex}`);
+    if (!request.moves.some((m) => m[0] === vertex)) throw new Error('the dragged vertex was not moved');
+    await addAndDragConstraint(page);
+    await compareWithParam(page, url, base, meshInfo, dir, 'point constraint added on the surface, target dragged');
+    await dragRange(page);
+    await compareWithParam(page, url, base, meshInfo, dir, 'boundary range (5 vertices, falloff 3) dragged');
 
+    await page.selectOption('#colour', 'angle');
+    await page.waitForTimeout(300);
     const shot = await page.screenshot({ path: path.join(os.tmpdir(), 'intrinsic-editor.png') });
     const spread = await pixelSpread(page, shot);
     const box = await page.locator('#view3d').boundingBox();

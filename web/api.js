@@ -1,0 +1,100 @@
+// Requests to the server's API (README "intrinsic serve"): the solve queue
+// with at most one /api/solve in flight (the newest waiting body is sent
+// next), and plain JSON posts for the other endpoints.
+import { $, natural, session, state } from './state.js';
+import { draw } from './view.js';
+
+export function hasConstraints() {
+  return state.constraints.points.length > 0 || state.constraints.lines.length > 0;
+}
+
+export function requestBody(method = $('method').value) {
+  const body = { method, boundary: $('boundary').value };
+  if (method === 'mixed') {
+    const lambda = Number($('lambda').value);
+    body.lambda = lambda;
+    body.mu = 1 - lambda;
+  }
+  if (natural()) {
+    if (state.pins) body.pins = state.pins.map((p) => [p[0], p[1], p[2]]);
+  } else if (state.moves.size) {
+    body.moves = Array.from(state.moves, ([v, uv]) => [v, uv[0], uv[1]]);
+  }
+  if (hasConstraints()) body.constraints = JSON.parse(JSON.stringify(state.constraints));
+  return body;
+}
+
+export async function post(route, body, sessionId = session) {
+  const res = await fetch(route, {
+    method: 'POST', headers: { 'Content-Type': 'application/json', 'X-Session': sessionId }, body: JSON.stringify(body),
+  });
+  const answer = await res.json();
+  if (!res.ok) throw new Error(answer.error || ('HTTP ' + res.status));
+  return answer;
+}
+
+// /api/solve?uv=binary: the UVs as raw float64 (little-endian, as every
+// platform this runs on), the rest of the answer in the X-Answer header.
+async function postSolve(body) {
+  const res = await fetch('/api/solve?uv=binary', {
+    method: 'POST', headers: { 'Content-Type': 'application/json', 'X-Session': session }, body: JSON.stringify(body),
+  });
+  if (!res.ok) { const e = await res.json(); throw new Error(e.error || ('HTTP ' + res.status)); }
+  const answer = JSON.parse(res.headers.get('X-Answer'));
+  answer.uvFlat = new Float64Array(await res.arrayBuffer());
+  return answer;
+}
+
+// Sends now, or queues (replacing an older queued body) when one is in
+// flight. `stamp`: the time of the mouse event that asked for it.
+export function solve(stamp = null, onError = null) {
+  const item = { body: requestBody(), stamp, onError };
+  if (state.inFlight) { state.queued = item; return; }
+  send(item);
+}
+
+async function send(item) {
+  state.inFlight = true;
+  state.lastRequest = item.body;
+  const t0 = performance.now();
+  try {
+    const answer = await postSolve(item.body);
+    state.roundTrips.push(performance.now() - t0);
+    state.preview = null;
+    show(answer, performance.now() - t0, item.stamp);
+    setError(null);
+  } catch (e) {
+    setError(e);
+    if (item.onError) item.onError(e);
+  } finally {
+    state.inFlight = false;
+    if (state.queued) { const next = state.queued; state.queued = null; send(next); }
+  }
+}
+
+export function setError(e) {
+  state.error = e ? String(e.message || e) : null;
+  $('error').textContent = state.error || '';
+}
+
+// Draws an answer of any endpoint (uv pairs, or uvFlat from postSolve; figures) and updates the panel.
+export function show(answer, roundTrip, stamp = null) {
+  state.answer = answer;
+  if (answer.uvFlat) {
+    state.uv = answer.uvFlat;
+  } else {
+    const uv = new Float64Array(2 * state.mesh.vertices);
+    answer.uv.forEach((p, i) => { uv[2 * i] = p[0]; uv[2 * i + 1] = p[1]; });
+    state.uv = uv;
+  }
+  if (answer.pins && !state.dragging) state.pins = answer.pins.map((p) => p.slice());
+  $('flips').textContent = answer.flipped_triangles;
+  $('angle').textContent = answer.angle_distortion_mean.toFixed(4);
+  $('area').textContent = answer.area_distortion_mean.toFixed(4);
+  $('updateMs').textContent = answer.update_ms.toFixed(3);
+  $('roundTrip').textContent = roundTrip === null ? '-' : roundTrip.toFixed(1);
+  $('path').textContent = answer.path;
+  $('factorizations').textContent = answer.factorizations;
+  state.updates++;
+  draw(stamp);
+}

@@ -1,0 +1,31 @@
+// Frame scheduling: everything is drawn in one requestAnimationFrame
+// callback. A mouse event's stamp is closed on the frame after the one that
+// drew its answer (that frame has then been handed to the compositor): the
+// page's mouse-to-frame latency, kept in state.latencies.
+import { $, state } from './state.js';
+import { draw2d } from './view2d.js';
+import { draw3d, uploadUV } from './view3d.js';
+
+let frameRequested = false, uvDrawn = null, stamps = [];
+
+export function draw(stamp = null) {
+  if (stamp !== null) stamps.push(stamp);
+  if (frameRequested) return;
+  frameRequested = true;
+  requestAnimationFrame(() => {
+    frameRequested = false;
+    if (uvDrawn !== state.uv) { uploadUV(); uvDrawn = state.uv; }
+    draw3d();
+    draw2d();
+    state.frames++;
+    const done = stamps;
+    stamps = [];
+    if (done.length) {
+      requestAnimationFrame(() => {
+        const now = performance.now();
+        for (const t of done) state.latencies.push(now - t);
+        $('frameMs').textContent = (now - done[done.length - 1]).toFixed(1);
+      });
+    }
+  });
+}
