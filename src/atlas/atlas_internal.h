@@ -40,11 +40,12 @@ struct ChartMesh {
   std::vector<int> faces;   // input faces, sorted
   std::vector<int> corner;  // per face corner (3 * k + c): local vertex
   MeshData data;            // local vertices (positions of their input vertex), faces oriented (reversed ones 0, 2, 1)
+  long open_edges = 0;      // half-edges not glued to another face of the chart: must all be boundary edges
 };
 ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces);
 
 // Why a chart cannot be shipped as it is.
-enum class ChartStatus { Valid, NotDisk, Refused, SolveFailed, Flipped, BoundaryCrossing, Sparse };
+enum class ChartStatus { Valid, NotDisk, Refused, SolveFailed, Flipped, BoundaryCrossing, Sparse, Stretch };
 
 struct FlatChart {
   ChartMesh mesh;
@@ -57,10 +58,11 @@ struct FlatChart {
 // simple boundary, every interior vertex wound once.
 ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio);
 
-// Merges charts with fewer than options.min_chart_faces faces into a
-// neighbour when the union flattens validly within options.max_stretch.
-void merge_small_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
-                        std::vector<FlatChart>& charts);
+// Merges neighbouring charts while the union flattens validly within
+// options.max_stretch (chart_merge.cpp), then past it down to
+// options.max_charts when that is set.
+void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
+                  std::vector<FlatChart>& charts);
 
 // The chart's area over the square on the longer side of its smallest
 // bounding box (UV area = 3D area): low for sparse or long thin charts.
