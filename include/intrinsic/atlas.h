@@ -48,7 +48,7 @@ struct AtlasOptions {
   int min_chart_faces = 20;
   // Texture size the padding is measured in (texels of the [0,1]^2 square).
   int resolution = 1024;
-  double padding = 2;  // texels between charts and around the border
+  double padding = 2;  // texels between charts; half of it (rounded up to whole texels) around the border
   // A face with area below this fraction of its longest edge squared (or a
   // repeated vertex) is degenerate: it gets UVs but takes no part in a solve.
   double degenerate_ratio = 1e-12;

@@ -3,9 +3,9 @@
 // (whose side lies on a convex hull edge). The charts are then packed by
 // rasterization, as xatlas does: each chart's texel mask (every texel its
 // triangles touch) is placed, largest first, at the position of a
-// `resolution`-wide bitmap that keeps the layout's square smallest (unturned
-// or a quarter turn), where its mask dilated by `padding` texels meets no
-// texel already taken. The scale (texels per unit of surface) is the largest
+// `resolution`-wide bitmap that keeps the layout's square smallest (in any
+// of its four quarter turns: an L or C shape can then wrap another), where
+// its mask dilated by `padding` texels meets no texel already taken. The scale (texels per unit of surface) is the largest
 // for which every chart fits, found by bisection; the layout is then fitted
 // into [0,1]^2 by one similarity. Boxes alone (a skyline of rectangles) left
 // a third of the square empty on the assets; masks let small charts sit in
@@ -82,6 +82,9 @@ MatrixX2d quarter_turn(const MatrixX2d& UV) {
   T.rowwise() -= T.colwise().minCoeff();
   return T;
 }
+
+// A chart's UVs in its four quarter turns, each with its corner at the origin.
+using Poses = std::array<MatrixX2d, 4>;
 
 // Texel spans of one row: [begin, end) pairs, sorted, disjoint.
 using Spans = std::vector<std::pair<int, int>>;
@@ -222,12 +225,12 @@ int first_fit(const Bitmap& bm, const Mask& m, int y, int x0, int limit) {
 
 struct Placement {
   int x = -1, y = -1;
-  bool turned = false;
+  int turns = 0;  // quarter turns counter-clockwise
 };
 
 // Places each chart (largest mask first) where the square the layout needs
 // grows least; false when one does not fit in the bitmap.
-bool place_all(const std::vector<std::array<Mask, 2>>& masks, const std::vector<int>& order, int side,
+bool place_all(const std::vector<std::array<Mask, 4>>& masks, const std::vector<int>& order, int side,
                std::vector<Placement>& at, int& extent) {
   Bitmap bm(side);
   at.assign(masks.size(), {});
@@ -237,18 +240,18 @@ bool place_all(const std::vector<std::array<Mask, 2>>& masks, const std::vector<
     int best_extent = INT32_MAX;
     // No placement needs a smaller square than this: stop when one reaches it.
     const int floor = std::max({extent, masks[c][0].w, masks[c][0].h});
-    for (int turn = 0; turn < 2 && best_extent > floor; ++turn) {
+    for (int turn = 0; turn < 4 && best_extent > floor; ++turn) {
       const Mask& m = masks[c][turn];
       for (int y = 0; y + m.h <= side && std::max(extent, y + m.h) < best_extent && best_extent > floor; ++y) {
         // Only positions that would beat the best so far: x + w < best_extent.
         const int x = first_fit(bm, m, y, 0, std::min<long>(side, static_cast<long>(best_extent) - 1));
         if (x < 0) continue;
         const int e = std::max({extent, x + m.w, y + m.h});
-        if (e < best_extent) best_extent = e, best = {x, y, turn == 1};
+        if (e < best_extent) best_extent = e, best = {x, y, turn};
       }
     }
     if (best.x < 0) return false;
-    const Mask& m = masks[c][best.turned ? 1 : 0];
+    const Mask& m = masks[c][best.turns];
     for (int r = 0; r < m.h; ++r)
       for (const auto& s : m.own[r]) bm.take(best.y + r, best.x + s.first, best.x + s.second);
     at[c] = best;
@@ -269,14 +272,13 @@ double square_fill(const FlatChart& chart) {
 
 namespace {
 
-// Every chart's mask at `scale`, unturned and turned, rasterized in parallel.
-std::vector<std::array<Mask, 2>> rasterize_all(const std::vector<FlatChart>& charts,
-                                               const std::vector<MatrixX2d>& turned, double scale, int pad) {
-  std::vector<std::array<Mask, 2>> masks(charts.size());
+// Every chart's mask at `scale` in its four quarter turns, rasterized in parallel.
+std::vector<std::array<Mask, 4>> rasterize_all(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned,
+                                               double scale, int pad) {
+  std::vector<std::array<Mask, 4>> masks(charts.size());
   parallel_for(static_cast<std::int64_t>(charts.size()), [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t c = b; c < e; ++c) {
-      masks[c][0] = rasterize(charts[c], charts[c].UV, scale, pad);
-      masks[c][1] = rasterize(charts[c], turned[c], scale, pad);
+      for (int k = 0; k < 4; ++k) masks[c][k] = rasterize(charts[c], turned[c][k], scale, pad);
     }
   }, 8);
   return masks;
@@ -289,9 +291,9 @@ struct Layout {
 };
 
 // Packs at `scale` into a `side`-texel square; false when a chart does not fit.
-bool try_scale(const std::vector<FlatChart>& charts, const std::vector<MatrixX2d>& turned, double scale, int side,
+bool try_scale(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned, double scale, int side,
                int pad, Layout& out) {
-  const std::vector<std::array<Mask, 2>> masks = rasterize_all(charts, turned, scale, pad);
+  const std::vector<std::array<Mask, 4>> masks = rasterize_all(charts, turned, scale, pad);
   std::vector<int> order(charts.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
@@ -307,7 +309,7 @@ bool try_scale(const std::vector<FlatChart>& charts, const std::vector<MatrixX2d
 
 // The largest scale (texels per unit of surface) at which every chart fits:
 // shrink until one fits, then bisect between the fitting and the failing scale.
-Layout best_layout(const std::vector<FlatChart>& charts, const std::vector<MatrixX2d>& turned, double area,
+Layout best_layout(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned, double area,
                    int& side, int pad) {
   Layout fit;
   while (true) {
@@ -340,28 +342,35 @@ double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, 
   overlapping = 0;
   if (charts.empty()) return 0;
   double area = 0;
-  std::vector<MatrixX2d> turned(charts.size());
+  std::vector<Poses> turned(charts.size());
   for (size_t c = 0; c < charts.size(); ++c) {
     orient_chart(charts[c]);
-    turned[c] = quarter_turn(charts[c].UV);
+    turned[c][0] = charts[c].UV;
+    for (int k = 1; k < 4; ++k) turned[c][k] = quarter_turn(turned[c][k - 1]);
     area += charts[c].summary.area_3d;
   }
   // The bitmap is at most 1024 texels wide: larger textures pack on a coarser
   // grid (padding rounded up to whole cells of it).
   int side = std::min(options.resolution, 1024);
   const int pad = static_cast<int>(std::ceil(options.padding * side / options.resolution - 1e-9));
-  const Layout l = best_layout(charts, turned, std::max(area, 1e-300), side, pad);
+  // Half the padding (rounded up) around the border, as a neighbour's half
+  // would complete it: the bitmap reaches `edge` texels past the square on
+  // every side, where nothing is ever taken but dilated masks may lie.
+  const int edge = pad - (pad + 1) / 2;
+  int bitmap = side + 2 * edge;
+  const Layout l = best_layout(charts, turned, std::max(area, 1e-300), bitmap, pad);
+  const double square = l.extent - 2 * edge;  // texels; the layout is [edge, extent - edge] of the bitmap
   for (size_t c = 0; c < charts.size(); ++c) {
     const Placement& p = l.at[c];
-    if (p.turned) charts[c].UV = turned[c];
-    charts[c].summary.rotated = p.turned;
+    charts[c].UV = turned[c][p.turns];
+    charts[c].summary.rotated = p.turns != 0;
     charts[c].UV *= l.scale;
-    charts[c].UV.col(0).array() += p.x + pad;
-    charts[c].UV.col(1).array() += p.y + pad;
-    charts[c].UV /= l.extent;
+    charts[c].UV.col(0).array() += p.x + pad - edge;
+    charts[c].UV.col(1).array() += p.y + pad - edge;
+    charts[c].UV /= square;
     charts[c].UV = charts[c].UV.cwiseMax(0.0).cwiseMin(1.0);  // rounding only
   }
-  const double used = l.scale / l.extent;
+  const double used = l.scale / square;
   return area * used * used;
 }
 

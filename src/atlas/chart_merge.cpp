@@ -107,12 +107,13 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOpti
     for (int f : charts[c].mesh.faces) owner[f] = static_cast<int>(c);
   std::vector<char> gone(charts.size(), 0);
   std::set<std::pair<int, int>> failed;
-  // Merging costs a solve of every union tried: at most about two more
-  // solves of the whole mesh (smallest charts first), so that large meshes
-  // stay fast; the splits' rounds have already made every chart valid.
+  // Merging costs a solve of every union tried: at most two more solves of
+  // the whole mesh plus a fixed 100,000 faces (smallest charts first), so
+  // small meshes merge fully and large ones stay fast; the splits' rounds
+  // have already made every chart valid.
   long faces = 0;
   for (const FlatChart& c : charts) faces += static_cast<long>(c.mesh.faces.size());
-  long budget = 2 * faces;
+  long budget = 2 * faces + 100000;
   while (merge_pass(input, clean, options, options.max_stretch, 0, budget, charts, gone, owner, failed) > 0) {
   }
   auto live = [&] { return static_cast<int>(std::count(gone.begin(), gone.end(), 0)); };
