@@ -336,6 +336,24 @@ Layout best_layout(const std::vector<FlatChart>& charts, const std::vector<Poses
   }
 }
 
+// The bisection on a bitmap of half the size first (a quarter of the
+// texels to place), then the full bitmap from just above that scale down in
+// small steps: a few full-size packings instead of a dozen.
+Layout search_layout(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned, double area,
+                     int& side, int pad) {
+  if (side < 256) return best_layout(charts, turned, area, side, pad);
+  int half = side / 2;
+  const Layout coarse = best_layout(charts, turned, area, half, (pad + 1) / 2);
+  if (half == side / 2) {  // the half bitmap held them: its scale, doubled, is close
+    double s = coarse.scale * 2 * 1.03;
+    for (int i = 0; i < 6; ++i, s *= 0.985) {
+      Layout l;
+      if (try_scale(charts, turned, s, side, pad, l)) return l;
+    }
+  }
+  return best_layout(charts, turned, area, side, pad);
+}
+
 }  // namespace
 
 double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping) {
@@ -358,7 +376,7 @@ double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, 
   // every side, where nothing is ever taken but dilated masks may lie.
   const int edge = pad - (pad + 1) / 2;
   int bitmap = side + 2 * edge;
-  const Layout l = best_layout(charts, turned, std::max(area, 1e-300), bitmap, pad);
+  const Layout l = search_layout(charts, turned, std::max(area, 1e-300), bitmap, pad);
   const double square = l.extent - 2 * edge;  // texels; the layout is [edge, extent - edge] of the bitmap
   for (size_t c = 0; c < charts.size(); ++c) {
     const Placement& p = l.at[c];
