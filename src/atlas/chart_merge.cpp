@@ -107,13 +107,11 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOpti
     for (int f : charts[c].mesh.faces) owner[f] = static_cast<int>(c);
   std::vector<char> gone(charts.size(), 0);
   std::set<std::pair<int, int>> failed;
-  // Merging costs a solve of every union tried: at most two more solves of
-  // the whole mesh plus a fixed 100,000 faces (smallest charts first), so
-  // small meshes merge fully and large ones stay fast; the splits' rounds
-  // have already made every chart valid.
-  long faces = 0;
-  for (const FlatChart& c : charts) faces += static_cast<long>(c.mesh.faces.size());
-  long budget = 2 * faces + 100000;
+  // Merging costs a solve of every union tried: at most 150,000 faces in
+  // all (smallest charts first), so that meshes of up to about 20k faces
+  // merge fully and large ones stay fast (the splits' rounds have already
+  // made every chart valid; merges only make fewer of them).
+  long budget = 150000;
   while (merge_pass(input, clean, options, options.max_stretch, 0, budget, charts, gone, owner, failed) > 0) {
   }
   auto live = [&] { return static_cast<int>(std::count(gone.begin(), gone.end(), 0)); };
@@ -121,7 +119,7 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOpti
   // with a budget of its own.
   if (options.max_charts > 0 && live() > options.max_charts) {
     failed.clear();
-    budget = 4 * faces;
+    budget = 300000;
     while (live() > options.max_charts &&
            merge_pass(input, clean, options, INFINITY, options.max_charts, budget, charts, gone, owner, failed) > 0) {
     }
