@@ -116,7 +116,7 @@ struct AtlasResult {
   // packing, so this is the whole atlas's figure at one texel density.
   double stretch_l2_mean = 1;
   int flipped = 0;         // non-degenerate faces with signed UV area <= 0 in their chart's orientation (0 by construction)
-  int overlapping = 0;     // charts whose packed boxes meet another's (0 by construction)
+  int overlapping = 0;     // charts whose texel masks meet another's (0 by construction of the packer)
   AtlasCleaning cleaning;
   AtlasTimings timings;
 };

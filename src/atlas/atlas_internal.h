@@ -68,9 +68,10 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOpti
 // bounding box (UV area = 3D area): low for sparse or long thin charts.
 double square_fill(const FlatChart& chart);
 
-// Scales all charts by one factor, rotates and shelf-packs their boxes with
-// padding and fits the layout into [0,1]^2 (UVs changed in place). Returns
-// the utilization; `overlapping` counts charts whose boxes meet.
+// Scales all charts by one factor, turns them and packs their texel masks
+// with padding on a bitmap (atlas_packing.cpp), and fits the layout into
+// [0,1]^2 (UVs changed in place). Returns the utilization; `overlapping` is
+// 0: a mask is only placed where its dilated texels meet no taken texel.
 double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping);
 
 }  // namespace intrinsic::detail
