@@ -83,7 +83,9 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
                    {"inconsistent_edges", r.cleaning.inconsistent_edges},
                    {"reversed_faces", r.cleaning.reversed_faces},
                    {"nonorientable_cuts", r.cleaning.nonorientable_cuts},
-                   {"unreferenced_vertices", r.cleaning.unreferenced_vertices}};
+                   {"unreferenced_vertices", r.cleaning.unreferenced_vertices},
+                   {"welded_vertices", r.cleaning.welded_vertices}};
+  j["weld"] = o.weld;
   nlohmann::json charts = nlohmann::json::array();
   for (const AtlasChart& c : r.charts)
     charts.push_back({{"component", c.component}, {"faces", c.faces}, {"vertices", c.vertices},

@@ -24,8 +24,11 @@ struct AtlasArgs {
 
 int run_atlas(const AtlasArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (mesh_extension(a.output) != ".obj")
-    throw_usage("output '" + a.output + "': the atlas is written as .obj (one texture coordinate per corner)");
+  const std::string ext = mesh_extension(a.output);
+  if (ext != ".obj" && ext != ".glb")
+    throw_usage("output '" + a.output + "': the atlas is written as .obj (one texture coordinate per corner) or .glb");
+  if (ext == ".glb" && a.output.size() > 3 && a.output.compare(a.output.size() - 3, 3, ".gz") == 0)
+    throw_usage("output '" + a.output + "': .glb is written uncompressed (drop the .gz)");
   ReadOptions ro;
   ro.max_vertices = a.max_vertices;
   ro.max_faces = faces_for_vertices(ro.max_vertices);
@@ -35,7 +38,8 @@ int run_atlas(const AtlasArgs& a) {
   const double read_ms = elapsed_ms(t0);
   const AtlasResult r = atlas(data, options);
   const auto t1 = std::chrono::steady_clock::now();
-  write_atlas_obj(a.output, data, r);
+  if (ext == ".glb") write_glb(a.output, data.V, data.F, r.UV, r.FUV);  // vertices split at seams
+  else write_atlas_obj(a.output, data, r);
   const double write_ms = elapsed_ms(t1);
   nlohmann::json j = atlas_report(data, options, r);
   j["input"] = a.input;
@@ -60,7 +64,9 @@ void register_atlas(CLI::App& app, Runner& run) {
       "atlas", "UV atlas of any mesh (closed, higher genus, several components, non-manifold): disk charts, "
                "each flattened by the natural conformal map, packed into [0,1]^2 without flips or overlaps");
   cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
-  cmd->add_option("-o,--output", a->output, "Output mesh (.obj: input vertices, one vt per atlas UV, f v/vt)")
+  cmd->add_option("-o,--output", a->output,
+                  "Output mesh (.obj: input vertices, one vt per atlas UV, f v/vt; "
+                  ".glb: glTF 2.0 binary, vertices split at seams)")
       ->required();
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
   cmd->add_option("--padding", a->options.padding, "Texels between charts")->capture_default_str();
@@ -72,7 +78,7 @@ void register_atlas(CLI::App& app, Runner& run) {
       ->check(CLI::Range(1.0, 180.0))
       ->capture_default_str();
   cmd->add_option("--min-chart-faces", a->options.min_chart_faces,
-                  "Charts with fewer faces may merge into a neighbour up to its own stretch")
+                  "Charts with fewer faces may merge into a neighbour up to its own stretch (0: no merging)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--seams", a->seams,
@@ -85,6 +91,11 @@ void register_atlas(CLI::App& app, Runner& run) {
   cmd->add_option("--max-charts", a->options.max_charts,
                   "Merge further (past --max-stretch, never past validity) down to this many charts (0: no limit)")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--weld", a->options.weld,
+                  "Weld vertices closer than EPS times the bounding box diagonal, for the computation only "
+                  "(unwelded seams); the output keeps the input's vertices")
+      ->check(CLI::Range(0.0, 0.999999))
       ->capture_default_str();
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")
       ->check(CLI::PositiveNumber)

@@ -10,13 +10,43 @@
 
 namespace intrinsic::app {
 
+namespace {
+
+// The mesh's topology (boundary loops, components) when the UV-indexed mesh
+// is a valid manifold mesh; otherwise (a triangle soup, a non-manifold or
+// degenerate face) the reason, and the atlas figures still follow.
+nlohmann::json mesh_report(const UvMesh& uv, const MeshData& data) {
+  MeshData by_tc;
+  by_tc.V = uv.V;
+  by_tc.F = uv.F;
+  by_tc.path = data.path;
+  ValidateOptions vo;
+  vo.allow_several_components = true;
+  vo.allow_closed = true;
+  nlohmann::json report;
+  try {
+    // Orientation is kept as listed so flipped triangles are reported, not repaired.
+    report = mesh_json(make_mesh(by_tc, vo));
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::Input) throw;
+    report = {{"input", data.path}, {"faces", uv.F.rows()}, {"not_a_manifold_mesh", e.what()}};
+  }
+  report["vertices"] = data.V.rows();
+  report["texture_coordinates"] = data.TC.rows();
+  return report;
+}
+
+}  // namespace
+
 void register_metrics(CLI::App& app, Runner& run) {
   struct Args {
     std::string input, report;
     std::int64_t max_vertices = ReadOptions().max_vertices;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("metrics", "Distortion report of a mesh with UVs (OBJ vt or PLY u,v)");
+  CLI::App* cmd = app.add_subcommand("metrics",
+                                     "Distortion and atlas report (charts, flips per chart, overlaps, utilization) "
+                                     "of a mesh with UVs (OBJ vt or PLY u,v)");
   cmd->add_option("input", args->input, "Mesh with texture coordinates (.obj, .off, .ply, optionally .gz)")->required();
   cmd->add_option("--report", args->report, "Write the report as JSON to this file (default: print it)");
   cmd->add_option("--max-vertices", args->max_vertices, "Refuse inputs with more vertices")
@@ -31,19 +61,12 @@ void register_metrics(CLI::App& app, Runner& run) {
       const MeshData data = read_mesh(args->input, ro);
       // Distortion is per face, so the UV of a corner is what matters.
       const UvMesh uv = split_by_texcoord(data);
-      MeshData by_tc;
-      by_tc.V = uv.V;
-      by_tc.F = uv.F;
-      by_tc.path = data.path;
-      ValidateOptions vo;
-      vo.allow_several_components = true;
-      vo.allow_closed = true;
-      // Validation catches degenerate faces; orientation is kept as listed so
-      // flipped triangles are reported, not repaired.
-      const Mesh mesh = make_mesh(by_tc, vo);
-      nlohmann::json report = mesh_json(mesh);
-      report["vertices"] = data.V.rows();
-      const DistortionSummary d = summarize_distortion(uv.V, uv.F, uv.UV);
+      nlohmann::json report = mesh_report(uv, data);
+      // Charts, flips per chart and overlaps work on any per-corner UVs,
+      // soups and non-manifold meshes included.
+      const UvAtlasMetrics atlas = uv_atlas_metrics(uv.V, uv.F, uv.UV);
+      report["atlas"] = atlas_metrics_json(atlas);
+      const DistortionSummary d = summarize_distortion(uv.V, uv.F, unmirrored_uv(uv, atlas));
       add_distortion(report, d);
       report["timings_ms"] = {{"total", elapsed_ms(t0)}};
       if (args->report.empty()) std::cout << report.dump(2) << "\n";

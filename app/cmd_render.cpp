@@ -4,6 +4,8 @@
 #include "command.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
+#include "intrinsic/metrics.h"
+#include "intrinsic/render.h"
 #include "pictures.h"
 #include "report.h"
 #include "uv_mesh.h"
@@ -75,13 +77,27 @@ int run_render(const RenderArgs& a) {
     d.faces = face_distortion(m.V, m.F, m.UV);
     d.summary = summarize_distortion(m.V, m.F, m.UV);
   }
-  const Picture p = make_picture(mode, m.V, m.F, m.UV, s, needs_distortion ? &d : nullptr);
+  Picture p;
+  int charts = 0;
+  if (mode == PictureMode::Layout) {
+    // An atlas (several UV charts, e.g. `intrinsic atlas` or another tool's
+    // output) gets a colour per chart, folded or overlapping faces in red.
+    const UvAtlasMetrics atlas = uv_atlas_metrics(m.V, m.F, m.UV);
+    charts = static_cast<int>(atlas.charts.size());
+    if (charts > 1) {
+      std::vector<char> red(m.F.rows());
+      for (Eigen::Index f = 0; f < m.F.rows(); ++f) red[f] = atlas.face_folded[f] | atlas.face_overlapping[f];
+      p.image = render_atlas_layout(m.F, m.UV, atlas.face_chart, red, s.render);
+    }
+  }
+  if (p.image.width == 0) p = make_picture(mode, m.V, m.F, m.UV, s, needs_distortion ? &d : nullptr);
   const double t_render = elapsed_ms(t1);
   const auto t2 = std::chrono::steady_clock::now();
   std::vector<std::pair<std::string, std::string>> files{{a.output, encode_png(p.image)}};
   const double t_encode = elapsed_ms(t2);
   if (!a.report.empty()) {
     nlohmann::json r = render_report(a, mode, m, p, d);
+    if (mode == PictureMode::Layout) r["charts"] = charts;
     r["timings_ms"] = {{"read", t_read}, {"render", t_render}, {"encode", t_encode}, {"total", elapsed_ms(t0)}};
     files.emplace_back(a.report, r.dump(2) + "\n");
   }
@@ -102,7 +118,8 @@ void register_render(CLI::App& app, Runner& run) {
   cmd->add_option("input", a->input, "Mesh with texture coordinates (OBJ vt or PLY u,v; optionally .gz)")->required();
   cmd->add_option("-o,--output", a->output, "Output picture (.png)")->required();
   cmd->add_option("--mode", a->mode,
-                  "checker: textured 3D surface | layout: the flattened mesh, flipped triangles red | "
+                  "checker: textured 3D surface | layout: the flattened mesh, flipped triangles red (an atlas: "
+                  "one colour per chart, folded or overlapping triangles red) | "
                   "angle, area, stretch: distortion per triangle with a colour bar")
       ->check(CLI::IsMember({"checker", "layout", "angle", "area", "stretch"}))
       ->capture_default_str();

@@ -17,8 +17,8 @@ double elapsed_ms(std::chrono::steady_clock::time_point t0) {
 
 void check_output_mesh_path(const std::string& path) {
   const std::string ext = mesh_extension(path);
-  if (ext != ".obj" && ext != ".ply")
-    throw_usage("output '" + path + "': unknown format '" + ext + "' (use .obj or .ply)");
+  if (ext != ".obj" && ext != ".ply" && ext != ".glb")
+    throw_usage("output '" + path + "': unknown format '" + ext + "' (use .obj, .ply or .glb)");
 }
 
 }  // namespace intrinsic::app

@@ -6,20 +6,33 @@
 
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "intrinsic/mesh.h"
+#include "intrinsic/metrics.h"
 
 namespace intrinsic::app {
 
 struct UvMesh {
-  MatrixX3d V;   // #TC x 3: the position of each texture coordinate's corners
-  MatrixX3i F;   // the input's FTC
-  MatrixX2d UV;  // the input's TC, one row per row of V
+  MatrixX3d V;   // the position of each texture coordinate's corners (#TC rows, then the extra ones)
+  MatrixX3i F;   // the input's FTC (re-pointed to the extra rows where needed)
+  MatrixX2d UV;  // the input's TC, then the extra rows' copies; one row per row of V
   Eigen::Index input_vertices = 0;  // rows of V in the file, for reports
 };
 
-// Throws Error(Input) naming the file when it has no texture coordinates, a
-// texture index is out of range, or one coordinate is used by corners at
-// different positions.
+// A coordinate used by corners at different positions gets a row per
+// position (appended). Throws Error(Input) naming the file when it has no
+// texture coordinates or a texture index is out of range.
 UvMesh split_by_texcoord(const MeshData& data);
+
+// The UVs with every chart that `metrics` found mirrored as a whole reflected
+// (u -> -u) back, so distortion figures and their normalisation (total UV
+// area) see each chart in its own orientation and count only local folds as
+// flipped. A texture coordinate takes the chart of the first face using it.
+MatrixX2d unmirrored_uv(const UvMesh& m, const UvAtlasMetrics& atlas);
+
+// The atlas part of the `metrics` report: charts, utilization, mirrored
+// charts, flipped, collapsed and overlapping triangles, per-chart list.
+nlohmann::json atlas_metrics_json(const UvAtlasMetrics& atlas);
 
 }  // namespace intrinsic::app

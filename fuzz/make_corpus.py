@@ -196,6 +196,43 @@ def main():
     }
     for k, v in pl.items():
         write("pipeline", k, v)
+    # Atlas: one option byte (fuzz_atlas.cpp), then a mesh: closed, messy
+    # (non-manifold edge and vertex, zero-area and repeated faces, an
+    # unwelded seam, a Moebius band, inconsistent orientation).
+    tet_v = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    tet_f = [(0, 2, 1), (0, 1, 3), (1, 2, 3), (0, 3, 2)]
+    cube_v = [(x, y, z) for z in (0, 1) for y in (0, 1) for x in (0, 1)]
+    cube = "# seed\n" + "".join("v %g %g %g\n" % v for v in cube_v) + (
+        "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n")
+    fin = [(0, 0, 0), (1, 0, 0), (0.5, 1, 0), (0.5, 0.5, 1), (0.5, 0.5, -1)]  # three faces on one edge
+    moebius_v, moebius_f = [], []
+    n = 8
+    import math
+    for i in range(n):
+        t = 2 * math.pi * i / n
+        for s in (-0.3, 0.3):
+            r = 1 + s * math.cos(t / 2)
+            moebius_v.append((r * math.cos(t), r * math.sin(t), s * math.sin(t / 2)))
+    for i in range(n):
+        a, b = 2 * i, 2 * ((i + 1) % n)
+        c, d = (b + 1, b) if i == n - 1 else (b, b + 1)  # the twist
+        moebius_f += [(a, c, a + 1), (a + 1, c, d)]
+    flipped_grid = list(GRID_F)
+    flipped_grid[3] = flipped_grid[3][::-1]
+    at = {
+        "tet_obj": b"\x00" + obj(tet_v, tet_f).encode(),
+        "tet_off_components": bytes([1 | 4]) + off(tet_v, tet_f).encode(),
+        "cube_quads_weld": bytes([8 | (1 << 4)]) + cube.encode(),
+        "fin_nonmanifold_edge": bytes([(2 << 4)]) + obj(fin, [(0, 1, 2), (0, 1, 3), (1, 0, 4)]).encode(),
+        "bowtie_degenerate": b"\x00" + obj(SQUARE_V + [(2, 2, 0), (2, 3, 0), (3, 3, 0)],
+                                           SQUARE_F + [(2, 5, 6), (2, 7, 6), (5, 5, 6), (0, 1, 1)]).encode(),
+        "unwelded_pair_weld": bytes([8]) + obj([(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)],
+                                                [(0, 1, 2), (3, 4, 5)]).encode(),
+        "moebius": bytes([(1 << 4) | 64]) + obj(moebius_v, moebius_f).encode(),
+        "grid_inconsistent_ply": bytes([2 | 128]) + ply_ascii(GRID_V, flipped_grid).encode(),
+    }
+    for k, v in at.items():
+        write("atlas", k, v if isinstance(v, bytes) else v.encode())
 
 
 if __name__ == "__main__":

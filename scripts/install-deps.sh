@@ -14,6 +14,7 @@ PACKAGES=(
   nlohmann-json3-dev       # JSON reports and constraint files
   libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
   libstb-dev               # stb_easy_font for picture labels
+  libtinygltf-dev          # glTF 2.0 binary (.glb) output of `intrinsic atlas`
   libgtest-dev libbenchmark-dev
   libcpp-httplib-dev       # `intrinsic serve` (the browser editor)
   chromium                 # the editor's browser test (headless; node + npm from the system)
@@ -33,4 +34,7 @@ fi
 if command -v npm >/dev/null; then
   (cd "$(dirname "$0")/../web/test" && npm ci --no-audit --no-fund) ||
     echo "install-deps: npm ci failed in web/test: the browser test will not be registered" >&2
+  # xatlasjs for bench/atlas_compare.py (benchmark only; bench/package-lock.json).
+  (cd "$(dirname "$0")/../bench" && npm ci --no-audit --no-fund) ||
+    echo "install-deps: npm ci failed in bench: bench/atlas_compare.py will compare nothing" >&2
 fi

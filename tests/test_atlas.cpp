@@ -17,6 +17,7 @@
 #include "intrinsic/atlas.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/io.h"
+#include "intrinsic/metrics.h"
 #include "test_support.h"
 
 namespace intrinsic {
@@ -149,6 +150,22 @@ void expect_valid_atlas(const MeshData& m, const AtlasResult& r) {
   EXPECT_EQ(r.flipped, 0);
   EXPECT_EQ(r.overlapping, 0);
   EXPECT_EQ(count_overlaps(r.FUV, r.UV), 0);
+  // The same through `metrics`' own measures (exact overlaps, folds and
+  // mirrored charts judged per UV chart, test_atlas_metrics.cpp), with the
+  // faces listed as the computation oriented them (face_reversed: a chart
+  // mostly listed against its piece's majority would otherwise count as
+  // mirrored, which is what `metrics` says of such a file).
+  MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
+  MatrixX3i oriented = r.FUV;
+  for (int f = 0; f < m.F.rows(); ++f) {
+    for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(m.F(f, c));
+    if (r.face_reversed[f]) std::swap(oriented(f, 1), oriented(f, 2));
+  }
+  const UvAtlasMetrics um = uv_atlas_metrics(PT, oriented, r.UV);
+  EXPECT_EQ(um.flipped_triangles, 0);
+  EXPECT_EQ(um.collapsed_triangles, 0);
+  EXPECT_EQ(um.mirrored_charts, 0);
+  EXPECT_EQ(um.overlapping_triangles, 0);
   expect_disk_charts(r);
   EXPECT_GT(r.utilization, 0.0);
   EXPECT_LE(r.utilization, 1.0);

@@ -693,7 +693,7 @@ TEST(IoWrite, ErrorsLeaveNoFileBehind) {
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Usage);
-    EXPECT_NE(std::string(e.what()).find("unknown output format '.xyz' (use .obj or .ply)"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("unknown output format '.xyz' (use .obj, .ply or .glb)"), std::string::npos);
   }
   try {
     intrinsic::write_mesh(dir.file("missing/m.obj"), V, F, Eigen::MatrixX2d());

@@ -44,7 +44,8 @@ struct AtlasOptions {
   // the union is valid and stays within it.
   double max_stretch = 1.05;
   // Charts with fewer faces may be merged up to their neighbour's own
-  // stretch when that is above max_stretch.
+  // stretch when that is above max_stretch. 0: no merging at all (unless
+  // max_charts asks for it).
   int min_chart_faces = 20;
   // Texture size the padding is measured in (texels of the [0,1]^2 square).
   int resolution = 1024;
@@ -52,6 +53,11 @@ struct AtlasOptions {
   // A face with area below this fraction of its longest edge squared (or a
   // repeated vertex) is degenerate: it gets UVs but takes no part in a solve.
   double degenerate_ratio = 1e-12;
+  // Weld vertices closer than this fraction of the bounding box diagonal
+  // (unwelded seams, as in teapot.obj) for the computation only: the output
+  // keeps the input's vertices, and welded corners share texture
+  // coordinates. 0: no welding.
+  double weld = 0;
   // The user's seams: every listed edge is cut (a chart boundary in the
   // output); charts are then the pieces between seams, split only where a
   // piece is not a disk or its map is invalid (no stretch or packing splits).
@@ -81,6 +87,7 @@ struct AtlasCleaning {
   int reversed_faces = 0;         // faces listed against their piece's orientation (the fewer), reversed for the solve
   int nonorientable_cuts = 0;     // edges cut because the orientations could not agree (a Moebius band)
   int unreferenced_vertices = 0;  // written unchanged, no UV
+  int welded_vertices = 0;        // --weld: vertices merged into an earlier one within the distance
 };
 
 // Why charts were split (each split counted once, by the first check that failed).

@@ -34,10 +34,24 @@ struct WriteOptions {
 };
 
 // Writes V, F and one UV per vertex (UV may be empty: no texture coordinates).
-// Format from the extension: .obj or .ply. Throws Error(Output) on failure,
+// Format from the extension: .obj, .ply or .glb (write_glb with the corners
+// indexing UV like V; needs UV). Throws Error(Output) on failure,
 // leaving no file behind.
 void write_mesh(const std::string& path, const MatrixX3d& V, const MatrixX3i& F,
                 const MatrixX2d& UV, const WriteOptions& options = {});
+
+// glTF 2.0 binary (.glb) of a mesh with per-corner texture coordinates
+// (FUV: #F x 3 rows of UV, as an atlas gives them), for engines and Blender.
+// glTF attributes are per vertex, so a vertex is written once per distinct
+// texture coordinate among its corners (split at seams), in order of first
+// use by the faces; unreferenced vertices are left out. One mesh, one
+// triangle primitive: POSITION (float32, with min/max), TEXCOORD_0 (float32,
+// (u, 1 - v): glTF's texture origin is the top-left corner, ours the
+// bottom-left), uint32 indices, faces in input order. Throws Error(Input) for
+// an empty or inconsistent mesh or coordinates beyond float32, Error(Output)
+// when writing fails; atomic.
+void write_glb(const std::string& path, const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV,
+               const MatrixX3i& FUV);
 
 // Atomically writes `contents` to `path` (temp file + rename). Shared by every
 // writer in the project (JSON reports, PNG images, meshes).

@@ -57,4 +57,57 @@ double area_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV);
 FaceDistortion face_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV);
 DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV);
 
+// ---- Atlases and other tools' outputs (issue 13 item 7) -------------------
+// Per-corner UVs: FT (#F x 3) indexes rows of UV, PT (#UV x 3) is the 3D
+// position of each texture coordinate's corners (app/uv_mesh.h builds it from
+// OBJ `f v/vt`, triangle soups with split vertices included). Texture
+// coordinates with the same UV and the same position are the same corner, so
+// a soup that repeats them per face still forms charts.
+
+// One chart: faces connected through UV edges (two shared corners).
+struct UvChart {
+  int faces = 0;
+  double uv_area = 0;  // sum of |UV triangle areas|
+  double area_3d = 0;
+  // The chart as a whole has negative UV orientation relative to the faces'
+  // listing (the majority listing of the chart's edge-consistent orientation).
+  bool mirrored = false;
+  int flipped = 0;    // faces whose UV orientation is opposite to the chart's (local folds)
+  int collapsed = 0;  // faces with zero UV area (and non-zero 3D area)
+};
+
+struct UvAtlasMetrics {
+  std::vector<int> face_chart;  // per face, the index into charts
+  std::vector<char> face_folded;       // per face: locally flipped or collapsed
+  std::vector<char> face_overlapping;  // per face: meets another face's interior
+  std::vector<UvChart> charts;
+  int mirrored_charts = 0, mirrored_faces = 0;  // whole charts mirrored (not counted in flipped_triangles)
+  int flipped_triangles = 0;    // locally flipped, over all charts
+  int collapsed_triangles = 0;  // zero UV area, non-zero 3D area
+  int degenerate_faces = 0;     // zero 3D area (make_mesh's test): not counted as flipped
+  // Faces whose UV triangle's interior meets another's (same or other chart),
+  // by an exact orientation test, independent of any packer.
+  int overlapping_triangles = 0;
+  int overlapping_pairs_within_charts = 0, overlapping_pairs_between_charts = 0;
+  double uv_area = 0;
+  // UV area over the area of [0,1]^2 when every UV lies in [0,1]^2 (a packed
+  // atlas), otherwise over the UVs' bounding square (side: the longer side
+  // of their bounding box); utilization_in_unit_square says which.
+  double utilization = 0;
+  bool utilization_in_unit_square = true;
+  double utilization_bbox = 0;  // UV area over the UVs' bounding rectangle
+};
+
+UvAtlasMetrics uv_atlas_metrics(const MatrixX3d& PT, const MatrixX3i& FT, const MatrixX2d& UV);
+
+// Per face: 1 when its UV triangle's interior meets another face's. Exact
+// (adaptive orientation predicate), a uniform grid over the UV box for speed;
+// faces with zero UV area or non-finite UVs never overlap.
+std::vector<char> overlapping_uv_triangles(const MatrixX3i& FT, const MatrixX2d& UV, int* pairs_within = nullptr,
+                                           int* pairs_between = nullptr, const std::vector<int>* face_chart = nullptr);
+
+// Sign (+1, 0, -1) of the orientation of (a, b, c), exact for any finite doubles
+// (Shewchuk's filter with an exact expansion fallback).
+int orient2d_sign(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+
 }  // namespace intrinsic

@@ -53,6 +53,13 @@ Image render_checker(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV
 // (signed UV area <= 0) filled red. UV is framed with a margin, aspect kept.
 Image render_layout(const MatrixX3i& F, const MatrixX2d& UV, const RenderOptions& options);
 
+// An atlas: each chart (face_chart, #F entries, values >= 0) filled in its own
+// colour (hues spread by the golden angle, so neighbours in index differ),
+// faces marked in `red` (may be empty: e.g. folded or overlapping ones) in
+// red, boundary edges of charts thick.
+Image render_atlas_layout(const MatrixX3i& F, const MatrixX2d& UV, const std::vector<int>& face_chart,
+                          const std::vector<char>& red, const RenderOptions& options);
+
 struct FaceValueOptions {
   std::string title;
   double lo = 0, hi = 1;   // values mapped to the ends of the colour map

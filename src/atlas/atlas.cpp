@@ -32,6 +32,8 @@ void check_options(const AtlasOptions& o) {
   if (!(o.max_stretch >= 1)) throw_usage("the stretch bound must be at least 1");
   if (o.max_charts < 0) throw_usage("the chart limit must be at least 0 (0: no limit)");
   if (!(o.degenerate_ratio >= 0 && o.degenerate_ratio < 1)) throw_usage("the degenerate ratio must be in [0, 1)");
+  if (!(o.weld >= 0 && o.weld < 1))
+    throw_usage("the weld distance must be in [0, 1) (a fraction of the bounding box diagonal)");
 }
 
 // Cuts the user's seam edges for the computation (no face is glued across
@@ -159,13 +161,20 @@ void assemble(const MeshData& input, const std::vector<detail::FlatChart>& chart
 
 }  // namespace
 
-AtlasResult atlas(const MeshData& input, const AtlasOptions& options) {
+AtlasResult atlas(const MeshData& given, const AtlasOptions& options) {
   check_options(options);
   const auto t0 = std::chrono::steady_clock::now();
   AtlasResult r;
+  // --weld: the computation sees welded faces; the result's rows stay the input's faces.
+  int welded = 0;
+  MeshData welded_mesh;
+  if (options.weld > 0) welded_mesh = detail::weld_vertices(given, options.weld, welded);
+  const MeshData& input = options.weld > 0 ? welded_mesh : given;
   detail::CleanMesh clean = detail::clean_mesh(input, options);
-  if (!options.seams.empty()) cut_seams(input, options.seams, clean);
+  // Seams name the user's vertices; faces keep their rows through welding.
+  if (!options.seams.empty()) cut_seams(given, options.seams, clean);
   r.cleaning = clean.cleaning;
+  r.cleaning.welded_vertices = welded;
   r.components = clean.components;
   r.timings.clean_ms = ms_since(t0);
   auto t = std::chrono::steady_clock::now();
@@ -175,7 +184,8 @@ AtlasResult atlas(const MeshData& input, const AtlasOptions& options) {
   std::vector<detail::FlatChart> charts = flatten_all(input, clean, std::move(segments), options, r);
   r.timings.flatten_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
-  if (options.seams.empty() || options.max_charts > 0) detail::merge_charts(input, clean, options, charts);
+  if ((options.seams.empty() && options.min_chart_faces > 0) || options.max_charts > 0)
+    detail::merge_charts(input, clean, options, charts);
   r.timings.merge_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
   r.utilization = detail::pack_charts(charts, options, r.overlapping);

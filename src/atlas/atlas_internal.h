@@ -29,6 +29,12 @@ struct CleanMesh {
 
 CleanMesh clean_mesh(const MeshData& input, const AtlasOptions& options);
 
+// `input` with vertices within relative_distance times the bounding box
+// diagonal of each other merged in the faces (V unchanged; faces refer to the
+// first such vertex), for the computation only; welded counts the vertices
+// merged away. relative_distance <= 0: a copy.
+MeshData weld_vertices(const MeshData& input, double relative_distance, int& welded);
+
 // Charts as lists of face indices (sorted), each connected through glued edges.
 std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options);
 // Two connected halves grown from two far-apart faces of the chart (at least two faces).

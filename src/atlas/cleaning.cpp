@@ -7,8 +7,10 @@
 // Everything else (non-manifold edges, the cut that makes a non-orientable
 // piece orientable) is a seam, so every chart is manifold and oriented.
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <tuple>
+#include <unordered_map>
 
 #include "atlas/atlas_internal.h"
 #include "intrinsic/error.h"
@@ -167,6 +169,54 @@ void count_components(const MeshData& in, CleanMesh& m) {
 }
 
 }  // namespace
+
+// Greedy in input order: a vertex joins the earliest kept vertex within the
+// distance (cells of that size, the 27 around it searched), else is kept.
+// Chains never form (only kept vertices attract), so the result does not
+// depend on anything but the input order.
+MeshData weld_vertices(const MeshData& input, double relative_distance, int& welded) {
+  check_input(input);
+  welded = 0;
+  MeshData out = input;
+  if (!(relative_distance > 0)) return out;
+  const Eigen::Vector3d lo = input.V.colwise().minCoeff(), hi = input.V.colwise().maxCoeff();
+  const double d = relative_distance * (hi - lo).norm();
+  if (!(d > 0) || !std::isfinite(d)) return out;
+  const int nv = static_cast<int>(input.V.rows());
+  std::vector<int> rep(nv), next(nv, -1);
+  std::unordered_map<std::uint64_t, int> head;  // cell -> first kept vertex in it (a list through `next`)
+  auto cell_of = [&](int v) {
+    std::array<std::int64_t, 3> c;
+    for (int k = 0; k < 3; ++k) c[k] = static_cast<std::int64_t>(std::floor((input.V(v, k) - lo[k]) / d));
+    return c;
+  };
+  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    // Colliding cells only add candidates: distances decide.
+    return static_cast<std::uint64_t>(x) * 73856093u ^ static_cast<std::uint64_t>(y) * 19349663u ^
+           static_cast<std::uint64_t>(z) * 83492791u;
+  };
+  for (int v = 0; v < nv; ++v) {
+    const auto c = cell_of(v);
+    int best = v;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto it = head.find(key(c[0] + dx, c[1] + dy, c[2] + dz));
+          for (int u = it == head.end() ? -1 : it->second; u >= 0; u = next[u])
+            if (u < best && (input.V.row(u) - input.V.row(v)).norm() <= d) best = u;
+        }
+    rep[v] = best;
+    if (best != v) {
+      ++welded;
+      continue;
+    }
+    auto [it, fresh] = head.emplace(key(c[0], c[1], c[2]), v);
+    if (!fresh) next[v] = it->second, it->second = v;
+  }
+  for (int f = 0; f < out.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) out.F(f, c) = rep[out.F(f, c)];
+  return out;
+}
 
 CleanMesh clean_mesh(const MeshData& input, const AtlasOptions& options) {
   check_input(input);

@@ -38,34 +38,42 @@ void check_pins(const Mesh& mesh, const std::vector<FixedVertex>& pins) {
 
 }  // namespace
 
-SparseMatrix area_hessian(int n, const std::vector<std::vector<int>>& loops) {
-  // 2A = sum over half-edges a->b of (u_a v_b - u_b v_a): its Hessian has +1
-  // at (u_a, v_b) and -1 at (v_a, u_b), symmetrised.
+SparseMatrix area_coupling(int n, const std::vector<std::vector<int>>& loops) {
   std::vector<Eigen::Triplet<double>> t;
   for (const std::vector<int>& loop : loops)
     for (size_t k = 0; k < loop.size(); ++k) {
       const int a = loop[k], b = loop[(k + 1) % loop.size()];
-      t.emplace_back(a, n + b, 1.0);
-      t.emplace_back(n + b, a, 1.0);
-      t.emplace_back(n + a, b, -1.0);
-      t.emplace_back(b, n + a, -1.0);
+      t.emplace_back(a, b, 1.0);
+      t.emplace_back(b, a, -1.0);
     }
-  SparseMatrix H(2 * n, 2 * n);
-  H.setFromTriplets(t.begin(), t.end());
-  return H;
+  SparseMatrix B(n, n);
+  B.setFromTriplets(t.begin(), t.end());
+  B.prune(0.0);  // a two-vertex loop's half-edges cancel
+  return B;
 }
 
-SparseMatrix block_diagonal2(const SparseMatrix& K) {
-  const int n = static_cast<int>(K.rows());
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(2 * static_cast<size_t>(K.nonZeros()));
-  for (int j = 0; j < K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(K, j); it; ++it) {
-      t.emplace_back(it.row(), j, it.value());
-      t.emplace_back(n + it.row(), n + j, it.value());
-    }
+SparseMatrix real_form_matrix(const SparseMatrix& K, const SparseMatrix& B) {
+  const Eigen::Index n = K.rows();
   SparseMatrix Q(2 * n, 2 * n);
-  Q.setFromTriplets(t.begin(), t.end());
+  Q.resizeNonZeros(2 * (K.nonZeros() + B.nonZeros()));
+  Eigen::Index out = 0;
+  auto append = [&](const SparseMatrix& M, Eigen::Index j, Eigen::Index row_shift, double sign) {
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it) {
+      Q.innerIndexPtr()[out] = static_cast<int>(it.row() + row_shift);
+      Q.valuePtr()[out++] = sign * it.value();
+    }
+  };
+  for (Eigen::Index j = 0; j < n; ++j) {  // u columns: K over B
+    Q.outerIndexPtr()[j] = static_cast<int>(out);
+    append(K, j, 0, 1);
+    append(B, j, n, 1);
+  }
+  for (Eigen::Index j = 0; j < n; ++j) {  // v columns: -B over K
+    Q.outerIndexPtr()[n + j] = static_cast<int>(out);
+    append(B, j, 0, -1);
+    append(K, j, n, 1);
+  }
+  Q.outerIndexPtr()[2 * n] = static_cast<int>(out);
   return Q;
 }
 
@@ -73,8 +81,7 @@ SparseMatrix assemble_natural_system(const Mesh& mesh) {
   WeightOptions conformal;
   conformal.method = Method::Conformal;
   const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, conformal);
-  const SparseMatrix Q = block_diagonal2(K) - area_hessian(static_cast<int>(mesh.V.rows()), mesh.topology.boundary_loops);
-  return Q;
+  return real_form_matrix(K, area_coupling(static_cast<int>(mesh.V.rows()), mesh.topology.boundary_loops));
 }
 
 std::pair<int, int> default_pin_pair(const Mesh& mesh) {

@@ -17,18 +17,22 @@
 
 namespace intrinsic {
 
-// Twice the Hessian of the signed parameter area A = 1/2 sum over boundary
-// half-edges a->b of (u_a v_b - u_b v_a), restricted to the given loops (each
-// a vertex list in half-edge order, interior on the left, as
-// Topology::boundary_loops). Interior edges cancel in A, so only boundary
-// vertices couple u and v. 2n x 2n, blocked ordering.
-SparseMatrix area_hessian(int num_vertices, const std::vector<std::vector<int>>& loops);
+// The coupling of u and v in twice the Hessian of the signed parameter area
+// A = 1/2 sum over boundary half-edges a->b of (u_a v_b - u_b v_a), over the
+// given loops (each a vertex list in half-edge order, interior on the left,
+// as Topology::boundary_loops): B(a, b) = +1 and B(b, a) = -1 per half-edge
+// (n x n, antisymmetric; twice the Hessian is [0 B; -B 0] in blocked
+// ordering, docs/maths.md §3.6). Interior edges cancel in A, so only
+// boundary vertices couple u and v.
+SparseMatrix area_coupling(int num_vertices, const std::vector<std::vector<int>>& loops);
 
-// K (n x n) on both diagonal blocks of a 2n x 2n matrix.
-SparseMatrix block_diagonal2(const SparseMatrix& K);
+// The 2n x 2n matrix [K -B; B K] (blocked ordering) straight into compressed
+// storage: the real form of K + iB (docs/maths.md §3.6). B's pattern must
+// lie within K's (boundary edges are mesh edges).
+SparseMatrix real_form_matrix(const SparseMatrix& K, const SparseMatrix& B);
 
 // Q = 2 * Hessian of E_D - A over the whole mesh, E_D = 1/4 sum cot |u_a - u_b|^2:
-// Q = [K 0; 0 K] - area_hessian(all loops), K the cotangent matrix of
+// Q = real_form_matrix(K, area_coupling(all loops)), K the cotangent matrix of
 // assemble_weight_matrix. Row v of Q U = 0 is eq. 4 at interior vertices and
 // eq. 7 at boundary vertices (u row first, v row at n + v). Q is symmetric
 // positive semi-definite; its kernel holds the translations (and, on a flat

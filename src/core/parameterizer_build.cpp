@@ -33,7 +33,7 @@ void Parameterizer::Impl::build_fixed(const std::vector<FixedVertex>& given) {
   } else {
     K = assemble_weight_matrix(mesh->V, mesh->F, o.weights);
   }
-  factor(K, is_fixed, is_used, is_symmetric(o.weights), t_assemble);
+  factor(std::move(K), is_fixed, is_used, is_symmetric(o.weights), t_assemble);
   UB.resize(sys->known_count(), 2);
   for (const FixedVertex& fv : given) UB.row(p().fixed_index[fv.vertex]) = fv.uv.transpose();
   update_fixed_list();
@@ -53,13 +53,13 @@ void Parameterizer::Impl::build_natural(const std::vector<FixedVertex>& given) {
     const SparseMatrix K = assemble_weight_matrix(mesh->V, mesh->F, o.weights);
     std::vector<std::vector<int>> loops;
     for (size_t k = 1; k < t.component_loops[0].size(); ++k) loops.push_back(t.boundary_loops[t.component_loops[0][k]]);
-    Q = block_diagonal2(K) - natural_hole_weight(o.weights) * area_hessian(n, loops);
+    Q = real_form_matrix(K, natural_hole_weight(o.weights) * area_coupling(n, loops));
     symmetric = is_symmetric(o.weights);
   }
   std::vector<char> fixed2(2 * n, 0), used2(2 * n, 0);
   for (int v = 0; v < n; ++v) used2[v] = used2[n + v] = t.is_used[v];
   for (const FixedVertex& fv : given) fixed2[fv.vertex] = fixed2[n + fv.vertex] = 1;
-  factor(Q, fixed2, used2, symmetric, t_assemble);
+  factor(std::move(Q), fixed2, used2, symmetric, t_assemble);
   UB.resize(sys->known_count(), 1);
   for (const FixedVertex& fv : given) set_fixed_uv(UB, fv.vertex, fv.uv);
   update_fixed_list();
@@ -67,14 +67,19 @@ void Parameterizer::Impl::build_natural(const std::vector<FixedVertex>& given) {
 
 // The natural layout's system is ill-conditioned (two pins only): its
 // solves always refine (LinearSolver::set_ill_conditioned).
-void Parameterizer::Impl::factor(const SparseMatrix& K, const std::vector<char>& is_fixed,
+void Parameterizer::Impl::factor(SparseMatrix&& K, const std::vector<char>& is_fixed,
                                  const std::vector<char>& is_used, bool symmetric,
                                  std::chrono::steady_clock::time_point t_assemble) {
   timings.assemble_ms = detail::elapsed_ms(t_assemble);
   const auto t_factor = std::chrono::steady_clock::now();
   sys.reset();
   try {
-    sys = std::make_unique<detail::EliminatedSystem>(K, is_fixed, is_used, o.solver, symmetric, natural);
+    detail::EliminatedSystem::Factoring how;
+    how.kind = o.solver;
+    how.symmetric = symmetric;
+    how.ill_conditioned = natural;
+    how.complex_form = natural && symmetric;  // docs/maths.md §3.6
+    sys = std::make_unique<detail::EliminatedSystem>(std::move(K), is_fixed, is_used, how);
   } catch (const Error& e) {
     throw_diagnosed(e);
   }

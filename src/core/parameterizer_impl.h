@@ -56,7 +56,7 @@ struct Parameterizer::Impl {
   void build(const std::vector<FixedVertex>& given);
   void build_fixed(const std::vector<FixedVertex>& given);
   void build_natural(const std::vector<FixedVertex>& given);
-  void factor(const SparseMatrix& K, const std::vector<char>& is_fixed, const std::vector<char>& is_used,
+  void factor(SparseMatrix&& K, const std::vector<char>& is_fixed, const std::vector<char>& is_used,
               bool symmetric, std::chrono::steady_clock::time_point t_assemble);
   detail::PlacementRule initial_placement_rule();
   void place_initially();

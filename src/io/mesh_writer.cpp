@@ -199,10 +199,14 @@ void write_mesh(const std::string& path, const MatrixX3d& V, const MatrixX3i& F,
   std::string ext;
   if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ext = path.substr(dot);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".obj" && ext != ".ply")
-    throw_usage("unknown output format '" + ext + "' (use .obj or .ply)");
+  if (ext != ".obj" && ext != ".ply" && ext != ".glb")
+    throw_usage("unknown output format '" + ext + "' (use .obj, .ply or .glb)");
   check_input(path, V, F, UV);
-  if (ext == ".obj") write_obj(path, V, F, UV);
+  if (ext == ".glb") {
+    // One UV per vertex: the corners index it like the vertices.
+    if (UV.rows() == 0) throw_usage(path + ": .glb output needs texture coordinates");
+    write_glb(path, V, F, UV, F);
+  } else if (ext == ".obj") write_obj(path, V, F, UV);
   else write_ply(path, V, F, UV, options.binary);
 }
 

@@ -244,13 +244,19 @@ struct Step {
   MatrixX2d UV;
 };
 
-// Backtracking from alpha: Armijo decrease, no new flips, no boundary crossing.
-Step line_search(BoundaryObjective& map, const Mesh& mesh, const Eigen::VectorXd& x, const Eigen::VectorXd& d,
-                 const Eigen::VectorXd& g, double e, double alpha, int flipped_initial, bool crossing_initial) {
+// Backtracking from alpha: Armijo decrease, no new flips, no boundary
+// crossing. The map is linear in the boundary (docs/maths.md §8.1), so the
+// map of x + alpha d is UV + alpha D with D the map of d: one solve per line
+// search, however many steps the fold barrier rejects (on max-planck-partial
+// late iterations rejected 10-17 steps, each a solve, before this).
+Step line_search(BoundaryObjective& map, const Mesh& mesh, const Eigen::VectorXd& x, const MatrixX2d& UV,
+                 const Eigen::VectorXd& d, const Eigen::VectorXd& g, double e, double alpha, int flipped_initial,
+                 bool crossing_initial) {
   Step s;
+  const MatrixX2d D = map.map(d);
   for (int tries = 0; tries < 50 && !s.accepted; ++tries, alpha *= 0.5) {
     s.x = x + alpha * d;
-    s.UV = map.map(s.x);
+    s.UV = UV + alpha * D;
     if (count_flips(mesh.F, s.UV) > flipped_initial) continue;
     if (!crossing_initial && boundary_crosses(map.segments(), s.UV)) continue;
     s.energy = map.energy(s.UV, nullptr);
@@ -293,7 +299,7 @@ BoundaryOptimizationResult optimize_boundary(const Mesh& mesh, const BoundaryOpt
     Eigen::VectorXd d = quasi_newton ? lbfgs_direction(S, Y, g) : Eigen::VectorXd(-g);
     double alpha0 = quasi_newton ? 1 : scale_hint;
     if (d.dot(g) >= 0) { d = -g; alpha0 = scale_hint; S.clear(); Y.clear(); }
-    const Step step = line_search(map, mesh, x, d, g, e, alpha0, result.flipped_initial, crossing_initial);
+    const Step step = line_search(map, mesh, x, UV, d, g, e, alpha0, result.flipped_initial, crossing_initial);
     if (!step.accepted) { result.stop_reason = "line search found no admissible decrease"; break; }
     Eigen::VectorXd g_new;
     map.energy(step.UV, &g_new);

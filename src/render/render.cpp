@@ -1,6 +1,7 @@
 // Public entry points: validate, pick the pass, and assemble the page.
 #include "intrinsic/render.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -32,6 +33,33 @@ Image render_layout(const MatrixX3i& F, const MatrixX2d& UV, const RenderOptions
   check_faces(F, UV.rows(), "render layout");
   check_some_finite(F, UV, "render layout");
   return draw_layout(F, UV, nullptr, o.width, o.height, o.supersample);
+}
+
+namespace {
+
+// A light colour per chart: HSV with the hue stepped by the golden ratio.
+render::Rgb chart_colour(int k) {
+  const double h = std::fmod(0.13 + 0.6180339887498949 * k, 1.0) * 6, s = 0.45, v = 0.95;
+  const int i = static_cast<int>(h) % 6;
+  const double f = h - std::floor(h), p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+  const double rgb[6][3] = {{v, t, p}, {q, v, p}, {p, v, t}, {p, q, v}, {t, p, v}, {v, p, q}};
+  auto byte = [](double x) { return static_cast<std::uint8_t>(std::lround(255 * x)); };
+  return {byte(rgb[i][0]), byte(rgb[i][1]), byte(rgb[i][2])};
+}
+
+}  // namespace
+
+Image render_atlas_layout(const MatrixX3i& F, const MatrixX2d& UV, const std::vector<int>& face_chart,
+                          const std::vector<char>& red, const RenderOptions& o) {
+  check_options(o);
+  check_faces(F, UV.rows(), "render layout");
+  check_some_finite(F, UV, "render layout");
+  if (face_chart.size() != static_cast<size_t>(F.rows()) || (!red.empty() && red.size() != face_chart.size()))
+    throw_usage("render layout: one chart (and one red flag, if any) per face");
+  std::vector<render::Rgb> colours(F.rows());
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    colours[f] = !red.empty() && red[f] ? render::kFlippedRed : chart_colour(std::max(face_chart[f], 0));
+  return draw_layout(F, UV, &colours, o.width, o.height, o.supersample);
 }
 
 Image render_face_values(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, const Eigen::VectorXd& values,

@@ -6,15 +6,19 @@
 
 namespace intrinsic::detail {
 
-EliminatedSystem::EliminatedSystem(const SparseMatrix& K, const std::vector<char>& is_known,
-                                   const std::vector<char>& is_used, SolverKind kind, bool symmetric,
-                                   bool ill_conditioned)
-    : solver_(kind, symmetric) {
+EliminatedSystem::EliminatedSystem(SparseMatrix&& K, const std::vector<char>& is_known,
+                                   const std::vector<char>& is_used, const Factoring& how)
+    : solver_(how.kind, how.symmetric) {
   p_ = intrinsic::partition(static_cast<int>(K.rows()), is_known, is_used);
-  split_matrix(K, p_, A_, K_IB_);
-  solver_.set_ill_conditioned(ill_conditioned);
-  if (A_.rows() > 0) {
-    solver_.factor(A_);
+  SparseMatrix A;
+  split_matrix(K, p_, A, K_IB_);
+  K = SparseMatrix();
+  solver_.set_ill_conditioned(how.ill_conditioned);
+  // The free unknowns keep K's order, u's before v's: with u and v of a
+  // vertex known together, A is again a real form.
+  solver_.set_complex_form(how.complex_form);
+  if (A.rows() > 0) {
+    solver_.factor(std::move(A));
     factored_ = true;
   }
 }
@@ -31,7 +35,7 @@ Eigen::MatrixXd EliminatedSystem::solve_transposed(const Eigen::MatrixXd& B) con
 
 double EliminatedSystem::relative_residual(const Eigen::MatrixXd& X, const Eigen::MatrixXd& B,
                                            const Eigen::MatrixXd& extra) const {
-  Eigen::MatrixXd res = A_ * X - B;
+  Eigen::MatrixXd res = A() * X - B;
   if (extra.size() > 0) res += extra;
   double worst = 0;
   for (int c = 0; c < res.cols(); ++c) {

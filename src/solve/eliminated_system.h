@@ -15,15 +15,23 @@ namespace intrinsic::detail {
 
 class EliminatedSystem {
  public:
+  // How A is factored (see LinearSolver).
+  struct Factoring {
+    SolverKind kind = SolverKind::Auto;
+    bool symmetric = true;
+    bool ill_conditioned = false;
+    bool complex_form = false;  // K is a real form [K' -B; B K'] and the known unknowns come in pairs
+  };
   // Partitions the unknowns of K (known where is_known, absent where not
-  // is_used) and factors A. `ill_conditioned`: see LinearSolver.
-  EliminatedSystem(const SparseMatrix& K, const std::vector<char>& is_known, const std::vector<char>& is_used,
-                   SolverKind kind, bool symmetric, bool ill_conditioned);
+  // is_used) and factors A.
+  // K is released once split, before the factorization (peak memory).
+  EliminatedSystem(SparseMatrix&& K, const std::vector<char>& is_known, const std::vector<char>& is_used,
+                   const Factoring& how);
 
   const Partition& partition() const { return p_; }
-  const SparseMatrix& A() const { return A_; }
+  const SparseMatrix& A() const { return solver_.matrix(); }
   const SparseMatrix& K_IB() const { return K_IB_; }
-  int free_count() const { return static_cast<int>(A_.rows()); }
+  int free_count() const { return static_cast<int>(p_.free_vertices.size()); }
   int known_count() const { return static_cast<int>(p_.fixed_vertices.size()); }
   bool factored() const { return factored_; }
   const LinearSolver& solver() const { return solver_; }
@@ -45,7 +53,7 @@ class EliminatedSystem {
 
  private:
   Partition p_;
-  SparseMatrix A_, K_IB_;
+  SparseMatrix K_IB_;  // A = K_II is kept by the solver
   LinearSolver solver_;
   bool factored_ = false;
 };

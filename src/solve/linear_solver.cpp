@@ -68,6 +68,7 @@ struct LinearSolver::Impl {
   bool symmetric;
   double tolerance;
   bool ill_conditioned = false;
+  bool complex_form = false;
   SparseMatrix A;
   SolverKind used = SolverKind::Auto;
   int factorizations = 0;
@@ -86,7 +87,8 @@ struct LinearSolver::Impl {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
     if (requested != SolverKind::EigenLLT) {
       cholmod = std::make_unique<Cholmod>();
-      if (cholmod->factor(A)) { used = SolverKind::Cholmod; return true; }
+      const auto structure = complex_form ? detail::Structure::ComplexPairs : detail::Structure::Real;
+      if (cholmod->factor(A, structure)) { used = SolverKind::Cholmod; return true; }
       cholmod.reset();
       return false;
     }
@@ -125,10 +127,13 @@ LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
 LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 
-void LinearSolver::factor(const SparseMatrix& A) {
+void LinearSolver::factor(const SparseMatrix& A) { factor(SparseMatrix(A)); }
+
+void LinearSolver::factor(SparseMatrix&& matrix) {
   Impl& s = *impl_;
-  s.A = A;
+  s.A = std::move(matrix);
   s.A.makeCompressed();
+  const SparseMatrix& A = s.A;
   s.transposed.reset();
   s.llt.reset(); s.lu.reset(); s.cg.reset(); s.bicg.reset();
 #ifdef INTRINSIC_HAVE_SUITESPARSE
@@ -213,6 +218,7 @@ Eigen::MatrixXd LinearSolver::solve_transposed(const Eigen::MatrixXd& B) const {
 }
 
 void LinearSolver::set_ill_conditioned(bool on) { impl_->ill_conditioned = on; }
+void LinearSolver::set_complex_form(bool on) { impl_->complex_form = on; }
 
 SolverKind LinearSolver::kind() const { return impl_->used; }
 std::string LinearSolver::name() const { return solver_name(impl_->used); }

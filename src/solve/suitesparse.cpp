@@ -10,37 +10,17 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include "intrinsic/error.h"
+#include "solve/complex_form.h"
 #include "solve/ordering.h"
-
-#ifdef INTRINSIC_HAVE_OPENMP_RUNTIME
-extern "C" {
-int omp_get_dynamic(void);
-void omp_set_dynamic(int);
-}
-#endif
+#include "solve/solver_threads.h"
 
 namespace intrinsic::detail {
 namespace {
 
 using Long = SuiteSparse_long;
-
-// While alive, lets the OpenMP runtime shrink CHOLMOD's teams to the idle
-// cores: Debian's CHOLMOD asks for 4 threads per supernode whatever the
-// machine, and on 2 cores (next to OpenBLAS's threads) the futex wake-ups of
-// those teams made a 1M-vertex numeric factorization take 4.0-4.5 s instead
-// of the 2.6-3.0 s it takes with dynamic teams. The caller's setting is
-// restored.
-class DynamicOpenMPTeams {
- public:
-#ifdef INTRINSIC_HAVE_OPENMP_RUNTIME
-  DynamicOpenMPTeams() : previous_(omp_get_dynamic()) { omp_set_dynamic(1); }
-  ~DynamicOpenMPTeams() { omp_set_dynamic(previous_); }
- private:
-  int previous_;
-#endif
-};
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -49,14 +29,33 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 // 64-bit copies of a compressed matrix's index arrays.
 struct LongPattern {
   std::vector<Long> p, i;
-  explicit LongPattern(const SparseMatrix& A) : p(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1),
-                                                i(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros()) {}
+  template <typename Matrix>
+  explicit LongPattern(const Matrix& A)
+      : p(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1),
+        i(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros()) {}
 };
 
 SparseMatrix compressed(const SparseMatrix& A) {
   SparseMatrix C = A;
   C.makeCompressed();
   return C;
+}
+
+// CHOLMOD's view of a compressed symmetric (Hermitian) matrix, lower triangle used.
+cholmod_sparse symmetric_view(Long n, Long nonzeros, LongPattern& pattern, const void* values, int xtype) {
+  cholmod_sparse cs{};
+  cs.nrow = cs.ncol = n;
+  cs.nzmax = nonzeros;
+  cs.p = pattern.p.data();
+  cs.i = pattern.i.data();
+  cs.x = const_cast<void*>(values);
+  cs.stype = -1;
+  cs.itype = CHOLMOD_LONG;
+  cs.xtype = xtype;
+  cs.dtype = CHOLMOD_DOUBLE;
+  cs.sorted = 1;
+  cs.packed = 1;
+  return cs;
 }
 
 }  // namespace
@@ -75,7 +74,10 @@ struct CholmodFactor::Impl {
   cholmod_common c;
   cholmod_factor* L = nullptr;
   const SparseMatrix* A = nullptr;  // the caller's, for refinement
-  Long n = 0;
+  bool complex = false;             // L factors the complex form of A
+  SparseMatrix abs_A;               // |A|, for the componentwise backward error
+  std::unique_ptr<std::once_flag> abs_A_once = std::make_unique<std::once_flag>();
+  Long n = 0;                       // L's size
   explicit Impl(Ordering o) : ordering(o) {
     cholmod_l_start(&c);
     c.supernodal = CHOLMOD_SUPERNODAL;
@@ -93,52 +95,53 @@ struct CholmodFactor::Impl {
 CholmodFactor::CholmodFactor(Ordering ordering) : impl_(std::make_unique<Impl>(ordering)) {}
 CholmodFactor::~CholmodFactor() = default;
 
-bool CholmodFactor::factor(const SparseMatrix& input) {
-  Impl& s = *impl_;
-  if (s.L) cholmod_l_free_factor(&s.L, &s.c);
-  const auto t0 = std::chrono::steady_clock::now();
-  const SparseMatrix A = input.isCompressed() ? SparseMatrix() : compressed(input);
-  const SparseMatrix& M = input.isCompressed() ? input : A;
-  LongPattern pattern(M);
-  cholmod_sparse cs{};
-  cs.nrow = cs.ncol = M.rows();
-  cs.nzmax = M.nonZeros();
-  cs.p = pattern.p.data();
-  cs.i = pattern.i.data();
-  cs.x = const_cast<double*>(M.valuePtr());
-  cs.stype = -1;  // symmetric, lower triangle used
-  cs.itype = CHOLMOD_LONG;
-  cs.xtype = CHOLMOD_REAL;
-  cs.dtype = CHOLMOD_DOUBLE;
-  cs.sorted = 1;
-  cs.packed = 1;
-  s.n = M.rows();
-  s.A = &input;
-  std::vector<Long> perm;
-  switch (s.ordering) {
+// Chooses CHOLMOD's ordering: the level-set dissection of `pattern` given,
+// or CHOLMOD's own AMD or METIS. Returns the given permutation (empty if none).
+std::vector<Long> choose_ordering(Ordering ordering, const SparseMatrix& pattern, cholmod_common& c) {
+  c.nmethods = 1;
+  switch (ordering) {
     case Ordering::NestedDissection: {
-      const std::vector<int> p = level_set_nested_dissection(M);
-      perm.assign(p.begin(), p.end());
       // The level-set dissection fills like AMD on the generated disks but
       // 1.2x more on scanned meshes (max-planck: nnz(L) 39.8M vs 33.0M).
       // Letting CHOLMOD also try AMD and keep the smaller fill (nmethods = 2,
       // method[1] = AMD) changes the flipped-triangle count of a regression
       // row (stanford-bunny, free holes: 4 -> 5, a rounding-level fold), so
       // it waits for that table to tolerate rounding.
-      s.c.nmethods = 1;
-      s.c.method[0].ordering = CHOLMOD_GIVEN;
-      break;
+      c.method[0].ordering = CHOLMOD_GIVEN;
+      const std::vector<int> p = level_set_nested_dissection(pattern);
+      return std::vector<Long>(p.begin(), p.end());
     }
-    case Ordering::AMD: s.c.nmethods = 1; s.c.method[0].ordering = CHOLMOD_AMD; break;
-    case Ordering::METIS: s.c.nmethods = 1; s.c.method[0].ordering = CHOLMOD_METIS; break;
+    case Ordering::AMD: c.method[0].ordering = CHOLMOD_AMD; break;
+    case Ordering::METIS: c.method[0].ordering = CHOLMOD_METIS; break;
   }
+  return {};
+}
+
+bool CholmodFactor::factor(const SparseMatrix& input, Structure structure) {
+  Impl& s = *impl_;
+  if (s.L) cholmod_l_free_factor(&s.L, &s.c);
+  const auto t0 = std::chrono::steady_clock::now();
+  const SparseMatrix copy = input.isCompressed() ? SparseMatrix() : compressed(input);
+  const SparseMatrix& A = input.isCompressed() ? input : copy;
+  s.A = &input;
+  s.abs_A = SparseMatrix();
+  s.abs_A_once = std::make_unique<std::once_flag>();
+  ComplexSparse M;
+  s.complex = structure == Structure::ComplexPairs && hermitian_from_real_form(A, M);
+  s.n = s.complex ? M.rows() : A.rows();
+  std::vector<Long> perm =
+      s.complex ? choose_ordering(s.ordering, SparseMatrix(M.cwiseAbs()), s.c) : choose_ordering(s.ordering, A, s.c);
+  if (s.complex) M = ComplexSparse(M.triangularView<Eigen::Lower>());  // all CHOLMOD reads; half the memory
+  LongPattern pattern = s.complex ? LongPattern(M) : LongPattern(A);
+  cholmod_sparse cs = s.complex ? symmetric_view(s.n, M.nonZeros(), pattern, M.valuePtr(), CHOLMOD_COMPLEX)
+                                : symmetric_view(s.n, A.nonZeros(), pattern, A.valuePtr(), CHOLMOD_REAL);
   s.L = cholmod_l_analyze_p(&cs, perm.empty() ? nullptr : perm.data(), nullptr, 0, &s.c);
   if (!s.L) throw_numerical("CHOLMOD analysis failed (status " + std::to_string(s.c.status) + ")");
   analyse_ms = ms_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
   int ok;
   {
-    DynamicOpenMPTeams teams;
+    SolverThreads threads;
     ok = cholmod_l_factorize(&cs, s.L, &s.c);
   }
   factor_ms = ms_since(t1);
@@ -153,19 +156,27 @@ bool CholmodFactor::factor(const SparseMatrix& input) {
 
 namespace {
 
-Eigen::MatrixXd cholmod_solve(cholmod_factor* L, cholmod_common& c, const Eigen::MatrixXd& B) {
-  Eigen::MatrixXd X(B.rows(), B.cols());
+// A X = B with the factor L, B given (and X returned) in the real form; a
+// complex factor solves the complex form (complex_form.h).
+Eigen::MatrixXd cholmod_solve(cholmod_factor* L, cholmod_common& c, bool complex, const Eigen::MatrixXd& B) {
+  const Eigen::MatrixXcd Z = complex ? complex_from_real_form(B) : Eigen::MatrixXcd();
   cholmod_dense b{};
-  b.nrow = B.rows();
+  b.nrow = complex ? Z.rows() : B.rows();
   b.ncol = B.cols();
   b.nzmax = b.nrow * b.ncol;
-  b.d = B.rows();
-  b.x = const_cast<double*>(B.data());
-  b.xtype = CHOLMOD_REAL;
+  b.d = b.nrow;
+  b.x = complex ? static_cast<void*>(const_cast<std::complex<double>*>(Z.data()))
+                : static_cast<void*>(const_cast<double*>(B.data()));
+  b.xtype = complex ? CHOLMOD_COMPLEX : CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
   cholmod_dense* x = cholmod_l_solve(CHOLMOD_A, L, &b, &c);
   if (!x) throw_numerical("CHOLMOD solve failed (status " + std::to_string(c.status) + ")");
-  std::copy(static_cast<double*>(x->x), static_cast<double*>(x->x) + X.size(), X.data());
+  Eigen::MatrixXd X;
+  if (complex) {
+    X = real_form(Eigen::Map<const Eigen::MatrixXcd>(static_cast<std::complex<double>*>(x->x), b.nrow, b.ncol));
+  } else {
+    X = Eigen::Map<const Eigen::MatrixXd>(static_cast<double*>(x->x), b.nrow, b.ncol);
+  }
   cholmod_l_free_dense(&x, &c);
   return X;
 }
@@ -191,7 +202,8 @@ Eigen::MatrixXd extended_residual(const SparseMatrix& A, const Eigen::MatrixXd& 
 Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& B, bool refine_always) const {
   Impl& s = *impl_;
   if (!s.L) throw_numerical("internal: CHOLMOD solve before factor");
-  Eigen::MatrixXd X = cholmod_solve(s.L, s.c, B);
+  SolverThreads threads;  // the triangular solves' BLAS calls are small
+  Eigen::MatrixXd X = cholmod_solve(s.L, s.c, s.complex, B);
   // Iterative refinement. Fixed-boundary systems: only while the
   // componentwise backward error max_i |B - A X|_i / (|A| |X| + |B|)_i is
   // above a few ulps (each step costs a product and a full solve, 0.3 s at
@@ -209,25 +221,36 @@ Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& B, bool refine_alway
   for (int step = 0; step < 5; ++step) {
     const Eigen::MatrixXd R = refine_always ? extended_residual(A, X, B) : Eigen::MatrixXd(B - A * X);
     if (!refine_always) {
-      const Eigen::MatrixXd scale = A.cwiseAbs() * X.cwiseAbs() + B.cwiseAbs();
+      std::call_once(*s.abs_A_once, [&] { s.abs_A = A.cwiseAbs(); });  // once per factorization
+      const Eigen::MatrixXd scale = s.abs_A * X.cwiseAbs() + B.cwiseAbs();
       double omega = 0;
       for (Eigen::Index k = 0; k < R.size(); ++k)
         if (scale.data()[k] > 0) omega = std::max(omega, std::abs(R.data()[k]) / scale.data()[k]);
       if (!(omega > 16 * std::numeric_limits<double>::epsilon())) break;
     }
-    const Eigen::MatrixXd D = cholmod_solve(s.L, s.c, R);
+    const Eigen::MatrixXd D = cholmod_solve(s.L, s.c, s.complex, R);
     X += D;
     if (refine_always) {
-      // Stop below 1e-13 of X, or when a step no longer halves the
+      // Stop below 1e-12 of X, or when a step no longer halves the
       // correction: it has reached the noise of the solves (about 1e-12 at
-      // 300k vertices) and further steps only cost time.
+      // 300k vertices; the next correction measured there was 2.3e-12 after
+      // 7.9e-13, i.e. noise) and further steps only cost a complex solve
+      // each. Each step shrinks the error by about the ratio of successive
+      // corrections (1e-3 to 1e-4 here), so X after a correction below
+      // 1e-12 is far within the natural map's 1e-11 accuracy budget.
       const double correction = D.cwiseAbs().maxCoeff() / X.cwiseAbs().maxCoeff();
-      if (!(correction > 1e-13) || !(correction < 0.5 * previous_correction)) break;
+      if (!(correction > 1e-12) || !(correction < 0.5 * previous_correction)) break;
       previous_correction = correction;
     }
   }
   return X;
 }
+
+bool CholmodFactor::complex() const { return impl_->complex; }
+
+// CHOLMOD counts the flops of the real factorization on L's pattern; a
+// complex multiply-add is four real ones.
+double CholmodFactor::flops() const { return impl_->L ? impl_->c.fl * (impl_->complex ? 4 : 1) : 0; }
 
 double CholmodFactor::factor_nonzeros() const {
   return impl_->L ? impl_->c.lnz : 0;
@@ -278,7 +301,10 @@ bool UmfpackFactor::factor(const SparseMatrix& input) {
   if (status != UMFPACK_OK) throw_numerical("UMFPACK analysis failed (status " + std::to_string(status) + ")");
   analyse_ms = ms_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
-  status = umfpack_dl_numeric(s.p.data(), s.i.data(), s.A.valuePtr(), symbolic, &s.numeric, s.control, s.info);
+  {
+    SolverThreads threads;
+    status = umfpack_dl_numeric(s.p.data(), s.i.data(), s.A.valuePtr(), symbolic, &s.numeric, s.control, s.info);
+  }
   umfpack_dl_free_symbolic(&symbolic);
   factor_ms = ms_since(t1);
   if (status == UMFPACK_WARNING_singular_matrix) {
@@ -305,6 +331,8 @@ Eigen::MatrixXd UmfpackFactor::solve(const Eigen::MatrixXd& B, bool transposed) 
   }
   return X;
 }
+
+double UmfpackFactor::flops() const { return impl_->numeric ? impl_->info[UMFPACK_FLOPS] : 0; }
 
 double UmfpackFactor::factor_nonzeros() const {
   return impl_->numeric ? impl_->info[UMFPACK_LNZ] + impl_->info[UMFPACK_UNZ] : 0;

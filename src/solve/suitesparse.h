@@ -22,6 +22,12 @@ enum class Ordering {
 };
 std::string ordering_name(Ordering o);
 
+// What CholmodFactor factors.
+enum class Structure {
+  Real,          // the matrix as given
+  ComplexPairs,  // its complex Hermitian form when it is [K -B; B K] (complex_form.h), else as given
+};
+
 // Supernodal Cholesky of a symmetric positive definite matrix (both
 // triangles stored; the lower one is used).
 class CholmodFactor {
@@ -32,7 +38,9 @@ class CholmodFactor {
   CholmodFactor& operator=(const CholmodFactor&) = delete;
   // False when A is not positive definite. A must outlive the solves (they
   // refine with it).
-  bool factor(const SparseMatrix& A);
+  bool factor(const SparseMatrix& A, Structure structure = Structure::Real);
+  bool complex() const;  // the complex form was factored
+  double flops() const;  // of the numeric factorization, from the analysis
   // refine_always: iterative refinement until the correction is negligible
   // (ill-conditioned systems); otherwise only when the backward error is
   // above rounding level.
@@ -58,6 +66,7 @@ class UmfpackFactor {
   // A X = B, or A^T X = B with the same factors.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B, bool transposed = false) const;
   double factor_nonzeros() const;  // nnz(L) + nnz(U)
+  double flops() const;            // of the numeric factorization, as UMFPACK counts them
   double analyse_ms = 0, factor_ms = 0;
 
  private:

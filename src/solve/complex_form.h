@@ -1,0 +1,27 @@
+// The natural map's system as an n x n complex Hermitian matrix (issue 14;
+// docs/maths.md §3.6). With z = u + i v the energy E_D - A is z^H M z for
+// M = K + iB, K the cotangent matrix and B the antisymmetric boundary
+// coupling of the area term; its real form, the 2n x 2n matrix the
+// Parameterizer assembles in blocked ordering, is A = [K -B; B K]. Factoring
+// M instead of A orders and analyses the n-vertex graph (the conformal map's)
+// rather than a 2n graph, and the complex supernodal kernels do the work in
+// half the real flops (see docs/benchmarks.md).
+#pragma once
+
+#include <complex>
+
+#include "intrinsic/linear_solver.h"
+
+namespace intrinsic::detail {
+
+using ComplexSparse = Eigen::SparseMatrix<std::complex<double>>;
+
+// M = K + iB (both triangles) when A (2m x 2m) is exactly [K -B; B K] with K
+// symmetric and B antisymmetric; false (M untouched) otherwise.
+bool hermitian_from_real_form(const SparseMatrix& A, ComplexSparse& M);
+
+// Rows [top; bottom] (2m x k) as top + i bottom (m x k), and back.
+Eigen::MatrixXcd complex_from_real_form(const Eigen::MatrixXd& X);
+Eigen::MatrixXd real_form(const Eigen::MatrixXcd& Z);
+
+}  // namespace intrinsic::detail

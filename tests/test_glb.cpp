@@ -1,0 +1,138 @@
+// glTF 2.0 binary output (issue 13 item 6): the atlas of a closed surface
+// written as .glb and read back with tinygltf's own loader; every corner's
+// position and texture coordinate must equal the atlas result (as float32,
+// v flipped to glTF's top-left origin), vertices split exactly where corners
+// of one vertex carry different texture coordinates; no file on failure.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+
+// The same configuration as src/io/glb_writer.cpp, which holds the implementation.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include "cli_support.h"
+#include "intrinsic/atlas.h"
+#include "intrinsic/generate.h"
+#include "intrinsic/io.h"
+#include "test_support.h"
+
+namespace intrinsic {
+namespace {
+
+tinygltf::Model load_glb(const std::string& path) {
+  const std::string bytes = test::slurp(path);
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool ok = loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                              static_cast<unsigned>(bytes.size()));
+  EXPECT_TRUE(ok) << err;
+  EXPECT_TRUE(err.empty()) << err;
+  return model;
+}
+
+template <class T>
+const T* accessor_data(const tinygltf::Model& model, int accessor) {
+  const tinygltf::Accessor& a = model.accessors.at(accessor);
+  const tinygltf::BufferView& v = model.bufferViews.at(a.bufferView);
+  EXPECT_EQ(v.byteStride, 0u);  // tightly packed
+  return reinterpret_cast<const T*>(model.buffers.at(v.buffer).data.data() + v.byteOffset + a.byteOffset);
+}
+
+TEST(Glb, AtlasReadsBackEqual) {
+  GenerateOptions g;
+  g.rings = 8;
+  const MeshData m = generate_torus(g);
+  const AtlasResult r = atlas(m);
+  test::TempDir dir;
+  write_glb(dir / "a.glb", m.V, m.F, r.UV, r.FUV);
+  const tinygltf::Model model = load_glb(dir / "a.glb");
+  ASSERT_EQ(model.meshes.size(), 1u);
+  ASSERT_EQ(model.meshes[0].primitives.size(), 1u);
+  const tinygltf::Primitive& p = model.meshes[0].primitives[0];
+  EXPECT_EQ(p.mode, TINYGLTF_MODE_TRIANGLES);
+  const tinygltf::Accessor& ia = model.accessors.at(p.indices);
+  ASSERT_EQ(ia.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+  ASSERT_EQ(ia.count, static_cast<size_t>(3 * m.F.rows()));
+  const tinygltf::Accessor& pa = model.accessors.at(p.attributes.at("POSITION"));
+  const tinygltf::Accessor& ta = model.accessors.at(p.attributes.at("TEXCOORD_0"));
+  // As many glTF vertices as distinct (vertex, texture coordinate) corners.
+  std::set<std::pair<int, int>> corners;
+  for (int f = 0; f < m.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) corners.insert({m.F(f, c), r.FUV(f, c)});
+  ASSERT_EQ(pa.count, corners.size());
+  ASSERT_EQ(ta.count, corners.size());
+  EXPECT_GT(corners.size(), static_cast<size_t>(m.V.rows()));  // a closed surface has seams
+  const auto* idx = accessor_data<std::uint32_t>(model, p.indices);
+  const auto* pos = accessor_data<float>(model, p.attributes.at("POSITION"));
+  const auto* tex = accessor_data<float>(model, p.attributes.at("TEXCOORD_0"));
+  for (int f = 0; f < m.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t i = idx[3 * f + c];
+      ASSERT_LT(i, pa.count);
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(pos[3 * i + k], static_cast<float>(m.V(m.F(f, c), k)));
+      EXPECT_EQ(tex[2 * i], static_cast<float>(r.UV(r.FUV(f, c), 0)));
+      EXPECT_EQ(tex[2 * i + 1], static_cast<float>(1 - r.UV(r.FUV(f, c), 1)));
+    }
+  ASSERT_EQ(pa.minValues.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(pa.minValues[k], static_cast<float>(m.V.col(k).minCoeff()));
+    EXPECT_EQ(pa.maxValues[k], static_cast<float>(m.V.col(k).maxCoeff()));
+  }
+}
+
+TEST(Glb, FailuresLeaveNoFile) {
+  const MatrixX3d V = (MatrixX3d(3, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0).finished();
+  const MatrixX3i F = (MatrixX3i(1, 3) << 0, 1, 2).finished();
+  const MatrixX2d UV = (MatrixX2d(3, 2) << 0, 0, 1, 0, 0, 1).finished();
+  test::TempDir dir;
+  test::expect_error([&] { write_glb(dir / "x.glb", V, F, UV, (MatrixX3i(1, 3) << 0, 1, 3).finished()); },
+                     ErrorKind::Input, "out of range");
+  MatrixX3d huge = V;
+  huge(1, 0) = 1e300;
+  test::expect_error([&] { write_glb(dir / "x.glb", huge, F, UV, F); }, ErrorKind::Input, "32-bit float");
+  test::expect_error([&] { write_glb(dir / "no/such/dir/x.glb", V, F, UV, F); }, ErrorKind::Output, "");
+  EXPECT_TRUE(std::filesystem::is_empty(std::string(dir / "")));
+}
+
+TEST(Glb, AtlasCliWritesGlb) {
+  test::TempDir dir;
+  const std::string in = test::shared_mesh("assets/teapot.obj");
+  const auto r = test::run_cli("atlas " + in + " -o " + (dir / "t.glb") + " -q", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const MeshData m = read_mesh(in);
+  const tinygltf::Model model = load_glb(dir / "t.glb");
+  ASSERT_EQ(model.meshes.size(), 1u);
+  EXPECT_EQ(model.accessors.at(model.meshes[0].primitives[0].indices).count, static_cast<size_t>(3 * m.F.rows()));
+  const auto bad = test::run_cli("atlas " + in + " -o " + (dir / "t.glb.gz") + " -q", dir);
+  EXPECT_NE(bad.code, 0);
+  EXPECT_FALSE(std::filesystem::exists(std::string(dir / "t.glb.gz")));
+}
+
+TEST(Glb, ParamWritesGlbWithOneUvPerVertex) {
+  test::TempDir dir;
+  const std::string in = test::shared_mesh("cat_head.obj");
+  const auto r = test::run_cli("param " + in + " -o " + (dir / "p.glb") + " -q", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(test::run_cli("param " + in + " -o " + (dir / "p.obj") + " -q", dir).code, 0);
+  const MeshData obj = read_mesh(dir / "p.obj");
+  const tinygltf::Model model = load_glb(dir / "p.glb");
+  const tinygltf::Primitive& p = model.meshes.at(0).primitives.at(0);
+  ASSERT_EQ(model.accessors.at(p.attributes.at("POSITION")).count, static_cast<size_t>(obj.V.rows()));
+  const auto* idx = accessor_data<std::uint32_t>(model, p.indices);
+  const auto* tex = accessor_data<float>(model, p.attributes.at("TEXCOORD_0"));
+  for (int f = 0; f < obj.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      // Without seams the glTF vertices are the mesh's, in order of first use.
+      const std::uint32_t i = idx[3 * f + c];
+      EXPECT_NEAR(tex[2 * i], obj.TC(obj.FTC(f, c), 0), 1e-6);
+      EXPECT_NEAR(tex[2 * i + 1], 1 - obj.TC(obj.FTC(f, c), 1), 1e-6);
+    }
+}
+
+}  // namespace
+}  // namespace intrinsic
