@@ -67,12 +67,16 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
   j["splits"] = r.splits;
   const AtlasSplits& sr = r.split_reasons;
   j["split_reasons"] = {{"not_disk", sr.not_disk}, {"refused", sr.refused}, {"solve_failed", sr.solve_failed},
-                        {"flipped", sr.flipped}, {"boundary_crossing", sr.boundary_crossing}, {"sparse", sr.sparse}};
+                        {"flipped", sr.flipped}, {"boundary_crossing", sr.boundary_crossing}, {"sparse", sr.sparse}, {"stretch", sr.stretch}};
   j["utilization"] = r.utilization;
+  j["stretch_l2_mean"] = r.stretch_l2_mean;
   j["flipped"] = r.flipped;
   j["overlapping"] = r.overlapping;
   j["resolution"] = o.resolution;
   j["padding"] = o.padding;
+  j["max_stretch"] = o.max_stretch;
+  j["max_charts"] = o.max_charts;
+  j["seam_edges"] = o.seams.size();
   j["cleaning"] = {{"degenerate_faces", r.cleaning.degenerate_faces},
                    {"nonmanifold_edges", r.cleaning.nonmanifold_edges},
                    {"nonmanifold_vertices", r.cleaning.nonmanifold_vertices},

@@ -16,7 +16,7 @@ namespace intrinsic::app {
 namespace {
 
 struct AtlasArgs {
-  std::string input, output, report;
+  std::string input, output, report, seams;
   AtlasOptions options;
   bool quiet = false;
   std::int64_t max_vertices = ReadOptions().max_vertices;
@@ -33,13 +33,15 @@ int run_atlas(const AtlasArgs& a) {
   ro.max_vertices = a.max_vertices;
   ro.max_faces = faces_for_vertices(ro.max_vertices);
   const MeshData data = read_mesh(a.input, ro);
+  AtlasOptions options = a.options;
+  if (!a.seams.empty()) options.seams = read_seams_file(a.seams, data);
   const double read_ms = elapsed_ms(t0);
-  const AtlasResult r = atlas(data, a.options);
+  const AtlasResult r = atlas(data, options);
   const auto t1 = std::chrono::steady_clock::now();
   if (ext == ".glb") write_glb(a.output, data.V, data.F, r.UV, r.FUV);  // vertices split at seams
   else write_atlas_obj(a.output, data, r);
   const double write_ms = elapsed_ms(t1);
-  nlohmann::json j = atlas_report(data, a.options, r);
+  nlohmann::json j = atlas_report(data, options, r);
   j["input"] = a.input;
   j["output"] = a.output;
   j["timings_ms"] = {{"read", read_ms},       {"clean", r.timings.clean_ms}, {"segment", r.timings.segment_ms},
@@ -76,7 +78,18 @@ void register_atlas(CLI::App& app, Runner& run) {
       ->check(CLI::Range(1.0, 180.0))
       ->capture_default_str();
   cmd->add_option("--min-chart-faces", a->options.min_chart_faces,
-                  "Merge smaller charts into a neighbour when the result stays valid (0: never)")
+                  "Charts with fewer faces may merge into a neighbour up to its own stretch (0: no merging)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--seams", a->seams,
+                  "Cut exactly these edges (one 'i j' per line, 0-based vertex indices); charts are the pieces "
+                  "between them, split only where validity needs");
+  cmd->add_option("--max-stretch", a->options.max_stretch,
+                  "Merge neighbouring charts while the union's area-weighted L2 stretch (Sander) stays below this")
+      ->check(CLI::Range(1.0, 100.0))
+      ->capture_default_str();
+  cmd->add_option("--max-charts", a->options.max_charts,
+                  "Merge further (past --max-stretch, never past validity) down to this many charts (0: no limit)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--weld", a->options.weld,

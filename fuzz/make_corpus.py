@@ -137,6 +137,20 @@ def main():
     }
     for k, v in b.items():
         write("boundary", k, v)
+    # Seams files for fuzz_seams' mesh (the same 5 x 5 grid without the quad
+    # at (1, 1); faces (a, a+1, a+6) and (a, a+6, a+5)).
+    sm = {
+        "row.txt": "# across the grid\n5 6\n6 7\n7 8\n8 9\n",
+        "slit.txt": "0 6\n12 18  # diagonal\n\n",
+        "loop.txt": "6 7\n7 12\n12 11\n11 6\n",
+        "repeated.txt": "0 1\n1 0\n",
+        "not_edge.txt": "0 2\n",
+        "out_of_range.txt": "0 25\n",
+        "malformed.txt": "0 x\n1\n",
+        "empty.txt": "# nothing\n",
+    }
+    for k, v in sm.items():
+        write("seams", k, v)
     # Constraint files for fuzz_constraints' mesh: the 5 x 5 grid without the
     # quad at (1, 1) (vertex y * 5 + x, 30 faces; vertices 6, 7, 11, 12 on the
     # hole, the rest of rows and columns 1-3 interior).

@@ -10,6 +10,7 @@
 // per-corner UV indices.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "intrinsic/mesh_data.h"
@@ -29,18 +30,26 @@ enum class ChartMethod {
 };
 const char* chart_method_name(ChartMethod m);  // "natural", "triangle"
 
+// An edge the user wants cut (`--seams FILE`): two vertex indices of the input.
+struct SeamEdge {
+  int a = 0, b = 0;
+};
+
 struct AtlasOptions {
   Segmentation segmentation = Segmentation::NormalCones;
   double max_normal_deviation_deg = 60;  // NormalCones: face normal vs the chart's mean normal
   double sharp_angle_deg = 70;           // dihedral angle above which an edge is always a seam
-  // Charts with fewer faces are merged into a neighbour when the union is
-  // valid and its mean L2 stretch (Sander) stays below max_stretch (or the
-  // neighbour's own). 0: no merging.
+  // The distortion bound: a chart whose area-weighted mean L2 stretch
+  // (Sander) exceeds it is split, and neighbouring charts are merged while
+  // the union is valid and stays within it.
+  double max_stretch = 1.05;
+  // Charts with fewer faces may be merged up to their neighbour's own
+  // stretch when that is above max_stretch. 0: no merging at all (unless
+  // max_charts asks for it).
   int min_chart_faces = 20;
-  double max_stretch = 1.1;
   // Texture size the padding is measured in (texels of the [0,1]^2 square).
   int resolution = 1024;
-  double padding = 2;  // texels between charts and around the border
+  double padding = 2;  // texels between charts; half of it (rounded up to whole texels) around the border
   // A face with area below this fraction of its longest edge squared (or a
   // repeated vertex) is degenerate: it gets UVs but takes no part in a solve.
   double degenerate_ratio = 1e-12;
@@ -49,6 +58,14 @@ struct AtlasOptions {
   // keeps the input's vertices, and welded corners share texture
   // coordinates. 0: no welding.
   double weld = 0;
+  // The user's seams: every listed edge is cut (a chart boundary in the
+  // output); charts are then the pieces between seams, split only where a
+  // piece is not a disk or its map is invalid (no stretch or packing splits).
+  std::vector<SeamEdge> seams;
+  // At most this many charts (0: no limit): after the stretch-bounded merges,
+  // neighbouring charts are merged, smallest first, past max_stretch while
+  // the union stays valid. A bound that validity cannot meet is exceeded.
+  int max_charts = 0;
 };
 
 struct AtlasChart {
@@ -81,6 +98,7 @@ struct AtlasSplits {
   int flipped = 0;            // a flipped or collapsed triangle, or an interior vertex wound twice
   int boundary_crossing = 0;  // the boundary crosses itself
   int sparse = 0;             // valid, but filling under 15% of the square on its box's longer side (64 faces or more)
+  int stretch = 0;            // valid, but its mean L2 stretch above max_stretch
 };
 
 struct AtlasTimings {
@@ -100,11 +118,22 @@ struct AtlasResult {
   int splits = 0;          // charts split: not disks, flipped, boundary crossing, or too sparse for packing
   AtlasSplits split_reasons;
   double utilization = 0;  // UV area of the charts / area of [0,1]^2
+  // Area-weighted mean over all charts of the per-triangle L2 stretch
+  // (Sander; docs/maths.md §9): every chart has UV area = 3D area before
+  // packing, so this is the whole atlas's figure at one texel density.
+  double stretch_l2_mean = 1;
   int flipped = 0;         // non-degenerate faces with signed UV area <= 0 in their chart's orientation (0 by construction)
-  int overlapping = 0;     // charts whose packed boxes meet another's (0 by construction)
+  int overlapping = 0;     // charts whose texel masks meet another's (0 by construction of the packer)
   AtlasCleaning cleaning;
   AtlasTimings timings;
 };
+
+// Seams files (src/io/seams_file.cpp): one edge `i j` per line, 0-based
+// vertex indices in input order, `#` comments. Throws Error(Input) naming the
+// file and line for a malformed line, an out-of-range index, a pair that is
+// not an edge of `mesh`, and for a file with no edge.
+std::vector<SeamEdge> parse_seams_text(const std::string& text, const std::string& name, const MeshData& mesh);
+std::vector<SeamEdge> read_seams_file(const std::string& path, const MeshData& mesh);
 
 // The atlas of `input` (faces as given: triangles). Throws Error(Input) for
 // an empty mesh, an out-of-range index or a non-finite coordinate,

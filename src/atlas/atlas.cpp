@@ -5,9 +5,11 @@
 // one Parameterizer (chart_flatten.cpp).
 #include <chrono>
 #include <deque>
+#include <unordered_set>
 
 #include "atlas/atlas_internal.h"
 #include "intrinsic/error.h"
+#include "util/parallel_for.h"
 
 namespace intrinsic {
 
@@ -27,10 +29,38 @@ void check_options(const AtlasOptions& o) {
   if (!(o.padding >= 0 && o.padding < o.resolution / 4.0))
     throw_usage("the padding must be at least 0 and less than a quarter of the resolution");
   if (o.min_chart_faces < 0) throw_usage("the minimum chart size must be at least 0 faces");
-  if (!(o.max_stretch >= 1)) throw_usage("the stretch bound for merging must be at least 1");
+  if (!(o.max_stretch >= 1)) throw_usage("the stretch bound must be at least 1");
+  if (o.max_charts < 0) throw_usage("the chart limit must be at least 0 (0: no limit)");
   if (!(o.degenerate_ratio >= 0 && o.degenerate_ratio < 1)) throw_usage("the degenerate ratio must be in [0, 1)");
   if (!(o.weld >= 0 && o.weld < 1))
     throw_usage("the weld distance must be in [0, 1) (a fraction of the bounding box diagonal)");
+}
+
+// Cuts the user's seam edges for the computation (no face is glued across
+// one). Throws Error(Input) for an index out of range or a pair that is not
+// an edge of a face.
+void cut_seams(const MeshData& input, const std::vector<SeamEdge>& seams, detail::CleanMesh& clean) {
+  auto key = [](int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  };
+  std::unordered_set<std::uint64_t> wanted, found;
+  for (const SeamEdge& e : seams) {
+    if (e.a < 0 || e.b < 0 || e.a >= input.V.rows() || e.b >= input.V.rows())
+      throw_input("seam edge " + std::to_string(e.a) + " " + std::to_string(e.b) + ": vertex out of range (the mesh has " +
+                  std::to_string(input.V.rows()) + " vertices)");
+    wanted.insert(key(e.a, e.b));
+  }
+  for (int f = 0; f < input.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const std::uint64_t k = key(input.F(f, c), input.F(f, (c + 1) % 3));
+      if (!wanted.count(k)) continue;
+      found.insert(k);
+      clean.glued[3 * f + c] = -1;
+    }
+  for (const SeamEdge& e : seams)
+    if (e.a == e.b || !found.count(key(e.a, e.b)))
+      throw_input("seam edge " + std::to_string(e.a) + " " + std::to_string(e.b) + " is not an edge of any face");
 }
 
 void count_split(detail::ChartStatus status, AtlasResult& r) {
@@ -43,32 +73,55 @@ void count_split(detail::ChartStatus status, AtlasResult& r) {
     case detail::ChartStatus::Flipped: ++s.flipped; break;
     case detail::ChartStatus::BoundaryCrossing: ++s.boundary_crossing; break;
     case detail::ChartStatus::Sparse: ++s.sparse; break;
+    case detail::ChartStatus::Stretch: ++s.stretch; break;
     case detail::ChartStatus::Valid: break;
   }
 }
 
+// Flattens one chart and checks it; a valid chart that would waste most of
+// its square (sparse, or a long thin strip) is reported Sparse when `sparse`
+// splits are wanted (not with the user's seams: those charts are theirs).
+detail::ChartStatus flatten_one(const MeshData& input, const detail::CleanMesh& clean, const std::vector<int>& faces,
+                                const AtlasOptions& options, detail::FlatChart& chart) {
+  chart.mesh = detail::chart_mesh(input, clean, faces);
+  chart.summary.component = clean.component[faces.front()];
+  detail::ChartStatus status = detail::flatten_chart(chart, options.degenerate_ratio);
+  if (status == detail::ChartStatus::Valid && options.seams.empty() && faces.size() >= 64 &&
+      detail::square_fill(chart) < 0.15)
+    status = detail::ChartStatus::Sparse;
+  if (status == detail::ChartStatus::Valid && options.seams.empty() && faces.size() > 1 &&
+      chart.summary.stretch_l2_mean > options.max_stretch)
+    status = detail::ChartStatus::Stretch;
+  return status;
+}
+
 // Flattens every chart, splitting invalid ones in two until all are valid.
+// Rounds: the charts of one round are solved in parallel (interleaved over
+// the cores, each chart's result in its own slot), so the order of the
+// result is that of a first-in first-out queue whatever the timing.
 std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::CleanMesh& clean,
-                                           std::vector<std::vector<int>> charts, double ratio, AtlasResult& r) {
-  std::deque<std::vector<int>> work(std::make_move_iterator(charts.begin()), std::make_move_iterator(charts.end()));
+                                           std::vector<std::vector<int>> work, const AtlasOptions& options,
+                                           AtlasResult& r) {
   std::vector<detail::FlatChart> done;
   while (!work.empty()) {
-    std::vector<int> faces = std::move(work.front());
-    work.pop_front();
-    detail::FlatChart chart;
-    chart.mesh = detail::chart_mesh(input, clean, faces);
-    chart.summary.component = clean.component[faces.front()];
-    detail::ChartStatus status = detail::flatten_chart(chart, ratio);
-    // A valid chart that would waste most of its square (sparse, or a long thin strip) is split for packing.
-    if (status == detail::ChartStatus::Valid && faces.size() >= 64 && detail::square_fill(chart) < 0.15)
-      status = detail::ChartStatus::Sparse;
-    if (status == detail::ChartStatus::Valid) {
-      done.push_back(std::move(chart));
-      continue;
+    const std::int64_t n = static_cast<std::int64_t>(work.size());
+    std::vector<detail::FlatChart> flat(work.size());
+    std::vector<detail::ChartStatus> status(work.size());
+    const int parts = detail::parallel_parts(n, 1);
+    detail::parallel_for_parts(parts, parts, [&](int part, std::int64_t, std::int64_t) {
+      for (std::int64_t i = part; i < n; i += parts) status[i] = flatten_one(input, clean, work[i], options, flat[i]);
+    });
+    std::vector<std::vector<int>> next;
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (status[i] == detail::ChartStatus::Valid) {
+        done.push_back(std::move(flat[i]));
+        continue;
+      }
+      if (work[i].size() == 1) throw_numerical("face " + std::to_string(work[i][0]) + " could not be laid flat");
+      count_split(status[i], r);
+      for (std::vector<int>& half : detail::split_in_two(clean, work[i])) next.push_back(std::move(half));
     }
-    if (faces.size() == 1) throw_numerical("face " + std::to_string(faces[0]) + " could not be laid flat");
-    count_split(status, r);
-    for (std::vector<int>& half : detail::split_in_two(clean, faces)) work.push_back(std::move(half));
+    work = std::move(next);
   }
   return done;
 }
@@ -117,7 +170,9 @@ AtlasResult atlas(const MeshData& given, const AtlasOptions& options) {
   MeshData welded_mesh;
   if (options.weld > 0) welded_mesh = detail::weld_vertices(given, options.weld, welded);
   const MeshData& input = options.weld > 0 ? welded_mesh : given;
-  const detail::CleanMesh clean = detail::clean_mesh(input, options);
+  detail::CleanMesh clean = detail::clean_mesh(input, options);
+  // Seams name the user's vertices; faces keep their rows through welding.
+  if (!options.seams.empty()) cut_seams(given, options.seams, clean);
   r.cleaning = clean.cleaning;
   r.cleaning.welded_vertices = welded;
   r.components = clean.components;
@@ -126,19 +181,24 @@ AtlasResult atlas(const MeshData& given, const AtlasOptions& options) {
   std::vector<std::vector<int>> segments = detail::segment(input, clean, options);
   r.timings.segment_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
-  std::vector<detail::FlatChart> charts = flatten_all(input, clean, std::move(segments), options.degenerate_ratio, r);
+  std::vector<detail::FlatChart> charts = flatten_all(input, clean, std::move(segments), options, r);
   r.timings.flatten_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
-  if (options.min_chart_faces > 0) detail::merge_small_charts(input, clean, options, charts);
+  if ((options.seams.empty() && options.min_chart_faces > 0) || options.max_charts > 0)
+    detail::merge_charts(input, clean, options, charts);
   r.timings.merge_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
   r.utilization = detail::pack_charts(charts, options, r.overlapping);
   assemble(input, charts, r);
   r.face_reversed = clean.reversed;
+  double area = 0, stretch = 0;
   for (const detail::FlatChart& c : charts) {
     r.charts.push_back(c.summary);
     r.flipped += c.summary.flipped;
+    area += c.summary.area_3d;
+    stretch += c.summary.area_3d * c.summary.stretch_l2_mean;
   }
+  if (area > 0) r.stretch_l2_mean = stretch / area;
   r.timings.pack_ms = ms_since(t);
   r.timings.total_ms = ms_since(t0);
   return r;

@@ -46,11 +46,12 @@ struct ChartMesh {
   std::vector<int> faces;   // input faces, sorted
   std::vector<int> corner;  // per face corner (3 * k + c): local vertex
   MeshData data;            // local vertices (positions of their input vertex), faces oriented (reversed ones 0, 2, 1)
+  long open_edges = 0;      // half-edges not glued to another face of the chart: must all be boundary edges
 };
 ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces);
 
 // Why a chart cannot be shipped as it is.
-enum class ChartStatus { Valid, NotDisk, Refused, SolveFailed, Flipped, BoundaryCrossing, Sparse };
+enum class ChartStatus { Valid, NotDisk, Refused, SolveFailed, Flipped, BoundaryCrossing, Sparse, Stretch };
 
 struct FlatChart {
   ChartMesh mesh;
@@ -63,18 +64,20 @@ struct FlatChart {
 // simple boundary, every interior vertex wound once.
 ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio);
 
-// Merges charts with fewer than options.min_chart_faces faces into a
-// neighbour when the union flattens validly within options.max_stretch.
-void merge_small_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
-                        std::vector<FlatChart>& charts);
+// Merges neighbouring charts while the union flattens validly within
+// options.max_stretch (chart_merge.cpp), then past it down to
+// options.max_charts when that is set.
+void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
+                  std::vector<FlatChart>& charts);
 
 // The chart's area over the square on the longer side of its smallest
 // bounding box (UV area = 3D area): low for sparse or long thin charts.
 double square_fill(const FlatChart& chart);
 
-// Scales all charts by one factor, rotates and shelf-packs their boxes with
-// padding and fits the layout into [0,1]^2 (UVs changed in place). Returns
-// the utilization; `overlapping` counts charts whose boxes meet.
+// Scales all charts by one factor, turns them and packs their texel masks
+// with padding on a bitmap (atlas_packing.cpp), and fits the layout into
+// [0,1]^2 (UVs changed in place). Returns the utilization; `overlapping` is
+// 0: a mask is only placed where its dilated texels meet no taken texel.
 double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping);
 
 }  // namespace intrinsic::detail

@@ -1,16 +1,22 @@
 // Packing (issue 13, "packing"): every chart already has UV area = 3D area
 // (one texel density for all); each is turned to its smallest bounding box
-// (whose side lies on a convex hull edge), then a quarter turn when taller
-// than wide; the boxes are packed bottom-left on a skyline (tallest first;
-// the strip width that gives the smallest square is chosen among a few) with
-// a gap of `padding` texels, and the layout is fitted into [0,1]^2 by one
-// similarity. (core/shelf_packing's shelves left about a fifth more empty
-// space on the assets.)
+// (whose side lies on a convex hull edge). The charts are then packed by
+// rasterization, as xatlas does: each chart's texel mask (every texel its
+// triangles touch) is placed, largest first, at the position of a
+// `resolution`-wide bitmap that keeps the layout's square smallest (in any
+// of its four quarter turns: an L or C shape can then wrap another), where
+// its mask dilated by `padding` texels meets no texel already taken. The scale (texels per unit of surface) is the largest
+// for which every chart fits, found by bisection; the layout is then fitted
+// into [0,1]^2 by one similarity. Boxes alone (a skyline of rectangles) left
+// a third of the square empty on the assets; masks let small charts sit in
+// the concave parts of large ones.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <numeric>
 
 #include "atlas/atlas_internal.h"
-#include <numeric>
+#include "util/parallel_for.h"
 
 namespace intrinsic::detail {
 namespace {
@@ -64,76 +70,194 @@ void orient_chart(FlatChart& chart) {
   const double best_angle = smallest_box_angle(chart.UV, best_area);
   const Eigen::Matrix2d R = Eigen::Rotation2Dd(best_angle).toRotationMatrix();
   chart.UV = chart.UV * R.transpose();
-  Eigen::Vector2d size = chart.UV.colwise().maxCoeff() - chart.UV.colwise().minCoeff();
-  chart.summary.rotated = size.y() > size.x();
-  if (chart.summary.rotated) {
-    chart.UV.col(0).swap(chart.UV.col(1));
-    chart.UV.col(0) *= -1;  // a quarter turn (orientation kept)
-  }
+  if (!chart.UV.allFinite()) chart.UV.setZero();
   chart.UV.rowwise() -= chart.UV.colwise().minCoeff();
 }
 
-// Bottom-left skyline packing of boxes into a strip of width `width`:
-// each box, in the given order, goes where its top is lowest (then leftmost).
-// Returns the lower-left corners; `height` gets the strip height used.
-std::vector<Eigen::Vector2d> skyline(const std::vector<Eigen::Vector2d>& sizes, const std::vector<int>& order,
-                                     double width, double& height) {
-  struct Segment {
-    double x, y, w;
-  };
-  std::vector<Segment> sky{{0, 0, width}};
-  std::vector<Eigen::Vector2d> corner(sizes.size());
-  height = 0;
-  for (int b : order) {
-    const double w = sizes[b].x(), h = sizes[b].y();
-    size_t best = sky.size();
-    double best_y = INFINITY, base = 0;
-    for (size_t i = 0; i < sky.size(); ++i) {
-      if (sky[i].x + w > width * (1 + 1e-12)) break;
-      double y = 0;
-      for (size_t j = i; j < sky.size() && sky[j].x < sky[i].x + w; ++j) y = std::max(y, sky[j].y);
-      if (y + h < best_y) best_y = y + h, best = i, base = y;
-    }
-    // The box sits exactly on the skyline (base), not at best_y - h, which
-    // can round below it and overlap the box underneath by an ulp (fuzz_atlas
-    // found this with padding 0).
-    const double x = sky[best].x, y = base;
-    corner[b] = Eigen::Vector2d(x, y);
-    height = std::max(height, best_y);
-    // Replace the covered part of the skyline by the box's top.
-    std::vector<Segment> next;
-    for (const Segment& s : sky) {
-      if (s.x + s.w <= x || s.x >= x + w) {
-        next.push_back(s);
-        continue;
-      }
-      if (s.x < x) next.push_back({s.x, s.y, x - s.x});
-      if (next.empty() || next.back().x + next.back().w <= x) next.push_back({x, best_y, w});
-      if (s.x + s.w > x + w) next.push_back({x + w, s.y, s.x + s.w - x - w});
-    }
-    sky = std::move(next);
-  }
-  return corner;
+// A quarter turn counter-clockwise (orientation kept), corner back at the origin.
+MatrixX2d quarter_turn(const MatrixX2d& UV) {
+  MatrixX2d T(UV.rows(), 2);
+  T.col(0) = -UV.col(1);
+  T.col(1) = UV.col(0);
+  T.rowwise() -= T.colwise().minCoeff();
+  return T;
 }
 
-// The strip width whose skyline packing fits the smallest square; `side` gets that square's side.
-std::vector<Eigen::Vector2d> pack_square(const std::vector<Eigen::Vector2d>& sizes, double& side) {
-  double area = 0, widest = 0;
-  for (const Eigen::Vector2d& s : sizes) area += s.prod(), widest = std::max(widest, s.x());
-  std::vector<int> order(sizes.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return sizes[a].y() > sizes[b].y(); });
-  std::vector<Eigen::Vector2d> best;
-  side = INFINITY;
-  for (int k = 0; k < 12; ++k) {
-    const double width = std::max(widest, std::sqrt(area) * (1.0 + 0.04 * k));
-    double height = 0;
-    std::vector<Eigen::Vector2d> corner = skyline(sizes, order, width, height);
-    double used = 0;
-    for (size_t i = 0; i < sizes.size(); ++i) used = std::max(used, corner[i].x() + sizes[i].x());
-    if (std::max(used, height) < side) side = std::max(used, height), best = std::move(corner);
+// A chart's UVs in its four quarter turns, each with its corner at the origin.
+using Poses = std::array<MatrixX2d, 4>;
+
+// Texel spans of one row: [begin, end) pairs, sorted, disjoint.
+using Spans = std::vector<std::pair<int, int>>;
+
+// A chart rasterized at one scale: the texels its triangles touch, and the
+// same dilated by the padding (in the same frame, which starts `pad` texels
+// left of and below the chart's own texels).
+struct Mask {
+  int w = 0, h = 0;            // size of the dilated frame
+  std::vector<Spans> rows;     // dilated, per row of the frame
+  std::vector<Spans> own;      // undilated, per row of the frame
+  long texels = 0;             // undilated
+};
+
+// The x range of the triangle within the horizontal band [y0, y1]: the
+// extremes over its vertices inside the band and its edges' crossings of the
+// band's two lines (the part of a convex shape in a band is convex). False
+// when the triangle misses the band.
+bool band_range(const Eigen::Vector2d p[3], double y0, double y1, double& lo, double& hi) {
+  lo = INFINITY, hi = -INFINITY;
+  for (int e = 0; e < 3; ++e) {
+    const Eigen::Vector2d a = p[e], b = p[(e + 1) % 3];
+    if (a.y() >= y0 && a.y() <= y1) lo = std::min(lo, a.x()), hi = std::max(hi, a.x());
+    for (double y : {y0, y1})
+      if ((a.y() - y) * (b.y() - y) < 0) {
+        const double x = a.x() + (b.x() - a.x()) * (y - a.y()) / (b.y() - a.y());
+        lo = std::min(lo, x), hi = std::max(hi, x);
+      }
   }
-  return best;
+  return lo <= hi;
+}
+
+Spans spans_of(const std::vector<char>& row) {
+  Spans s;
+  for (int x = 0; x < static_cast<int>(row.size());) {
+    if (!row[x]) {
+      ++x;
+      continue;
+    }
+    const int b = x;
+    while (x < static_cast<int>(row.size()) && row[x]) ++x;
+    s.emplace_back(b, x);
+  }
+  return s;
+}
+
+// Rasterizes UV (corner at the origin) at `scale` texels per unit.
+Mask rasterize(const FlatChart& chart, const MatrixX2d& UV, double scale, int pad) {
+  const Eigen::Vector2d size = UV.colwise().maxCoeff().transpose() * scale;
+  const int cw = std::max(1, static_cast<int>(std::ceil(size.x()))), ch = std::max(1, static_cast<int>(std::ceil(size.y())));
+  Mask m;
+  m.w = cw + 2 * pad, m.h = ch + 2 * pad;
+  std::vector<std::vector<char>> grid(m.h, std::vector<char>(m.w, 0));
+  const MatrixX3i& F = chart.mesh.data.F;
+  for (int f = 0; f < F.rows(); ++f) {
+    Eigen::Vector2d p[3];
+    for (int c = 0; c < 3; ++c) p[c] = UV.row(F(f, c)).transpose() * scale;
+    const double ylo = std::min({p[0].y(), p[1].y(), p[2].y()}), yhi = std::max({p[0].y(), p[1].y(), p[2].y()});
+    const int y0 = std::clamp(static_cast<int>(std::floor(ylo)), 0, ch - 1), y1 = std::clamp(static_cast<int>(std::floor(yhi)), 0, ch - 1);
+    for (int y = y0; y <= y1; ++y) {
+      double lo = 0, hi = 0;
+      if (!band_range(p, y, y + 1, lo, hi)) continue;
+      // Every texel of the row the range touches (closed: a shared side counts).
+      const int x0 = std::clamp(static_cast<int>(std::floor(lo)), 0, cw - 1), x1 = std::clamp(static_cast<int>(std::floor(hi)), 0, cw - 1);
+      std::fill(grid[y + pad].begin() + x0 + pad, grid[y + pad].begin() + x1 + pad + 1, 1);
+    }
+  }
+  m.own.resize(m.h);
+  for (int y = 0; y < m.h; ++y) {
+    m.own[y] = spans_of(grid[y]);
+    for (const auto& s : m.own[y]) m.texels += s.second - s.first;
+  }
+  // Chebyshev dilation by `pad`: each row is the union of the rows within
+  // `pad`, every span widened by `pad` on both sides.
+  m.rows.resize(m.h);
+  Spans window;
+  for (int y = 0; y < m.h; ++y) {
+    window.clear();
+    for (int k = std::max(0, y - pad); k <= std::min(m.h - 1, y + pad); ++k)
+      for (const auto& s : m.own[k]) window.emplace_back(std::max(0, s.first - pad), std::min(m.w, s.second + pad));
+    std::sort(window.begin(), window.end());
+    for (const auto& s : window)
+      if (!m.rows[y].empty() && s.first <= m.rows[y].back().second)
+        m.rows[y].back().second = std::max(m.rows[y].back().second, s.second);
+      else
+        m.rows[y].push_back(s);
+  }
+  return m;
+}
+
+// The occupied texels of the layout, one bit each, rows of 64-bit words.
+struct Bitmap {
+  int side = 0, words = 0;
+  std::vector<std::uint64_t> bits;
+  explicit Bitmap(int s) : side(s), words((s + 63) / 64), bits(static_cast<size_t>(words) * s, 0) {}
+  // The last taken texel of row y in [a, b), or -1.
+  int last_taken(int y, int a, int b) const {
+    const std::uint64_t* r = &bits[static_cast<size_t>(y) * words];
+    for (int x = b - 1; x >= a;) {
+      const int w = x >> 6;
+      std::uint64_t word = r[w];
+      const int hi = x & 63;
+      if (hi < 63) word &= (std::uint64_t{2} << hi) - 1;
+      const int lo_bit = std::max(a, w << 6) - (w << 6);
+      word &= ~((std::uint64_t{1} << lo_bit) - 1);
+      if (word) return (w << 6) + 63 - __builtin_clzll(word);
+      x = (w << 6) - 1;
+    }
+    return -1;
+  }
+  void take(int y, int a, int b) {
+    std::uint64_t* r = &bits[static_cast<size_t>(y) * words];
+    for (int x = a; x < b; ++x) r[x >> 6] |= std::uint64_t{1} << (x & 63);
+  }
+};
+
+// The first x >= x0 in row band y where the mask's dilated texels meet no
+// taken texel (the mask's frame inside [0, limit)), or -1.
+int first_fit(const Bitmap& bm, const Mask& m, int y, int x0, int limit) {
+  int hot = 0;  // the row that last met a taken texel: tried first, it usually does again
+  for (int x = x0; x + m.w <= limit;) {
+    int next = -1;
+    for (int i = 0; i < m.h && next < 0; ++i) {
+      const int r = (hot + i) % m.h;
+      for (const auto& s : m.rows[r]) {
+        const int t = bm.last_taken(y + r, x + s.first, x + s.second);
+        if (t >= 0) {
+          next = t - s.first + 1, hot = r;
+          break;
+        }
+      }
+    }
+    if (next < 0) return x;
+    x = next;
+  }
+  return -1;
+}
+
+struct Placement {
+  int x = -1, y = -1;
+  int turns = 0;  // quarter turns counter-clockwise
+};
+
+// Places each chart (largest mask first) where the square the layout needs
+// grows least; false when one does not fit in the bitmap.
+bool place_all(const std::vector<std::array<Mask, 4>>& masks, const std::vector<int>& order, int side,
+               std::vector<Placement>& at, int& extent) {
+  Bitmap bm(side);
+  at.assign(masks.size(), {});
+  extent = 0;
+  for (int c : order) {
+    Placement best;
+    int best_extent = INT32_MAX;
+    // No placement needs a smaller square than this: stop when one reaches it.
+    const int floor = std::max({extent, masks[c][0].w, masks[c][0].h});
+    for (int turn = 0; turn < 4 && best_extent > floor; ++turn) {
+      const Mask& m = masks[c][turn];
+      for (int y = 0; y + m.h <= side && std::max(extent, y + m.h) < best_extent && best_extent > floor; ++y) {
+        // Only positions that would beat the best so far: x + w < best_extent.
+        const int x = first_fit(bm, m, y, 0, std::min<long>(side, static_cast<long>(best_extent) - 1));
+        if (x < 0) continue;
+        const int e = std::max({extent, x + m.w, y + m.h});
+        if (e < best_extent) best_extent = e, best = {x, y, turn};
+      }
+    }
+    if (best.x < 0) return false;
+    const Mask& m = masks[c][best.turns];
+    for (int r = 0; r < m.h; ++r)
+      for (const auto& s : m.own[r]) bm.take(best.y + r, best.x + s.first, best.x + s.second);
+    at[c] = best;
+    extent = best_extent;
+  }
+  return true;
 }
 
 }  // namespace
@@ -146,38 +270,126 @@ double square_fill(const FlatChart& chart) {
   return side > 0 ? chart.summary.area_3d / (side * side) : 1;
 }
 
+namespace {
+
+// Every chart's mask at `scale` in its four quarter turns, rasterized in parallel.
+std::vector<std::array<Mask, 4>> rasterize_all(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned,
+                                               double scale, int pad) {
+  std::vector<std::array<Mask, 4>> masks(charts.size());
+  parallel_for(static_cast<std::int64_t>(charts.size()), [&](std::int64_t b, std::int64_t e) {
+    for (std::int64_t c = b; c < e; ++c) {
+      for (int k = 0; k < 4; ++k) masks[c][k] = rasterize(charts[c], turned[c][k], scale, pad);
+    }
+  }, 8);
+  return masks;
+}
+
+struct Layout {
+  double scale = 0;
+  int extent = 0;
+  std::vector<Placement> at;
+};
+
+// Packs at `scale` into a `side`-texel square; false when a chart does not fit.
+bool try_scale(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned, double scale, int side,
+               int pad, Layout& out) {
+  const std::vector<std::array<Mask, 4>> masks = rasterize_all(charts, turned, scale, pad);
+  std::vector<int> order(charts.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const long ha = std::max(masks[a][0].w, masks[a][0].h), hb = std::max(masks[b][0].w, masks[b][0].h);
+    return masks[a][0].texels != masks[b][0].texels ? masks[a][0].texels > masks[b][0].texels : ha > hb;
+  });
+  Layout l;
+  l.scale = scale;
+  if (!place_all(masks, order, side, l.at, l.extent)) return false;
+  out = std::move(l);
+  return true;
+}
+
+// The largest scale (texels per unit of surface) at which every chart fits:
+// shrink until one fits, then bisect between the fitting and the failing scale.
+Layout best_layout(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned, double area,
+                   int& side, int pad) {
+  Layout fit;
+  while (true) {
+    double hi = side / std::sqrt(area), lo = 0;
+    for (double s = hi * 0.85; s > hi * 1e-4; s *= 0.8) {
+      if (try_scale(charts, turned, s, side, pad, fit)) {
+        lo = s;
+        break;
+      }
+      hi = s;
+    }
+    if (lo > 0) {
+      for (int i = 0; i < 7 && hi > lo * 1.01; ++i) {
+        const double mid = std::sqrt(lo * hi);
+        Layout l;
+        if (try_scale(charts, turned, mid, side, pad, l))
+          lo = mid, fit = std::move(l);
+        else
+          hi = mid;
+      }
+      return fit;
+    }
+    side *= 2;  // more charts than the bitmap holds with their padding: a larger bitmap
+  }
+}
+
+// The bisection on a bitmap of half the size first (a quarter of the
+// texels to place), then the full bitmap from just above that scale down in
+// small steps: a few full-size packings instead of a dozen.
+Layout search_layout(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned, double area,
+                     int& side, int pad) {
+  if (side < 256) return best_layout(charts, turned, area, side, pad);
+  int half = side / 2;
+  const Layout coarse = best_layout(charts, turned, area, half, (pad + 1) / 2);
+  if (half == side / 2) {  // the half bitmap held them: its scale, doubled, is close
+    double s = coarse.scale * 2 * 1.03;
+    for (int i = 0; i < 6; ++i, s *= 0.985) {
+      Layout l;
+      if (try_scale(charts, turned, s, side, pad, l)) return l;
+    }
+  }
+  return best_layout(charts, turned, area, side, pad);
+}
+
+}  // namespace
+
 double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping) {
   overlapping = 0;
   if (charts.empty()) return 0;
-  std::vector<Eigen::Vector2d> sizes;
-  double uv_area = 0;
-  for (FlatChart& c : charts) {
-    orient_chart(c);
-    sizes.push_back(c.UV.colwise().maxCoeff().transpose());
-    uv_area += c.summary.area_3d;
+  double area = 0;
+  std::vector<Poses> turned(charts.size());
+  for (size_t c = 0; c < charts.size(); ++c) {
+    orient_chart(charts[c]);
+    turned[c][0] = charts[c].UV;
+    for (int k = 1; k < 4; ++k) turned[c][k] = quarter_turn(turned[c][k - 1]);
+    area += charts[c].summary.area_3d;
   }
-  // The gap is `padding` texels of the final square, whose size depends on the gap: a few rounds.
-  double gap = 0, side = 0;
-  std::vector<Eigen::Vector2d> corner;
-  for (int round = 0; round < 4; ++round) {
-    std::vector<Eigen::Vector2d> padded = sizes;  // each box with the gap on its right and top
-    for (Eigen::Vector2d& p : padded) p.array() += gap;
-    corner = pack_square(padded, side);
-    for (Eigen::Vector2d& c : corner) c.array() += gap / 2;
-    gap = options.padding * side / options.resolution;
-    if (options.padding == 0) break;
+  // The bitmap is at most 1024 texels wide: larger textures pack on a coarser
+  // grid (padding rounded up to whole cells of it).
+  int side = std::min(options.resolution, 1024);
+  const int pad = static_cast<int>(std::ceil(options.padding * side / options.resolution - 1e-9));
+  // Half the padding (rounded up) around the border, as a neighbour's half
+  // would complete it: the bitmap reaches `edge` texels past the square on
+  // every side, where nothing is ever taken but dilated masks may lie.
+  const int edge = pad - (pad + 1) / 2;
+  int bitmap = side + 2 * edge;
+  const Layout l = search_layout(charts, turned, std::max(area, 1e-300), bitmap, pad);
+  const double square = l.extent - 2 * edge;  // texels; the layout is [edge, extent - edge] of the bitmap
+  for (size_t c = 0; c < charts.size(); ++c) {
+    const Placement& p = l.at[c];
+    charts[c].UV = turned[c][p.turns];
+    charts[c].summary.rotated = p.turns != 0;
+    charts[c].UV *= l.scale;
+    charts[c].UV.col(0).array() += p.x + pad - edge;
+    charts[c].UV.col(1).array() += p.y + pad - edge;
+    charts[c].UV /= square;
+    charts[c].UV = charts[c].UV.cwiseMax(0.0).cwiseMin(1.0);  // rounding only
   }
-  for (size_t i = 0; i < charts.size(); ++i)
-    for (size_t j = i + 1; j < charts.size(); ++j)
-      if ((corner[i].array() < (corner[j] + sizes[j]).array()).all() &&
-          (corner[j].array() < (corner[i] + sizes[i]).array()).all())
-        ++overlapping;
-  for (size_t i = 0; i < charts.size(); ++i) {
-    charts[i].UV.rowwise() += corner[i].transpose();
-    charts[i].UV /= side;
-    charts[i].UV = charts[i].UV.cwiseMax(0.0).cwiseMin(1.0);  // rounding only
-  }
-  return uv_area / (side * side);
+  const double used = l.scale / square;
+  return area * used * used;
 }
 
 }  // namespace intrinsic::detail

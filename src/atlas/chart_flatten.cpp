@@ -124,6 +124,10 @@ ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio) {
   for (const std::vector<int>& loop : t.boundary_loops) boundary_edges += static_cast<long>(loop.size());
   const long nf = mesh.F.rows(), edges = (3 * nf + boundary_edges) / 2;
   if (t.boundary_loops.size() != 1 || mesh.V.rows() - edges + nf != 1) return ChartStatus::NotDisk;
+  // A cut edge (a user's seam, a non-manifold or inconsistent edge) whose two
+  // ends are glued around it would be an interior edge of the chart's mesh:
+  // the cut would not be in the UVs. Split until it lies on the boundary.
+  if (boundary_edges != chart.mesh.open_edges) return ChartStatus::NotDisk;
   // Glued edges are consistently oriented, so nothing is reoriented; if it
   // were, the input's corner order would no longer match the map.
   if (mesh.validation.reoriented_faces != 0) return ChartStatus::Refused;

@@ -1,61 +1,127 @@
-// Merging small charts (issue 13: "segmentation ... seams are short"; fewer
-// charts): region growing and the validity splits leave slivers of a few
-// faces. Each chart below the size limit, smallest first, is merged into the
-// neighbour it shares most glued edges with, and the union is flattened again
-// by the same natural map and checks (chart_flatten.cpp); the merge is kept
-// only when the union is valid and its mean stretch stays within the bound.
+// Merging neighbouring charts (issue 13: "curved assets do not explode into
+// hundreds of charts"; fewer, larger charts, shorter seams). Region growing
+// and the validity splits leave more charts than the distortion bound needs.
+// In passes, every chart proposes the neighbour it shares most glued edges
+// with; the unions are flattened (in parallel, the same natural map and
+// checks as every chart: chart_flatten.cpp) and kept, smallest chart first,
+// when valid and their mean L2 stretch (Sander) stays within the bound. A
+// pair that failed is not tried again until one of its charts has changed.
+// The unions solved are bounded in total size (a work budget).
 #include <algorithm>
 #include <map>
 #include <numeric>
+#include <set>
 
 #include "atlas/atlas_internal.h"
+#include "util/parallel_for.h"
 
 namespace intrinsic::detail {
 namespace {
 
-// Neighbouring charts of chart `c` by number of shared glued edges, most first.
-std::vector<int> neighbours(const CleanMesh& clean, const std::vector<int>& owner, const FlatChart& chart, int c) {
+// The neighbour chart `c` shares most glued edges with, among those not in `skip`; -1 if none.
+int best_neighbour(const CleanMesh& clean, const std::vector<int>& owner, const FlatChart& chart, int c,
+                   const std::set<std::pair<int, int>>& skip) {
   std::map<int, int> shared;
   for (int f : chart.mesh.faces)
     for (int k = 0; k < 3; ++k) {
       const int g = clean.glued[3 * f + k];
       if (g >= 0 && owner[g] >= 0 && owner[g] != c) ++shared[owner[g]];
     }
-  std::vector<int> out;
-  for (const auto& [d, n] : shared) out.push_back(d);
-  std::stable_sort(out.begin(), out.end(), [&](int a, int b) { return shared[a] > shared[b]; });
-  return out;
+  int best = -1, most = 0;
+  for (const auto& [d, n] : shared)
+    if (n > most && !skip.count({std::min(c, d), std::max(c, d)})) best = d, most = n;
+  return best;
+}
+
+struct Proposal {
+  int c, d;  // merge c into d
+  FlatChart merged;
+  bool valid = false;
+};
+
+// One pass: proposals from every live chart (smallest first), unions solved
+// in parallel, then the acceptable ones applied. Returns the merges made.
+int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options, double bound,
+               int wanted, long& budget, std::vector<FlatChart>& charts, std::vector<char>& gone,
+               std::vector<int>& owner, std::set<std::pair<int, int>>& failed) {
+  std::vector<int> order;
+  for (size_t c = 0; c < charts.size(); ++c)
+    if (!gone[c]) order.push_back(static_cast<int>(c));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return charts[a].mesh.faces.size() < charts[b].mesh.faces.size(); });
+  std::vector<Proposal> props;
+  std::set<std::pair<int, int>> proposed;
+  for (int c : order) {
+    const int d = best_neighbour(clean, owner, charts[c], c, failed);
+    if (d < 0 || !proposed.insert({std::min(c, d), std::max(c, d)}).second) continue;
+    const long size = static_cast<long>(charts[c].mesh.faces.size() + charts[d].mesh.faces.size());
+    if (size > budget) break;  // the work bound: each union is solved once more
+    budget -= size;
+    props.push_back({c, d, {}, false});
+  }
+  const std::int64_t n = static_cast<std::int64_t>(props.size());
+  const int parts = parallel_parts(n, 1);
+  parallel_for_parts(parts, parts, [&](int part, std::int64_t, std::int64_t) {
+    for (std::int64_t i = part; i < n; i += parts) {
+      Proposal& p = props[i];
+      std::vector<int> faces = charts[p.d].mesh.faces;
+      faces.insert(faces.end(), charts[p.c].mesh.faces.begin(), charts[p.c].mesh.faces.end());
+      std::sort(faces.begin(), faces.end());
+      p.merged.mesh = chart_mesh(input, clean, faces);
+      p.merged.summary.component = charts[p.d].summary.component;
+      if (flatten_chart(p.merged, options.degenerate_ratio) != ChartStatus::Valid) continue;
+      // Slivers below min_chart_faces may go up to their neighbour's own stretch.
+      const bool small = static_cast<int>(charts[p.c].mesh.faces.size()) < options.min_chart_faces;
+      const double limit = small ? std::max(bound, charts[p.d].summary.stretch_l2_mean) : bound;
+      p.valid = p.merged.summary.stretch_l2_mean <= limit && (faces.size() < 64 || square_fill(p.merged) >= 0.15);
+    }
+  });
+  std::vector<char> touched(charts.size(), 0);
+  int merges = 0, live = static_cast<int>(order.size());
+  for (Proposal& p : props) {
+    if (wanted > 0 && live <= wanted) break;
+    if (!p.valid) {
+      failed.insert({std::min(p.c, p.d), std::max(p.c, p.d)});
+      continue;
+    }
+    if (touched[p.c] || touched[p.d]) continue;  // solved against a chart that has just changed: next pass
+    touched[p.c] = touched[p.d] = 1;
+    for (int f : charts[p.c].mesh.faces) owner[f] = p.d;
+    charts[p.d] = std::move(p.merged);
+    charts[p.c] = {};
+    gone[p.c] = 1;
+    ++merges, --live;
+  }
+  // Pairs with a changed chart may succeed now.
+  for (auto it = failed.begin(); it != failed.end();)
+    it = touched[it->first] || touched[it->second] ? failed.erase(it) : std::next(it);
+  return merges;
 }
 
 }  // namespace
 
-void merge_small_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
-                        std::vector<FlatChart>& charts) {
+void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
+                  std::vector<FlatChart>& charts) {
   std::vector<int> owner(input.F.rows(), -1);
   for (size_t c = 0; c < charts.size(); ++c)
     for (int f : charts[c].mesh.faces) owner[f] = static_cast<int>(c);
-  std::vector<int> order(charts.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return charts[a].mesh.faces.size() < charts[b].mesh.faces.size(); });
   std::vector<char> gone(charts.size(), 0);
-  for (int c : order) {
-    if (gone[c] || static_cast<int>(charts[c].mesh.faces.size()) >= options.min_chart_faces) continue;
-    const std::vector<int> near = neighbours(clean, owner, charts[c], c);
-    for (size_t i = 0; i < near.size() && i < 3; ++i) {
-      const int d = near[i];
-      std::vector<int> faces = charts[d].mesh.faces;
-      faces.insert(faces.end(), charts[c].mesh.faces.begin(), charts[c].mesh.faces.end());
-      std::sort(faces.begin(), faces.end());
-      FlatChart merged;
-      merged.mesh = chart_mesh(input, clean, faces);
-      merged.summary.component = charts[d].summary.component;
-      if (flatten_chart(merged, options.degenerate_ratio) != ChartStatus::Valid) continue;
-      if (merged.summary.stretch_l2_mean > std::max(options.max_stretch, charts[d].summary.stretch_l2_mean)) continue;
-      for (int f : charts[c].mesh.faces) owner[f] = d;
-      charts[d] = std::move(merged);
-      gone[c] = 1;
-      break;
+  std::set<std::pair<int, int>> failed;
+  // Merging costs a solve of every union tried: at most 150,000 faces in
+  // all (smallest charts first), so that meshes of up to about 20k faces
+  // merge fully and large ones stay fast (the splits' rounds have already
+  // made every chart valid; merges only make fewer of them).
+  long budget = 150000;
+  while (merge_pass(input, clean, options, options.max_stretch, 0, budget, charts, gone, owner, failed) > 0) {
+  }
+  auto live = [&] { return static_cast<int>(std::count(gone.begin(), gone.end(), 0)); };
+  // Over the chart limit: merge past the stretch bound (never past validity),
+  // with a budget of its own.
+  if (options.max_charts > 0 && live() > options.max_charts) {
+    failed.clear();
+    budget = 300000;
+    while (live() > options.max_charts &&
+           merge_pass(input, clean, options, INFINITY, options.max_charts, budget, charts, gone, owner, failed) > 0) {
     }
   }
   std::vector<FlatChart> kept;

@@ -32,7 +32,10 @@ ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::v
     const int f = faces[i];
     for (int c = 0; c < 3; ++c) {
       const int g = clean.glued[3 * f + c], j = g < 0 ? -1 : index(g);
-      if (j < 0) continue;
+      if (j < 0) {
+        ++chart.open_edges;
+        continue;
+      }
       for (int e = 0; e < 3; ++e)
         for (int d : {c, (c + 1) % 3})
           if (input.F(g, e) == input.F(f, d)) parent[find_root(parent, 3 * j + e)] = find_root(parent, 3 * i + d);

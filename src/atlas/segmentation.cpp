@@ -76,11 +76,39 @@ int farthest(const CleanMesh& m, const std::vector<int>& faces, int source) {
   return last;
 }
 
+// Straightens chart boundaries: a face with two of its three glued
+// neighbours in one other chart (a tooth of a ragged boundary) moves there,
+// unless one of those two edges is sharp. It has at most one neighbour left
+// in its own chart, so that chart stays connected. A few passes, in face
+// order (deterministic).
+void straighten(const CleanMesh& m, double cos_sharp, std::vector<int>& label) {
+  const int nf = static_cast<int>(label.size());
+  for (int pass = 0; pass < 4; ++pass) {
+    int moved = 0;
+    for (int f = 0; f < nf; ++f) {
+      if (label[f] < 0) continue;
+      int other[3];
+      for (int c = 0; c < 3; ++c) {
+        const int g = m.glued[3 * f + c];
+        other[c] = g >= 0 && label[g] >= 0 && label[g] != label[f] && m.normal[f].dot(m.normal[g]) >= cos_sharp
+                       ? label[g] : -1;
+      }
+      int to = -1;
+      for (int c = 0; c < 3 && to < 0; ++c)
+        for (int d = c + 1; d < 3; ++d)
+          if (other[c] >= 0 && other[c] == other[d]) to = other[c];
+      if (to >= 0) label[f] = to, ++moved;
+    }
+    if (moved == 0) break;
+  }
+}
+
 }  // namespace
 
 std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options) {
   const int nf = static_cast<int>(input.F.rows());
-  const bool components = options.segmentation == Segmentation::Components;
+  // With the user's seams the charts are the pieces between them.
+  const bool components = options.segmentation == Segmentation::Components || !options.seams.empty();
   Grower g{input, clean, components ? -2.0 : std::cos(options.max_normal_deviation_deg * M_PI / 180),
            components ? -2.0 : std::cos(options.sharp_angle_deg * M_PI / 180), std::vector<int>(nf, -1), {}};
   std::vector<std::vector<int>> charts;
@@ -98,7 +126,14 @@ std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& cl
     if (seed < 0) break;
     charts.push_back(g.grow(seed, static_cast<int>(charts.size())));
   }
-  return charts;
+  if (components) return charts;
+  straighten(clean, g.cos_sharp, g.label);
+  std::vector<std::vector<int>> straight(charts.size());
+  for (int f = 0; f < nf; ++f)
+    if (g.label[f] >= 0) straight[g.label[f]].push_back(f);
+  straight.erase(std::remove_if(straight.begin(), straight.end(), [](const std::vector<int>& c) { return c.empty(); }),
+                 straight.end());
+  return straight;
 }
 
 std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::vector<int>& faces) {
