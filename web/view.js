@@ -5,6 +5,7 @@
 import { $, state } from './state.js';
 import { draw2d } from './view2d.js';
 import { draw3d, uploadUV } from './view3d.js';
+import { uploadLayout } from './layout_gl.js';
 
 let frameRequested = false, uvDrawn = null, stamps = [];
 
@@ -14,7 +15,13 @@ export function draw(stamp = null) {
   frameRequested = true;
   requestAnimationFrame(() => {
     frameRequested = false;
-    if (uvDrawn !== state.uv) { uploadUV(); uvDrawn = state.uv; }
+    if (uvDrawn !== state.uv && state.uv) {
+      // One float32 copy of a new answer feeds both views' vertex buffers.
+      const uv32 = new Float32Array(state.uv);
+      uploadUV(uv32);
+      uploadLayout(uv32);
+      uvDrawn = state.uv;
+    }
     draw3d();
     draw2d();
     state.frames++;
