@@ -21,6 +21,7 @@ export const state = {
   inFlight: false, queued: null, lastRequest: null,
   updates: 0, frames: 0, error: null,
   latencies: [],       // mouse event to the frame after the new UVs are drawn (ms)
+  drawTimes: [],       // the frame callback's own time (uploads, 2D overlay, GL calls; ms)
   roundTrips: [],      // /api/solve request to parsed JSON answer, as the page sees it (ms)
 };
 

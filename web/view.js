@@ -14,6 +14,7 @@ export function draw(stamp = null) {
   if (frameRequested) return;
   frameRequested = true;
   requestAnimationFrame(() => {
+    const t0 = performance.now();
     frameRequested = false;
     if (uvDrawn !== state.uv && state.uv) {
       // One float32 copy of a new answer feeds both views' vertex buffers.
@@ -25,6 +26,7 @@ export function draw(stamp = null) {
     draw3d();
     draw2d();
     state.frames++;
+    state.drawTimes.push(performance.now() - t0);
     const done = stamps;
     stamps = [];
     if (done.length) {
