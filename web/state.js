@@ -8,7 +8,7 @@ export const session = Array.from(crypto.getRandomValues(new Uint8Array(12)),
 
 export const state = {
   mesh: null,          // GET /api/mesh
-  uv: null,            // Float64Array 2n, what is drawn
+  uv: null,            // Float64Array 2n, what is drawn (Float32Array while dragging)
   answer: null,        // the last answer drawn
   moves: new Map(),    // fixed boundary: vertex -> [u, v]
   pins: null,          // natural map: [[vertex, u, v], ...]

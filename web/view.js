@@ -18,7 +18,7 @@ export function draw(stamp = null) {
     frameRequested = false;
     if (uvDrawn !== state.uv && state.uv) {
       // One float32 copy of a new answer feeds both views' vertex buffers.
-      const uv32 = new Float32Array(state.uv);
+      const uv32 = state.uv instanceof Float32Array ? state.uv : new Float32Array(state.uv);
       uploadUV(uv32);
       uploadLayout(uv32);
       uvDrawn = state.uv;
