@@ -104,12 +104,15 @@ void reply(httplib::Response& res, Answer answer) {
 }
 
 // `?uv=binary`: the UVs as raw little-endian float64 (the body) and the rest
-// of the answer as JSON in the X-Answer header (what the page uses).
+// of the answer as JSON in the X-Answer header (what the page uses);
+// `?uv=float32`: likewise as float32 (half the bytes, while dragging).
 Body handle_solve(ServeState& s, const httplib::Request& req, httplib::Response& res) {
-  bool binary = false;
+  bool binary = false, float32 = false;
   if (req.has_param("uv")) {
-    if (req.get_param_value("uv") != "binary") throw_usage("uv: the only format is binary");
+    const std::string format = req.get_param_value("uv");
+    if (format != "binary" && format != "float32") throw_usage("uv: the formats are binary and float32");
     binary = true;
+    float32 = format == "float32";
   }
   const SolveRequest request = parse_solve_request(req.body, s.mesh, s.data.F);
   const std::shared_ptr<Session> session = s.sessions->get(session_id(req));
@@ -120,7 +123,7 @@ Body handle_solve(ServeState& s, const httplib::Request& req, httplib::Response&
   }
   if (!binary) return {solve_api_json(s.mesh, answer)};
   res.set_header("X-Answer", solve_api_header(s.mesh, answer));
-  return {uv_binary(answer.uv), "application/octet-stream"};
+  return {uv_binary(answer.uv, float32), "application/octet-stream"};
 }
 
 // The starting boundary of the optimization endpoints: the request's circle

@@ -458,6 +458,20 @@ TEST_F(ServeTest, BinaryAnswerEqualsTheJsonAnswer) {
   EXPECT_EQ(header["flipped_triangles"], text.body["flipped_triangles"]);
   EXPECT_EQ(header["path"], "responses");
   EXPECT_EQ(client.Post("/api/solve?uv=text", {{"X-Session", "s1"}}, body, "application/json")->status, 400);
+  // ?uv=float32: each value is the JSON answer's double rounded to float32 (half the bytes).
+  auto small = client.Post("/api/solve?uv=float32", {{"X-Session", "s1"}}, body, "application/json");
+  ASSERT_TRUE(small);
+  ASSERT_EQ(small->status, 200);
+  ASSERT_EQ(small->body.size(), static_cast<size_t>(8 * mesh_.V.rows()));
+  for (Eigen::Index i = 0; i < uv.rows(); ++i)
+    for (int k = 0; k < 2; ++k) {
+      std::uint32_t bits = 0;
+      for (int b = 0; b < 4; ++b) bits |= std::uint32_t(static_cast<unsigned char>(small->body[8 * i + 4 * k + b])) << (8 * b);
+      float x;
+      std::memcpy(&x, &bits, 4);
+      ASSERT_EQ(x, static_cast<float>(uv(i, k))) << i;
+    }
+  EXPECT_EQ(json::parse(small->get_header_value("X-Answer"))["path"], "responses");
 }
 
 TEST_F(ServeTest, TwoSessionsAreIndependent) {

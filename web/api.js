@@ -35,20 +35,23 @@ export async function post(route, body, sessionId = session) {
 
 // /api/solve?uv=binary: the UVs as raw float64 (little-endian, as every
 // platform this runs on), the rest of the answer in the X-Answer header.
-async function postSolve(body) {
-  const res = await fetch('/api/solve?uv=binary', {
+// While a drag is under way ?uv=float32 (half the bytes, what WebGL draws
+// anyway); the release asks once more for the exact float64 answer.
+async function postSolve(body, float32) {
+  const res = await fetch(float32 ? '/api/solve?uv=float32' : '/api/solve?uv=binary', {
     method: 'POST', headers: { 'Content-Type': 'application/json', 'X-Session': session }, body: JSON.stringify(body),
   });
   if (!res.ok) { const e = await res.json(); throw new Error(e.error || ('HTTP ' + res.status)); }
   const answer = JSON.parse(res.headers.get('X-Answer'));
-  answer.uvFlat = new Float64Array(await res.arrayBuffer());
+  const bytes = await res.arrayBuffer();
+  answer.uvFlat = float32 ? new Float32Array(bytes) : new Float64Array(bytes);
   return answer;
 }
 
 // Sends now, or queues (replacing an older queued body) when one is in
 // flight. `stamp`: the time of the mouse event that asked for it.
 export function solve(stamp = null, onError = null) {
-  const item = { body: requestBody(), stamp, onError };
+  const item = { body: requestBody(), stamp, onError, float32: state.dragging !== null };
   if (state.inFlight) { state.queued = item; return; }
   send(item);
 }
@@ -58,7 +61,7 @@ async function send(item) {
   state.lastRequest = item.body;
   const t0 = performance.now();
   try {
-    const answer = await postSolve(item.body);
+    const answer = await postSolve(item.body, item.float32);
     state.roundTrips.push(performance.now() - t0);
     state.preview = null;
     show(answer, performance.now() - t0, item.stamp);
@@ -77,7 +80,8 @@ export function setError(e) {
   $('error').textContent = state.error || '';
 }
 
-// Draws an answer of any endpoint (uv pairs, or uvFlat from postSolve; figures) and updates the panel.
+// Draws an answer of any endpoint (uv pairs, or uvFlat from postSolve: float64,
+// or float32 while dragging; figures) and updates the panel.
 export function show(answer, roundTrip, stamp = null) {
   state.answer = answer;
   if (answer.uvFlat) {

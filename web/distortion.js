@@ -52,9 +52,12 @@ function singularValues(pos, uv, a, b, c) {
 
 // Colour of value v >= 1 on a logarithmic scale from 1 (white) to vmax (dark red).
 const STOPS = [[255, 255, 255], [255, 230, 120], [250, 150, 40], [210, 40, 30], [110, 0, 20]];
-export function colourOf(t) {
+export function rgbOf(t) {
   const x = Math.max(0, Math.min(1, t)) * (STOPS.length - 1), i = Math.min(STOPS.length - 2, Math.floor(x)), f = x - i;
-  const c = STOPS[i].map((s, k) => Math.round(s + f * (STOPS[i + 1][k] - s)));
+  return STOPS[i].map((s, k) => Math.round(s + f * (STOPS[i + 1][k] - s)));
+}
+export function colourOf(t) {
+  const c = rgbOf(t);
   return `rgb(${c[0]}, ${c[1]}, ${c[2]})`;
 }
 export const scaleOf = (v, vmax) => (v >= vmax || !isFinite(v) ? 1 : Math.log(Math.max(1, v)) / Math.log(vmax));

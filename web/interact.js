@@ -73,6 +73,7 @@ function dragTo(e) {
   } else if (d.kind === 'line') {
     state.constraints.lines[d.index].to[d.k] = uv;
   }
+  d.moved = true;
   solve(stamp);
 }
 
@@ -87,7 +88,12 @@ export function dragControls() {
     else state.dragging = h;
   });
   window.addEventListener('mousemove', (e) => { if (state.dragging) dragTo(e); });
-  window.addEventListener('mouseup', () => { state.dragging = null; });
+  // The drag's answers were float32: the release asks for the exact map.
+  window.addEventListener('mouseup', () => {
+    const moved = state.dragging && state.dragging.moved;
+    state.dragging = null;
+    if (moved) solve();
+  });
 }
 
 // ---- constraints from the 3D view -------------------------------------------

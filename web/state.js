@@ -8,7 +8,7 @@ export const session = Array.from(crypto.getRandomValues(new Uint8Array(12)),
 
 export const state = {
   mesh: null,          // GET /api/mesh
-  uv: null,            // Float64Array 2n, what is drawn
+  uv: null,            // Float64Array 2n, what is drawn (Float32Array while dragging)
   answer: null,        // the last answer drawn
   moves: new Map(),    // fixed boundary: vertex -> [u, v]
   pins: null,          // natural map: [[vertex, u, v], ...]
@@ -21,6 +21,7 @@ export const state = {
   inFlight: false, queued: null, lastRequest: null,
   updates: 0, frames: 0, error: null,
   latencies: [],       // mouse event to the frame after the new UVs are drawn (ms)
+  drawTimes: [],       // the frame callback's own time (uploads, 2D overlay, GL calls; ms)
   roundTrips: [],      // /api/solve request to parsed JSON answer, as the page sees it (ms)
 };
 

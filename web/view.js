@@ -5,6 +5,7 @@
 import { $, state } from './state.js';
 import { draw2d } from './view2d.js';
 import { draw3d, uploadUV } from './view3d.js';
+import { uploadLayout } from './layout_gl.js';
 
 let frameRequested = false, uvDrawn = null, stamps = [];
 
@@ -13,11 +14,19 @@ export function draw(stamp = null) {
   if (frameRequested) return;
   frameRequested = true;
   requestAnimationFrame(() => {
+    const t0 = performance.now();
     frameRequested = false;
-    if (uvDrawn !== state.uv) { uploadUV(); uvDrawn = state.uv; }
+    if (uvDrawn !== state.uv && state.uv) {
+      // One float32 copy of a new answer feeds both views' vertex buffers.
+      const uv32 = state.uv instanceof Float32Array ? state.uv : new Float32Array(state.uv);
+      uploadUV(uv32);
+      uploadLayout(uv32);
+      uvDrawn = state.uv;
+    }
     draw3d();
     draw2d();
     state.frames++;
+    state.drawTimes.push(performance.now() - t0);
     const done = stamps;
     stamps = [];
     if (done.length) {

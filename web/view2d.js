@@ -1,14 +1,13 @@
 // The 2D view: the layout's triangles (optionally coloured by per-triangle
-// angle or area distortion, with a colour bar), flipped triangles in red, the
-// boundary, and the handles the mouse can take: boundary vertices (fixed
-// boundary; a selected range highlighted), pins (natural map) and constraint
-// targets (points, and the path points of lines).
+// angle or area distortion, with a colour bar) and flipped triangles in red,
+// drawn with WebGL by layout_gl.js on the canvas below; on the 2D canvas above
+// it the boundary and the handles the mouse can take: boundary vertices
+// (fixed boundary; a selected range highlighted), pins (natural map) and
+// constraint targets (points, and the path points of lines).
 import { $, loopIndex, natural, state } from './state.js';
-import { colourOf, faceDistortion, scaleOf } from './distortion.js';
+import { colourOf, faceDistortion } from './distortion.js';
+import { BINS, VMAX, drawLayout } from './layout_gl.js';
 import { resize } from './view3d.js';
-
-const BINS = 16;
-const VMAX = { angle: 3, area: 4 };
 
 // The layout window: [-0.15, 1.15]^2 (maps come out in [0, 1]^2), fixed so a
 // dragged vertex stays under the mouse.
@@ -39,14 +38,15 @@ export function handles() {
 export function draw2d() {
   const c = $('view2d');
   resize(c);
-  // willReadFrequently: a CPU canvas, many times faster for thousands of thin paths than GPU raster
-  // (which in headless Chromium is SwiftShader).
+  // willReadFrequently: a CPU canvas (a few hundred handles and the boundary;
+  // the GPU raster of headless Chromium is SwiftShader, slower here).
   const ctx = c.getContext('2d', { willReadFrequently: true }), dpr = window.devicePixelRatio || 1, v = view2d();
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.clearRect(0, 0, c.clientWidth, c.clientHeight);
-  if (!state.uv) return;
   const colour = $('colour').value;
-  drawTriangles(ctx, v, colour);
+  const values = colour === 'none' || !state.uv ? null : faceDistortion(state.mesh, state.uv, colour);
+  drawLayout(v, colour, values);
+  if (!state.uv) return;
   ctx.lineWidth = 1.5;
   ctx.strokeStyle = '#222';
   for (const loop of state.mesh.boundary_loops) {
@@ -62,68 +62,6 @@ export function draw2d() {
     ctx.fillStyle = '#7a3e00';
     ctx.font = '13px system-ui, sans-serif';
     ctx.fillText(state.preview.label, 10, c.clientHeight - 10);
-  }
-}
-
-// Each mesh edge once (cached), as pairs of vertices.
-function edgeList() {
-  if (!state.edges) {
-    const tri = state.mesh.triangles, seen = new Set(), out = [];
-    for (let f = 0; f < tri.length; f += 3)
-      for (let k = 0; k < 3; k++) {
-        const a = tri[f + k], b = tri[f + (k + 1) % 3], key = a < b ? a * 4294967296 + b : b * 4294967296 + a;
-        if (!seen.has(key)) { seen.add(key); out.push(a, b); }
-      }
-    state.edges = Int32Array.from(out);
-  }
-  return state.edges;
-}
-
-// Paths are drawn in chunks of CHUNK pieces without closePath: one huge
-// path, or closed subpaths, make Chrome's canvas many times slower (seconds
-// at 30k vertices in headless Chromium).
-const CHUNK = 500;
-
-function fillFaces(ctx, v, faces, style) {
-  const uv = state.uv, tri = state.mesh.triangles, { ox, oy, side } = v;
-  ctx.fillStyle = style;
-  for (let i = 0; i < faces.length; i += CHUNK) {
-    ctx.beginPath();
-    for (let j = i; j < Math.min(faces.length, i + CHUNK); j++) {
-      const a = 2 * tri[3 * faces[j]], b = 2 * tri[3 * faces[j] + 1], c = 2 * tri[3 * faces[j] + 2];
-      ctx.moveTo(ox + uv[a] * side, oy - uv[a + 1] * side);
-      ctx.lineTo(ox + uv[b] * side, oy - uv[b + 1] * side);
-      ctx.lineTo(ox + uv[c] * side, oy - uv[c + 1] * side);
-    }
-    ctx.fill();
-  }
-}
-
-// Triangles by colour bin (distortion colouring), flipped ones in red, then the edges.
-function drawTriangles(ctx, v, colour) {
-  const uv = state.uv, tri = state.mesh.triangles, m = tri.length / 3;
-  const values = colour === 'none' ? null : faceDistortion(state.mesh, uv, colour);
-  const bins = Array.from({ length: BINS }, () => []), flipped = [];
-  for (let f = 0; f < m; f++) {
-    const a = 2 * tri[3 * f], b = 2 * tri[3 * f + 1], c = 2 * tri[3 * f + 2];
-    // Counter-clockwise in the (u, v) plane is positive.
-    if ((uv[b] - uv[a]) * (uv[c + 1] - uv[a + 1]) - (uv[b + 1] - uv[a + 1]) * (uv[c] - uv[a]) < 0) flipped.push(f);
-    else if (values) bins[Math.min(BINS - 1, Math.floor(scaleOf(values[f], VMAX[colour]) * BINS))].push(f);
-  }
-  if (values) bins.forEach((faces, k) => fillFaces(ctx, v, faces, colourOf((k + 0.5) / BINS)));
-  fillFaces(ctx, v, flipped, 'rgba(220, 0, 0, 0.6)');
-  const edges = edgeList();
-  ctx.lineWidth = 0.5;
-  ctx.strokeStyle = values ? 'rgba(60, 60, 80, 0.35)' : '#8896aa';
-  const { ox, oy, side } = v;
-  for (let i = 0; i < edges.length; i += 2 * CHUNK) {
-    ctx.beginPath();
-    for (let e = i; e < Math.min(edges.length, i + 2 * CHUNK); e += 2) {
-      const a = 2 * edges[e], b = 2 * edges[e + 1];
-      ctx.moveTo(ox + uv[a] * side, oy - uv[a + 1] * side);
-      ctx.lineTo(ox + uv[b] * side, oy - uv[b + 1] * side);
-    }
-    ctx.stroke();
   }
 }
 

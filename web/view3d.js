@@ -94,11 +94,13 @@ function orbitControls(canvas, onClick) {
   }, { passive: false });
 }
 
-export function uploadUV() {
+// New UVs (float32, 2n) into the texture-coordinate buffer only: the
+// positions, normals and triangles never change.
+export function uploadUV(uv32) {
   if (!gl3.gl) return;
   const gl = gl3.gl;
   gl.bindBuffer(gl.ARRAY_BUFFER, gl3.buffers.t);
-  if (state.uv) gl.bufferSubData(gl.ARRAY_BUFFER, 0, new Float32Array(state.uv));
+  gl.bufferSubData(gl.ARRAY_BUFFER, 0, uv32);
 }
 
 // Column-major 4x4 matrices.

@@ -103,16 +103,24 @@ std::string solve_api_header(const Mesh& mesh, const SolveAnswer& a) {
   return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-std::string uv_binary(const MatrixX2d& uv) {
-  static_assert(sizeof(double) == 8, "float64 expected");
-  std::string out(static_cast<size_t>(uv.rows()) * 16, '\0');
+std::string uv_binary(const MatrixX2d& uv, bool float32) {
+  static_assert(sizeof(double) == 8 && sizeof(float) == 4, "float64 and float32 expected");
+  const int width = float32 ? 4 : 8;
+  std::string out(static_cast<size_t>(uv.rows()) * 2 * width, '\0');
   char* p = out.data();
   for (Eigen::Index i = 0; i < uv.rows(); ++i)
-    for (int k = 0; k < 2; ++k, p += 8) {
+    for (int k = 0; k < 2; ++k, p += width) {
       const double x = std::isfinite(uv(i, k)) ? uv(i, k) : 0.0;
-      std::uint64_t bits;
-      std::memcpy(&bits, &x, 8);
-      for (int b = 0; b < 8; ++b) p[b] = static_cast<char>((bits >> (8 * b)) & 0xff);  // little-endian whatever the host
+      std::uint64_t bits = 0;
+      if (float32) {
+        const float f = static_cast<float>(x);
+        std::uint32_t b32;
+        std::memcpy(&b32, &f, 4);
+        bits = b32;
+      } else {
+        std::memcpy(&bits, &x, 8);
+      }
+      for (int b = 0; b < width; ++b) p[b] = static_cast<char>((bits >> (8 * b)) & 0xff);  // little-endian whatever the host
     }
   return out;
 }

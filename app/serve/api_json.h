@@ -24,7 +24,9 @@ std::string solve_api_json(const Mesh& mesh, const SolveAnswer& answer,
 // "uv" (sent in the X-Answer header) and the UVs as little-endian float64
 // u0 v0 u1 v1 ... (the body): no number printing or parsing on either side.
 std::string solve_api_header(const Mesh& mesh, const SolveAnswer& answer);
-std::string uv_binary(const MatrixX2d& uv);
+// `float32`: the same values rounded to little-endian float32, half the bytes
+// (`?uv=float32`, what the page asks for while a drag is under way).
+std::string uv_binary(const MatrixX2d& uv, bool float32 = false);
 // {"error": message}
 std::string error_api_json(const std::string& message);
 

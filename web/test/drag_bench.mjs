@@ -51,6 +51,7 @@ async function browserSide() {
       if (pass === '2D view only') await page.evaluate(() => { document.getElementById('view3d').style.display = 'none'; });
       const start = await page.evaluate(() => window.__intrinsic.state.latencies.length);
       const startRt = await page.evaluate(() => window.__intrinsic.state.roundTrips.length);
+      const startDraw = await page.evaluate(() => window.__intrinsic.state.drawTimes.length);
       await page.mouse.move(h.x, h.y);
       await page.mouse.down();
       for (let i = 1; i <= runs + 3; i++) {
@@ -61,8 +62,10 @@ async function browserSide() {
       await page.mouse.up();
       const lat = (await page.evaluate(() => window.__intrinsic.state.latencies)).slice(start + 3);  // the first moves compute responses
       const rt = (await page.evaluate(() => window.__intrinsic.state.roundTrips)).slice(startRt + 3);
+      const dt = (await page.evaluate(() => window.__intrinsic.state.drawTimes)).slice(startDraw + 3);
       console.log(`browser (${pass}): mouse event to frame median ${med(lat).toFixed(1)} ms (min ${Math.min(...lat).toFixed(1)}, ` +
-        `max ${Math.max(...lat).toFixed(1)}) over ${lat.length} moves; of which request to parsed answer median ${med(rt).toFixed(1)} ms`);
+        `max ${Math.max(...lat).toFixed(1)}) over ${lat.length} moves; of which request to parsed answer median ${med(rt).toFixed(1)} ms, ` +
+        `frame callback (uploads, overlay, GL calls) median ${med(dt).toFixed(1)} ms`);
     }
   } finally {
     await browser.close();
