@@ -7,6 +7,7 @@
 // canvas path cost ~100 ms a frame at 32k vertices in headless Chromium.
 import { $, state } from './state.js';
 import { rgbOf, scaleOf } from './distortion.js';
+import { program } from './gl.js';
 
 export const BINS = 16;
 export const VMAX = { angle: 3, area: 4 };
@@ -16,14 +17,6 @@ void main() { gl_Position = vec4(win.x + uv.x * win.z, win.y + uv.y * win.w, 0.0
 const FS = `precision mediump float; uniform vec4 colour; void main() { gl_FragColor = colour; }`;
 
 const layer = { gl: null, prog: null, uv: null, edges: null, edgeCount: 0, faces: null, faceIndex: null, failed: false };
-
-function compile(gl, type, src) {
-  const s = gl.createShader(type);
-  gl.shaderSource(s, src);
-  gl.compileShader(s);
-  if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(s));
-  return s;
-}
 
 // Each mesh edge once, as pairs of vertices.
 function edgeList(tri) {
@@ -43,10 +36,7 @@ function init() {
     $('error').textContent = 'WebGL (with 32-bit indices) is not available: 2D layout not drawn';
     return;
   }
-  const prog = gl.createProgram();
-  gl.attachShader(prog, compile(gl, gl.VERTEX_SHADER, VS));
-  gl.attachShader(prog, compile(gl, gl.FRAGMENT_SHADER, FS));
-  gl.linkProgram(prog);
+  const prog = program(gl, VS, FS);
   Object.assign(layer, { gl, prog, win: gl.getUniformLocation(prog, 'win'), colour: gl.getUniformLocation(prog, 'colour') });
   layer.uv = gl.createBuffer();
   gl.bindBuffer(gl.ARRAY_BUFFER, layer.uv);

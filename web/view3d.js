@@ -3,6 +3,7 @@
 // the mouse (for constraints: face and barycentric coordinates).
 import { $, state } from './state.js';
 import { draw } from './view.js';
+import { program } from './gl.js';
 
 export const gl3 = { gl: null, prog: null, buffers: {}, count: 0, yaw: 0.6, pitch: 0.4, dist: 2.5, center: [0, 0, 0], radius: 1 };
 
@@ -13,14 +14,6 @@ void main() { vec2 c = floor(vt * 16.0); float k = mod(c.x + c.y, 2.0);
   vec3 base = mix(vec3(0.95, 0.95, 0.92), vec3(0.2, 0.35, 0.7), k);
   float l = 0.35 + 0.65 * abs(normalize(vn).z); gl_FragColor = vec4(base * l, 1.0); }`;
 
-function compile(gl, type, src) {
-  const s = gl.createShader(type);
-  gl.shaderSource(s, src);
-  gl.compileShader(s);
-  if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(s));
-  return s;
-}
-
 export function init3d(onClick) {
   const canvas = $('view3d');
   const gl = canvas.getContext('webgl', { antialias: true, preserveDrawingBuffer: true });
@@ -28,10 +21,7 @@ export function init3d(onClick) {
   if (!gl.getExtension('OES_element_index_uint') && state.mesh.vertices > 65535) {
     $('error').textContent = 'WebGL lacks 32-bit indices: 3D view disabled'; return;
   }
-  const prog = gl.createProgram();
-  gl.attachShader(prog, compile(gl, gl.VERTEX_SHADER, VS));
-  gl.attachShader(prog, compile(gl, gl.FRAGMENT_SHADER, FS));
-  gl.linkProgram(prog);
+  const prog = program(gl, VS, FS);
   gl3.gl = gl;
   gl3.prog = prog;
   const m = state.mesh;

@@ -1,12 +1,12 @@
 // The boundary file format: "vertex_index u v" per line, '#' comments.
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <unordered_set>
 
 #include "intrinsic/boundary.h"
 #include "intrinsic/error.h"
+#include "io/text_file.h"
 
 namespace intrinsic {
 
@@ -44,11 +44,7 @@ std::vector<FixedVertex> parse_boundary_text(const std::string& text, const std:
 }
 
 std::vector<FixedVertex> read_boundary_file(const std::string& path, int num_vertices) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw_input("cannot open boundary file '" + path + "'");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_boundary_text(text.str(), path, num_vertices);
+  return parse_boundary_text(detail::read_text_file(path, "boundary file"), path, num_vertices);
 }
 
 }  // namespace intrinsic

@@ -2,12 +2,11 @@
 // parsing, every message names the file and the JSON path of the offending
 // element, so a typo in a 200-point file is found at once.
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "intrinsic/constraints.h"
 #include "intrinsic/error.h"
+#include "io/text_file.h"
 
 namespace intrinsic {
 namespace {
@@ -124,11 +123,7 @@ Constraints parse_constraints_json(const std::string& text, const std::string& n
 }
 
 Constraints read_constraints_file(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw_input("cannot open constraint file '" + path + "'");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_constraints_json(text.str(), path);
+  return parse_constraints_json(detail::read_text_file(path, "constraint file"), path);
 }
 
 void match_face_corners(Constraints& constraints, const MatrixX3i& file_faces, const Mesh& mesh) {

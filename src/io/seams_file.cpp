@@ -3,12 +3,12 @@
 // 0-based vertex indices in the input's vertex order (as boundary files),
 // `#` comments and blank lines allowed. Each pair must be an edge of a face.
 #include <charconv>
-#include <fstream>
 #include <sstream>
 #include <unordered_set>
 
 #include "intrinsic/atlas.h"
 #include "intrinsic/error.h"
+#include "io/text_file.h"
 
 namespace intrinsic {
 namespace {
@@ -57,11 +57,7 @@ std::vector<SeamEdge> parse_seams_text(const std::string& text, const std::strin
 }
 
 std::vector<SeamEdge> read_seams_file(const std::string& path, const MeshData& mesh) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw_input("cannot open seams file '" + path + "'");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parse_seams_text(text.str(), path, mesh);
+  return parse_seams_text(detail::read_text_file(path, "seams file"), path, mesh);
 }
 
 }  // namespace intrinsic
