@@ -261,6 +261,14 @@ int run_serve(const ServeArgs& a) {
 
   httplib::Server server;
   server.set_payload_max_length(static_cast<size_t>(a.max_body_mib * 1024 * 1024));
+  // A drag is a stream of small requests on one kept-alive connection. With
+  // Nagle's algorithm on, the answer's last segment waits for the client's
+  // delayed ACK (tens of ms per request); and cpp-httplib closes a kept-alive
+  // connection after 5 requests by default, so every fifth move paid a new
+  // TCP connection. Idle connections still close after the 5 s timeout, so
+  // they do not hold the worker threads.
+  server.set_tcp_nodelay(true);
+  server.set_keep_alive_max_count(100000);
   add_routes(server, s);
   const int port = a.port == 0 ? server.bind_to_any_port(a.host) : (server.bind_to_port(a.host, a.port) ? a.port : -1);
   if (port < 0) throw_usage("cannot listen on " + a.host + ":" + std::to_string(a.port));
