@@ -126,7 +126,17 @@ std::string EditSession::update_constraints(const SolveRequest& r) {
   parameterizer_->set_constraints(std::move(rows));
   constraints_key_ = r.constraints_key;
   editor_ = std::make_unique<BoundaryEditor>(*parameterizer_);
+  if (r.boundary == "natural") prepare_pins();
   return "constraints";
+}
+
+// Natural map: the pins' responses (two each) computed with the build or
+// the constraint change, a click, so that the first pin drag is already a
+// superposition.
+void EditSession::prepare_pins() {
+  std::vector<int> pins;
+  for (const FixedVertex& p : parameterizer_->boundary()) pins.push_back(p.vertex);
+  editor_->prepare(pins);
 }
 
 SolveAnswer EditSession::rebuild(const SolveRequest& r, const std::string& key) {
@@ -142,6 +152,7 @@ SolveAnswer EditSession::rebuild(const SolveRequest& r, const std::string& key) 
   SolveAnswer a;
   a.path = "factor";
   if (r.boundary == "natural") {
+    prepare_pins();
     a.pins = parameterizer_->boundary();
     if (r.pins.empty()) {
       default_pins_ = a.pins;

@@ -6,7 +6,7 @@
 //   responses    same options and constraint rows: moved boundary vertices,
 //                moved pins and new constraint targets superposed from the
 //                editor's responses (computed on an input's first move,
-//                then kept), no solve;
+//                then kept; a natural map's pins with the build), no solve;
 //   resolve      same, but one solve with the kept factorization (many
 //                inputs moved at once, or circle <-> square: the same fixed
 //                vertices at other positions);
@@ -53,6 +53,7 @@ class EditSession {
   SolveAnswer move_fixed(const SolveRequest& r);
   SolveAnswer move_pins(const SolveRequest& r);
   void set_base();
+  void prepare_pins();
   void reset();
 
   const Mesh& mesh_;

@@ -69,6 +69,12 @@ class BoundaryEditor {
   // rows, in the order of Parameterizer::constraints(); updates the
   // Parameterizer's targets too. Throws as set_constraint_targets().
   const MatrixX2d& move_targets(const std::vector<Eigen::Vector2d>& targets);
+  // Lazy basis: computes now (one multi-column solve) and keeps the
+  // responses of these fixed vertices, so that their first move is already
+  // a superposition (e.g. the pins of a natural map, when it is built).
+  // Within resolve_above and the memory budget; otherwise, and for the full
+  // basis, nothing to do. Error(Input) for a vertex that is not fixed.
+  void prepare(const std::vector<int>& vertices);
 
   const MatrixX2d& uv() const { return uv_; }
   // Current positions of all fixed vertices.

@@ -188,6 +188,18 @@ const MatrixX2d& BoundaryEditor::move(const std::vector<FixedVertex>& positions)
   return uv_;
 }
 
+void BoundaryEditor::prepare(const std::vector<int>& vertices) {
+  const Parameterizer::Impl& s = *p_.impl_;
+  const int n = static_cast<int>(uv_.rows());
+  std::vector<Change> changes;
+  for (const int v : vertices) {
+    const int j = v >= 0 && v < n ? s.p().fixed_index[v] : -1;
+    if (j < 0) throw_input("vertex " + std::to_string(v) + " is not a fixed vertex, so it has no response");
+    changes.push_back({j, width_ == 2 ? s.p().fixed_index[n + v] : j, Eigen::Vector2d::Zero()});
+  }
+  ensure_responses(Source::Fixed, changes);
+}
+
 // Only rows with free terms enter the system; the others are checked
 // against the boundary by set_constraint_targets and move nothing.
 const MatrixX2d& BoundaryEditor::move_targets(const std::vector<Eigen::Vector2d>& targets) {
