@@ -38,6 +38,7 @@ struct ServeState {
   MeshData data;
   Mesh mesh;
   std::string mesh_json;
+  FaceFrames frames;  // the 3D side of every answer's distortion figures
   std::unique_ptr<SessionStore> sessions;
 };
 
@@ -121,8 +122,8 @@ Body handle_solve(ServeState& s, const httplib::Request& req, httplib::Response&
     std::lock_guard<std::mutex> lock(session->mutex);
     answer = session->state.solve(request);
   }
-  if (!binary) return {solve_api_json(s.mesh, answer)};
-  res.set_header("X-Answer", solve_api_header(s.mesh, answer));
+  if (!binary) return {solve_api_json(s.mesh, s.frames, answer)};
+  res.set_header("X-Answer", solve_api_header(s.mesh, s.frames, answer));
   return {uv_binary(answer.uv, float32), "application/octet-stream"};
 }
 
@@ -155,7 +156,7 @@ Body handle_optimal_lambda(ServeState& s, const httplib::Request& req) {
   a.update_ms = r.conformal_ms + r.authalic_ms + r.polynomial_ms;
   a.path = "blend";
   a.factorizations = r.map.factorizations;
-  return {solve_api_json(s.mesh, a,
+  return {solve_api_json(s.mesh, s.frames, a,
                          {{"lambda", r.lambda},
                           {"energy", r.energy},
                           {"energy_at_0", r.energy_at_0},
@@ -194,7 +195,7 @@ Body handle_optimize_boundary(ServeState& s, const httplib::Request& req) {
   a.update_ms = r.setup_ms + r.optimize_ms;
   a.path = "optimize";
   a.factorizations = r.factorizations;
-  return {solve_api_json(s.mesh, a,
+  return {solve_api_json(s.mesh, s.frames, a,
                          {{"energy_history", r.energy_history},
                           {"iterations", r.iterations},
                           {"stop_reason", r.stop_reason},
@@ -257,10 +258,19 @@ int run_serve(const ServeArgs& a) {
   s.data = read_mesh(a.input, ro);
   s.mesh = make_mesh(s.data);
   s.mesh_json = mesh_api_json(s.mesh, s.data.F);
+  s.frames = face_frames(s.mesh.V, s.mesh.F);
   s.sessions = std::make_unique<SessionStore>(s.mesh, static_cast<size_t>(a.max_sessions));
 
   httplib::Server server;
   server.set_payload_max_length(static_cast<size_t>(a.max_body_mib * 1024 * 1024));
+  // A drag is a stream of small requests on one kept-alive connection. With
+  // Nagle's algorithm on, the answer's last segment waits for the client's
+  // delayed ACK (tens of ms per request); and cpp-httplib closes a kept-alive
+  // connection after 5 requests by default, so every fifth move paid a new
+  // TCP connection. Idle connections still close after the 5 s timeout, so
+  // they do not hold the worker threads.
+  server.set_tcp_nodelay(true);
+  server.set_keep_alive_max_count(100000);
   add_routes(server, s);
   const int port = a.port == 0 ? server.bind_to_any_port(a.host) : (server.bind_to_port(a.host, a.port) ? a.port : -1);
   if (port < 0) throw_usage("cannot listen on " + a.host + ":" + std::to_string(a.port));

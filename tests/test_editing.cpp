@@ -155,6 +155,136 @@ TEST(Editing, OnlyFixedVerticesMove) {
                      "vertex " + std::to_string(interior) + " is not a fixed");
 }
 
+ParamOptions natural_pins(std::vector<FixedVertex> pins) {
+  ParamOptions o;
+  o.boundary = BoundaryShape::Natural;
+  o.pins = std::move(pins);
+  return o;
+}
+
+// The natural map is linear in the pin positions: moving pins through two
+// responses each equals a fresh Parameterizer built with the moved pins
+// (its own factorization), with and without constraints, in both bases.
+TEST(Editing, NaturalPinsSuperposeAsFreshSolve) {
+  const Mesh mesh = wavy();
+  const int b = mesh.topology.boundary_loops[0][5];
+  const std::vector<FixedVertex> pins = {{b, Eigen::Vector2d(0.1, 0.2)}, {60, Eigen::Vector2d(0.8, 0.3)},
+                                         {130, Eigen::Vector2d(0.4, 0.9)}};
+  Constraints c;
+  c.points.push_back({SurfacePoint::in_face(20, Eigen::Vector3d(0.2, 0.3, 0.5)), Eigen::Vector2d(0.45, 0.5), ""});
+  for (const bool constrained : {false, true})
+    for (BasisMode basis : {BasisMode::Full, BasisMode::Lazy}) {
+      Parameterizer p(mesh, natural_pins(pins));
+      if (constrained) p.set_constraints(c);
+      EditOptions eo;
+      eo.basis = basis;
+      BoundaryEditor editor(p, eo);
+      if (basis == BasisMode::Lazy && constrained) {
+        editor.prepare({pins[0].vertex, pins[1].vertex, pins[2].vertex});
+        EXPECT_EQ(editor.responses(), 6) << "two responses per pin, computed up front";
+      }
+      std::vector<FixedVertex> moved = pins;
+      for (int round = 0; round < 3; ++round) {
+        moved[round % 3].uv += Eigen::Vector2d(0.03 * (round + 1), -0.02);
+        moved[(round + 1) % 3].uv += Eigen::Vector2d(-0.01, 0.04);
+        const MatrixX2d before = editor.uv();
+        const MatrixX2d& uv = editor.move(moved);
+        EXPECT_FALSE(editor.last_update().resolved);
+        EXPECT_EQ(editor.last_update().moved, 2);
+        if (basis == BasisMode::Lazy && constrained) EXPECT_EQ(editor.last_update().new_responses, 0);
+        EXPECT_GT((uv - before).cwiseAbs().maxCoeff(), 1e-3);
+        Parameterizer fresh(mesh, natural_pins(moved));
+        if (constrained) fresh.set_constraints(c);
+        EXPECT_LT((uv - fresh.solve().UV).cwiseAbs().maxCoeff(), 1e-9)
+            << "round " << round << (constrained ? " constrained" : "") << (basis == BasisMode::Full ? " full" : " lazy");
+        for (const FixedVertex& q : moved) EXPECT_EQ(uv.row(q.vertex), q.uv.transpose()) << "pins sit exactly";
+        if (constrained) EXPECT_LT(p.residuals(uv)[0].residual, 1e-9);
+      }
+      EXPECT_EQ(editor.responses(), 6) << "two responses per pin (lazy: every pin was moved)";
+      EXPECT_EQ(p.factorizations(), 1);
+      EXPECT_EQ(p.boundary().size(), 3u);
+    }
+}
+
+// The map is affine in the constraint targets: new targets through the
+// target responses equal a fresh solve with those targets (fixed boundary
+// in every method, and the natural layout), the responses computed once.
+TEST(Editing, ConstraintTargetsSuperposeAsFreshSolve) {
+  const Mesh mesh = wavy();
+  Constraints c;
+  c.points.push_back({SurfacePoint::in_face(20, Eigen::Vector3d(0.2, 0.3, 0.5)), Eigen::Vector2d(0.45, 0.5), ""});
+  c.points.push_back({SurfacePoint::in_face(150, Eigen::Vector3d(0.6, 0.3, 0.1)), Eigen::Vector2d(0.6, 0.55), ""});
+  std::vector<ParamOptions> cases;
+  for (const MethodCase& mc : kMethods) cases.push_back(options_for(mc));
+  cases.push_back(natural_pins({{0, Eigen::Vector2d(0, 0)}, {7, Eigen::Vector2d(1, 0)}}));
+  for (size_t k = 0; k < cases.size(); ++k) {
+    Parameterizer p(mesh, cases[k]);
+    p.set_constraints(c);
+    BoundaryEditor editor(p);
+    std::vector<Eigen::Vector2d> targets = {c.points[0].uv, c.points[1].uv};
+    for (int round = 0; round < 3; ++round) {
+      targets[0] += Eigen::Vector2d(0.02, -0.01 * round);
+      if (round == 2) targets[1] += Eigen::Vector2d(-0.03, 0.01);
+      const MatrixX2d before = editor.uv();
+      const MatrixX2d& uv = editor.move_targets(targets);
+      EXPECT_FALSE(editor.last_update().resolved);
+      EXPECT_EQ(editor.last_update().moved, round == 2 ? 2 : 1);
+      EXPECT_EQ(editor.last_update().new_responses, round == 0 || round == 2 ? (k == 3 ? 2 : 1) : 0) << round;
+      EXPECT_GT((uv - before).cwiseAbs().maxCoeff(), 1e-3);
+      Constraints moved = c;
+      moved.points[0].uv = targets[0];
+      moved.points[1].uv = targets[1];
+      Parameterizer fresh(mesh, p.options());
+      fresh.set_constraints(moved);
+      EXPECT_LT((uv - fresh.solve().UV).cwiseAbs().maxCoeff(), 1e-9) << "case " << k << " round " << round;
+      for (const ConstraintResidual& r : p.residuals(uv)) EXPECT_LT(r.residual, 1e-9) << r.label;
+    }
+    // Boundary (or pin) moves after target moves still superpose correctly.
+    const std::vector<FixedVertex> b = editor.boundary();
+    std::vector<FixedVertex> m = {b[1]};
+    m[0].uv += Eigen::Vector2d(0.02, 0.03);
+    const MatrixX2d& uv = editor.move(m);
+    Parameterizer fresh(mesh, p.options());
+    Constraints moved = c;
+    moved.points[0].uv = targets[0];
+    moved.points[1].uv = targets[1];
+    fresh.solve_with_boundary(editor.boundary());
+    fresh.set_constraints(moved);
+    EXPECT_LT((uv - fresh.solve().UV).cwiseAbs().maxCoeff(), 1e-9) << "case " << k;
+    EXPECT_EQ(p.factorizations(), 1);
+  }
+}
+
+// Circle <-> square on the kept factorization equals a Parameterizer built
+// with the other shape, in both scale modes and with constraints kept.
+TEST(Editing, BoundaryShapeSwapsWithoutRefactoring) {
+  const Mesh mesh = wavy();
+  Constraints c;
+  c.points.push_back({SurfacePoint::in_face(20, Eigen::Vector3d(0.2, 0.3, 0.5)), Eigen::Vector2d(0.45, 0.5), ""});
+  for (const ScaleMode scale : {ScaleMode::Unit, ScaleMode::Surface})
+    for (const bool constrained : {false, true}) {
+      ParamOptions o = options_for(kMethods[2]);
+      o.scale = scale;
+      Parameterizer p(mesh, o);
+      if (constrained) p.set_constraints(c);
+      for (const BoundaryShape shape : {BoundaryShape::Square, BoundaryShape::Circle}) {
+        p.set_boundary_shape(shape);
+        ParamOptions other = o;
+        other.boundary = shape;
+        Parameterizer fresh(mesh, other);
+        if (constrained) fresh.set_constraints(c);
+        const ParamResult want = fresh.solve();
+        EXPECT_LT((p.solve().UV - want.UV).cwiseAbs().maxCoeff(), 1e-9)
+            << (shape == BoundaryShape::Square ? "square" : "circle") << (constrained ? " constrained" : "");
+        EXPECT_EQ(p.options().boundary, shape);
+        EXPECT_EQ(p.boundary().size(), fresh.boundary().size());
+      }
+      EXPECT_EQ(p.factorizations(), 1);
+    }
+  Parameterizer q(mesh, natural_pins({}));
+  test::expect_error([&] { q.set_boundary_shape(BoundaryShape::Square); }, ErrorKind::Usage, "circle and square");
+}
+
 std::string boundary_text(const std::vector<FixedVertex>& b) {
   std::string s;
   char line[128];

@@ -152,8 +152,6 @@ TEST(NaturalConstraints, ContradictingPinsAreRefused) {
   const SurfacePoint sp = SurfacePoint::in_face(40, Eigen::Vector3d(0.2, 0.3, 0.5));
   expect_error([&] { p.set_constraints(Constraints{{{sp, Eigen::Vector2d(0.3, 0.3), ""}, {sp, Eigen::Vector2d(0.4, 0.3), ""}}, {}}); },
                ErrorKind::Input, "points[1]");
-  // The boundary editor has no per-vertex responses on the coupled system.
-  expect_error([&] { BoundaryEditor e(p); }, ErrorKind::Usage, "natural boundary");
   // The natural boundary still needs the conformal method.
   o.weights.method = Method::Authalic;
   expect_error([&] { Parameterizer q(mesh, o); }, ErrorKind::Usage, "conformal method");

@@ -247,19 +247,60 @@ TEST_F(ServeTest, NaturalWithMovedPinsEqualsParam) {
   ASSERT_EQ(first.status, 200) << first.body.dump();
   json pins = first.body.at("pins");
   ASSERT_EQ(pins.size(), 2u);
-  const Reply given = post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump());  // builds with given pins
+  // The default pins given explicitly: the same map, on the same factorization.
+  const Reply given = post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump());
   ASSERT_EQ(given.status, 200);
-  EXPECT_EQ(given.body["path"], "factor");
+  EXPECT_EQ(given.body["path"], "responses");
+  EXPECT_EQ(given.body["factorizations"], 1);
   EXPECT_LT(max_diff(uv_of(given.body), uv_of(first.body)), 1e-9);
   pins[1][1] = pins[1][1].get<double>() + 0.1;
   pins[1][2] = pins[1][2].get<double>() - 0.2;
-  const Reply moved = post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump());
-  ASSERT_EQ(moved.status, 200);
-  EXPECT_EQ(moved.body["path"], "resolve");
-  std::string args = path_ + " --boundary natural";
-  for (const auto& p : pins)
-    args += " --pin " + std::to_string(p[0].get<int>()) + ":" + g17(p[1].get<double>()) + "," + g17(p[2].get<double>());
-  EXPECT_LT(max_diff(uv_of(moved.body), run_param(args, dir_)), 1e-9);
+  // Pin drags: two responses per pin superposed on the kept factorization.
+  for (int step = 0; step < 2; ++step) {
+    pins[step][1] = pins[step][1].get<double>() + 0.1;
+    pins[1][2] = pins[1][2].get<double>() - 0.2;
+    const Reply moved = post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump());
+    ASSERT_EQ(moved.status, 200);
+    EXPECT_EQ(moved.body["path"], "responses") << step;
+    EXPECT_EQ(moved.body["factorizations"], 1) << step;
+    std::string args = path_ + " --boundary natural";
+    for (const auto& p : pins)
+      args += " --pin " + std::to_string(p[0].get<int>()) + ":" + g17(p[1].get<double>()) + "," + g17(p[2].get<double>());
+    EXPECT_LT(max_diff(uv_of(moved.body), run_param(args, dir_)), 1e-9) << step;
+  }
+  // No pins again: back to the default pins, still without refactoring.
+  const Reply back = post(port(), R"({"boundary": "natural"})");
+  ASSERT_EQ(back.status, 200);
+  EXPECT_EQ(back.body["factorizations"], 1);
+  EXPECT_LT(max_diff(uv_of(back.body), uv_of(first.body)), 1e-9);
+}
+
+// Circle <-> square keeps the factorization (same fixed vertices, new
+// positions: one solve), with and without moves, against `intrinsic param`.
+TEST_F(ServeTest, CircleSquareSwitchKeepsTheFactorization) {
+  start("camel_b.obj");
+  const Reply circle = post(port(), R"({"method": "authalic"})");
+  ASSERT_EQ(circle.status, 200);
+  EXPECT_EQ(circle.body["path"], "factor");
+  const Reply square = post(port(), R"({"method": "authalic", "boundary": "square"})");
+  ASSERT_EQ(square.status, 200) << square.body.dump();
+  EXPECT_NE(square.body["path"], "factor");
+  EXPECT_EQ(square.body["factorizations"], 1);
+  EXPECT_LT(max_diff(uv_of(square.body), run_param(path_ + " --method authalic --boundary square", dir_)), 1e-9);
+  // A square drag, then back to the circle with a drag: moves are relative to each request's shape.
+  const int v = mesh_.topology.boundary_loops[0][6];
+  const json moves = json::array({json::array({v, 0.3, -0.1})});
+  const Reply dragged = post(port(), json{{"method", "authalic"}, {"boundary", "square"}, {"moves", moves}}.dump());
+  ASSERT_EQ(dragged.status, 200);
+  EXPECT_EQ(dragged.body["path"], "responses");
+  test::write_text(dir_ / "b.txt", boundary_file(mesh_, uv_of(square.body), moves));
+  EXPECT_LT(max_diff(uv_of(dragged.body), run_param(path_ + " --method authalic --boundary " + (dir_ / "b.txt"), dir_)), 1e-9);
+  const Reply back = post(port(), json{{"method", "authalic"}, {"moves", moves}}.dump());
+  ASSERT_EQ(back.status, 200);
+  EXPECT_NE(back.body["path"], "factor");
+  EXPECT_EQ(back.body["factorizations"], 1);
+  test::write_text(dir_ / "b2.txt", boundary_file(mesh_, uv_of(circle.body), moves));
+  EXPECT_LT(max_diff(uv_of(back.body), run_param(path_ + " --method authalic --boundary " + (dir_ / "b2.txt"), dir_)), 1e-9);
 }
 
 // Adding, retargeting, extending and removing constraints: one
@@ -285,7 +326,8 @@ TEST_F(ServeTest, ConstraintChangesReuseTheFactorization) {
       {{"points", {{{"face", faces[0]}, {"bary", {0.2, 0.3, 0.5}}, {"uv", {0.40, 0.62}}}}},
        {"lines", {{{"path", {p0, p1}}, {"to", {{0.40, 0.62}, {0.50, 0.66}}}}}}},
   };
-  const char* const paths[] = {"constraints", "targets", "constraints", "targets"};
+  // Same rows, new targets: the target responses (computed on a row's first new target).
+  const char* const paths[] = {"constraints", "responses", "constraints", "responses"};
   for (int k = 0; k < 4; ++k) {
     const Reply r = post(port(), json{{"constraints", steps[k]}, {"moves", moves}}.dump());
     ASSERT_EQ(r.status, 200) << r.body.dump();
@@ -315,7 +357,7 @@ TEST_F(ServeTest, NaturalConstraintsAndPinsReuseTheFactorization) {
   const Reply first = post(port(), R"({"boundary": "natural"})");
   ASSERT_EQ(first.status, 200);
   json pins = first.body.at("pins");
-  ASSERT_EQ(post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump()).status, 200);  // given pins: built once
+  ASSERT_EQ(post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump()).status, 200);  // the default pins, given
   const json c1 = {{"points", {{{"face", faces[0]}, {"bary", {0.3, 0.3, 0.4}}, {"uv", {0.5, 0.4}}}}}};
   const json c2 = {{"points", {{{"face", faces[0]}, {"bary", {0.3, 0.3, 0.4}}, {"uv", {0.55, 0.35}}}}}};
   const Reply a = post(port(), json{{"boundary", "natural"}, {"constraints", c1}, {"pins", pins}}.dump());
@@ -324,7 +366,7 @@ TEST_F(ServeTest, NaturalConstraintsAndPinsReuseTheFactorization) {
   pins[1][1] = pins[1][1].get<double>() + 0.05;
   const Reply b = post(port(), json{{"boundary", "natural"}, {"constraints", c2}, {"pins", pins}}.dump());
   ASSERT_EQ(b.status, 200) << b.body.dump();
-  EXPECT_EQ(b.body["path"], "targets");
+  EXPECT_EQ(b.body["path"], "responses") << "new target and pin through the editor's responses";
   EXPECT_EQ(b.body["factorizations"], 1);
   test::write_text(dir_ / "c.json", c2.dump());
   std::string args = path_ + " --boundary natural --constraints " + (dir_ / "c.json");

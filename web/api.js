@@ -42,9 +42,11 @@ async function postSolve(body, float32) {
     method: 'POST', headers: { 'Content-Type': 'application/json', 'X-Session': session }, body: JSON.stringify(body),
   });
   if (!res.ok) { const e = await res.json(); throw new Error(e.error || ('HTTP ' + res.status)); }
+  const headersAt = performance.now();
   const answer = JSON.parse(res.headers.get('X-Answer'));
   const bytes = await res.arrayBuffer();
   answer.uvFlat = float32 ? new Float32Array(bytes) : new Float64Array(bytes);
+  answer.bodyMs = performance.now() - headersAt;  // the UVs' transfer and copy into a typed array
   return answer;
 }
 
@@ -62,7 +64,13 @@ async function send(item) {
   const t0 = performance.now();
   try {
     const answer = await postSolve(item.body, item.float32);
-    state.roundTrips.push(performance.now() - t0);
+    const roundTrip = performance.now() - t0;
+    state.roundTrips.push(roundTrip);
+    // Where a drag step's time goes (drag_bench.mjs): waiting to be sent
+    // (one request in flight), request to headers (network and server), the
+    // body, and the server's own update.
+    state.phases.push({ wait: item.stamp === null ? 0 : t0 - item.stamp, headers: roundTrip - answer.bodyMs,
+      body: answer.bodyMs, server: answer.update_ms });
     state.preview = null;
     show(answer, performance.now() - t0, item.stamp);
     setError(null);

@@ -23,6 +23,8 @@ export const state = {
   latencies: [],       // mouse event to the frame after the new UVs are drawn (ms)
   drawTimes: [],       // the frame callback's own time (uploads, 2D overlay, GL calls; ms)
   roundTrips: [],      // /api/solve request to parsed JSON answer, as the page sees it (ms)
+  phases: [],          // per /api/solve answer: {wait, headers, body, server} (ms; api.js)
+  uploadTimes: [],     // the frame callback's vertex buffer uploads (ms; part of drawTimes)
 };
 
 // Outer loop index of each vertex (-1: not on it).

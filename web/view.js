@@ -22,6 +22,7 @@ export function draw(stamp = null) {
       uploadUV(uv32);
       uploadLayout(uv32);
       uvDrawn = state.uv;
+      state.uploadTimes.push(performance.now() - t0);
     }
     draw3d();
     draw2d();

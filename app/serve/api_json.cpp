@@ -69,8 +69,8 @@ double weighted_mean(const Eigen::VectorXd& x, const Eigen::VectorXd& w) {
 
 // The two figures the page shows, without the rest of summarize_distortion
 // (its edge statistics cost more than the update itself on large meshes).
-Figures figures(const Mesh& mesh, const MatrixX2d& uv) {
-  const FaceDistortion d = face_distortion(mesh.V, mesh.F, uv);
+Figures figures(const Mesh& mesh, const FaceFrames& frames, const MatrixX2d& uv) {
+  const FaceDistortion d = face_distortion(frames, mesh.F, uv);
   Figures f;
   for (const bool flipped : d.flipped) f.flipped += flipped ? 1 : 0;
   f.angle_mean = weighted_mean(d.angle, d.area_3d);
@@ -78,8 +78,8 @@ Figures figures(const Mesh& mesh, const MatrixX2d& uv) {
   return f;
 }
 
-nlohmann::json answer_json(const Mesh& mesh, const SolveAnswer& a) {
-  const Figures d = figures(mesh, a.uv);
+nlohmann::json answer_json(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& a) {
+  const Figures d = figures(mesh, frames, a.uv);
   nlohmann::json out{{"uv", nullptr},
                      {"flipped_triangles", d.flipped},
                      {"angle_distortion_mean", d.angle_mean},
@@ -97,8 +97,8 @@ nlohmann::json answer_json(const Mesh& mesh, const SolveAnswer& a) {
 
 }  // namespace
 
-std::string solve_api_header(const Mesh& mesh, const SolveAnswer& a) {
-  nlohmann::json out = answer_json(mesh, a);
+std::string solve_api_header(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& a) {
+  nlohmann::json out = answer_json(mesh, frames, a);
   out.erase("uv");
   return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
@@ -125,8 +125,9 @@ std::string uv_binary(const MatrixX2d& uv, bool float32) {
   return out;
 }
 
-std::string solve_api_json(const Mesh& mesh, const SolveAnswer& a, const nlohmann::json& extra) {
-  nlohmann::json out = answer_json(mesh, a);
+std::string solve_api_json(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& a,
+                           const nlohmann::json& extra) {
+  nlohmann::json out = answer_json(mesh, frames, a);
   for (const auto& item : extra.items()) out[item.key()] = item.value();
   // The UVs replace the placeholder (keys are sorted: "uv" is last).
   std::string text = out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);

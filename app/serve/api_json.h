@@ -6,6 +6,7 @@
 #include <string>
 
 #include "intrinsic/mesh.h"
+#include "intrinsic/metrics.h"
 #include "serve/edit_session.h"
 
 namespace intrinsic::app {
@@ -18,12 +19,13 @@ std::string mesh_api_json(const Mesh& mesh, const MatrixX3i& file_faces);
 // {"uv": [[u, v], ...], "flipped_triangles", "angle_distortion_mean",
 //  "area_distortion_mean", "update_ms", "path", "factorizations"} plus
 // "pins": [[vertex, u, v], ...] for the natural map, plus the keys of `extra`.
-std::string solve_api_json(const Mesh& mesh, const SolveAnswer& answer,
+// `frames`: face_frames(mesh.V, mesh.F), computed once per server.
+std::string solve_api_json(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& answer,
                            const nlohmann::json& extra = nlohmann::json::object());
 // The same answer split for `POST /api/solve?uv=binary`: the JSON without
 // "uv" (sent in the X-Answer header) and the UVs as little-endian float64
 // u0 v0 u1 v1 ... (the body): no number printing or parsing on either side.
-std::string solve_api_header(const Mesh& mesh, const SolveAnswer& answer);
+std::string solve_api_header(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& answer);
 // `float32`: the same values rounded to little-endian float32, half the bytes
 // (`?uv=float32`, what the page asks for while a drag is under way).
 std::string uv_binary(const MatrixX2d& uv, bool float32 = false);

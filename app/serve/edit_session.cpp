@@ -15,14 +15,26 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // What must be equal for a request to reuse the session's factorization:
-// everything but the moves, the constraints and (natural map) the pin positions.
-std::string options_key(const SolveRequest& r) {
+// everything but the moves, the constraints, the pin positions and whether
+// the fixed boundary is a circle or a square (the same fixed vertices: only
+// their positions differ).
+std::string options_key(const SolveRequest& r, const std::vector<FixedVertex>& pin_list) {
   const WeightOptions w = r.weights.options();
   nlohmann::json pins = nlohmann::json::array();
-  for (const FixedVertex& p : r.pins) pins.push_back(p.vertex);
+  for (const FixedVertex& p : pin_list) pins.push_back(p.vertex);
   return nlohmann::json{{"method", static_cast<int>(w.method)}, {"lambda", w.lambda}, {"mu", w.mu},
-                        {"boundary", r.boundary}, {"pins", pins}}
+                        {"natural", r.boundary == "natural"}, {"pins", pins}}
       .dump();
+}
+
+BoundaryShape shape_of(const std::string& boundary) {
+  return boundary == "square" ? BoundaryShape::Square : boundary == "natural" ? BoundaryShape::Natural : BoundaryShape::Circle;
+}
+
+// The answer's path when one request takes several steps: the costliest.
+std::string costlier(const std::string& a, const std::string& b) {
+  auto rank = [](const std::string& p) { return p == "constraints" ? 2 : p == "resolve" ? 1 : 0; };
+  return rank(a) >= rank(b) ? a : b;
 }
 
 // The same rows (vertices and weights) as the kept ones: only targets differ.
@@ -36,9 +48,7 @@ bool same_rows(const std::vector<LinearConstraint>& a, const std::vector<LinearC
 ParamOptions to_param_options(const SolveRequest& r) {
   ParamOptions o;
   o.weights = r.weights.options();
-  o.boundary = r.boundary == "square"    ? BoundaryShape::Square
-               : r.boundary == "natural" ? BoundaryShape::Natural
-                                         : BoundaryShape::Circle;
+  o.boundary = shape_of(r.boundary);
   o.pins = r.pins;
   return o;
 }
@@ -52,13 +62,24 @@ void EditSession::reset() {
   parameterizer_.reset();
   key_.clear();
   constraints_key_.clear();
+  shape_.clear();
   base_.clear();
   base_index_.clear();
   moved_.clear();
 }
 
-SolveAnswer EditSession::solve(const SolveRequest& r) {
-  const std::string key = options_key(r);
+SolveAnswer EditSession::solve(const SolveRequest& request) {
+  // Natural map without pins: the default pins where the library placed
+  // them, once known. The same map (it is unique for given pin positions),
+  // and the session's editor then serves requests with and without pins.
+  SolveRequest with_pins;
+  const bool fill = request.boundary == "natural" && request.pins.empty() && !default_pins_.empty();
+  if (fill) {
+    with_pins = request;
+    with_pins.pins = default_pins_;
+  }
+  const SolveRequest& r = fill ? with_pins : request;
+  const std::string key = options_key(r, r.pins);
   try {
     SolveAnswer a;
     if (key != key_ || !parameterizer_) {
@@ -68,7 +89,7 @@ SolveAnswer EditSession::solve(const SolveRequest& r) {
       const std::string path = r.constraints_key == constraints_key_ ? "" : update_constraints(r);
       a = r.boundary == "natural" ? move_pins(r) : move_fixed(r);
       if (!path.empty()) {
-        a.path = path;
+        a.path = costlier(path, a.path);
         a.update_ms = ms_since(t0);
       }
     }
@@ -86,25 +107,36 @@ std::vector<FixedVertex> EditSession::boundary_after(const SolveRequest& r) {
   return editor_->boundary();
 }
 
-// Same factorization, other constraints. The editor's responses depend on
-// the constraint rows (they keep the rows met), so it starts again from the
-// Parameterizer's current boundary: the moves carry over.
+// Same factorization, other constraints. New targets for the same rows go
+// through the editor's target responses ("responses", or "resolve" when
+// many move at once). Other rows: the editor's responses depend on the rows
+// (they keep them met), so it starts again from the Parameterizer's current
+// boundary ("constraints"): the moves carry over.
 std::string EditSession::update_constraints(const SolveRequest& r) {
-  editor_.reset();
   std::vector<LinearConstraint> rows;
   if (!r.constraints.empty()) rows = resolve_constraints(mesh_, r.constraints);
-  std::string path = "constraints";
   if (same_rows(rows, parameterizer_->constraints())) {
     std::vector<Eigen::Vector2d> targets;
     for (const LinearConstraint& c : rows) targets.push_back(c.target);
-    parameterizer_->set_constraint_targets(targets);
-    path = "targets";
-  } else {
-    parameterizer_->set_constraints(std::move(rows));
+    editor_->move_targets(targets);
+    constraints_key_ = r.constraints_key;
+    return editor_->last_update().resolved ? "resolve" : "responses";
   }
+  editor_.reset();
+  parameterizer_->set_constraints(std::move(rows));
   constraints_key_ = r.constraints_key;
-  if (r.boundary != "natural") editor_ = std::make_unique<BoundaryEditor>(*parameterizer_);
-  return path;
+  editor_ = std::make_unique<BoundaryEditor>(*parameterizer_);
+  if (r.boundary == "natural") prepare_pins();
+  return "constraints";
+}
+
+// Natural map: the pins' responses (two each) computed with the build or
+// the constraint change, a click, so that the first pin drag is already a
+// superposition.
+void EditSession::prepare_pins() {
+  std::vector<int> pins;
+  for (const FixedVertex& p : parameterizer_->boundary()) pins.push_back(p.vertex);
+  editor_->prepare(pins);
 }
 
 SolveAnswer EditSession::rebuild(const SolveRequest& r, const std::string& key) {
@@ -112,59 +144,82 @@ SolveAnswer EditSession::rebuild(const SolveRequest& r, const std::string& key) 
   const auto t0 = std::chrono::steady_clock::now();
   auto p = std::make_unique<Parameterizer>(mesh_, to_param_options(r));
   if (!r.constraints.empty()) p->set_constraints(r.constraints);
+  parameterizer_ = std::move(p);
+  editor_ = std::make_unique<BoundaryEditor>(*parameterizer_);
+  key_ = key;
+  constraints_key_ = r.constraints_key;
+  shape_ = r.boundary;
   SolveAnswer a;
   a.path = "factor";
   if (r.boundary == "natural") {
-    a.uv = p->solve().UV;
-    a.pins = p->boundary();
-    parameterizer_ = std::move(p);
-    key_ = key;
-    constraints_key_ = r.constraints_key;
-    a.update_ms = ms_since(t0);
-    return a;
-  }
-  parameterizer_ = std::move(p);
-  editor_ = std::make_unique<BoundaryEditor>(*parameterizer_);
-  base_ = editor_->boundary();
-  base_index_.assign(mesh_.V.rows(), -1);
-  for (size_t k = 0; k < base_.size(); ++k) base_index_[base_[k].vertex] = static_cast<int>(k);
-  key_ = key;
-  constraints_key_ = r.constraints_key;
-  if (!r.moves.empty()) {
-    editor_->move(r.moves);
-    for (const FixedVertex& m : r.moves) moved_.push_back(m.vertex);
+    prepare_pins();
+    a.pins = parameterizer_->boundary();
+    if (r.pins.empty()) {
+      default_pins_ = a.pins;
+      key_ = options_key(r, default_pins_);  // what the next request without pins asks for
+    }
+  } else {
+    set_base();
+    if (!r.moves.empty()) {
+      editor_->move(r.moves);
+      for (const FixedVertex& m : r.moves) moved_.push_back(m.vertex);
+    }
   }
   a.uv = editor_->uv();
   a.update_ms = ms_since(t0);
   return a;
 }
 
+// The Parameterizer's boundary: after set_boundary_shape it is already the
+// new shape while the editor still holds the old one.
+void EditSession::set_base() {
+  base_ = parameterizer_->boundary();
+  base_index_.assign(mesh_.V.rows(), -1);
+  for (size_t k = 0; k < base_.size(); ++k) base_index_[base_[k].vertex] = static_cast<int>(k);
+}
+
 // Moves are absolute positions relative to the base boundary: vertices the
 // previous request moved and this one does not list go back to the base.
+// Circle <-> square: the Parameterizer places the other shape on the kept
+// factorization, and every fixed vertex moves (a re-solve in the editor,
+// whose responses stay valid: they do not depend on the positions).
 SolveAnswer EditSession::move_fixed(const SolveRequest& r) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool reshape = r.boundary != shape_;
+  if (reshape) {
+    parameterizer_->set_boundary_shape(shape_of(r.boundary));
+    shape_ = r.boundary;
+    set_base();
+  }
   std::vector<FixedVertex> positions = r.moves;
   std::vector<char> listed(mesh_.V.rows(), 0);
   for (const FixedVertex& m : r.moves) listed[m.vertex] = 1;
-  for (const int v : moved_)
-    if (!listed[v]) positions.push_back(base_[base_index_[v]]);
+  if (reshape) {
+    for (const FixedVertex& b : base_)
+      if (!listed[b.vertex]) positions.push_back(b);
+  } else {
+    for (const int v : moved_)
+      if (!listed[v]) positions.push_back(base_[base_index_[v]]);
+  }
   SolveAnswer a;
   if (!positions.empty()) editor_->move(positions);
   moved_.clear();
   for (const FixedVertex& m : r.moves) moved_.push_back(m.vertex);
   a.uv = editor_->uv();
-  a.update_ms = positions.empty() ? 0.0 : editor_->last_update().ms;
+  a.update_ms = positions.empty() ? 0.0 : reshape ? ms_since(t0) : editor_->last_update().ms;
   a.path = !positions.empty() && editor_->last_update().resolved ? "resolve" : "responses";
   return a;
 }
 
-// Same pins (the key holds their vertices): a new right-hand side, no
-// refactorization. No pins given: the map as built.
+// Same pins (the key holds their vertices): the natural map is linear in
+// the pin positions, so the editor superposes two responses per moved pin.
+// No pins given: the map as built.
 SolveAnswer EditSession::move_pins(const SolveRequest& r) {
-  const auto t0 = std::chrono::steady_clock::now();
   SolveAnswer a;
-  a.uv = r.pins.empty() ? parameterizer_->solve().UV : parameterizer_->solve_with_boundary(r.pins).UV;
-  a.update_ms = ms_since(t0);
-  a.path = "resolve";
+  if (!r.pins.empty()) editor_->move(r.pins);
+  a.uv = editor_->uv();
+  a.update_ms = r.pins.empty() ? 0.0 : editor_->last_update().ms;
+  a.path = !r.pins.empty() && editor_->last_update().resolved ? "resolve" : "responses";
   a.pins = parameterizer_->boundary();
   return a;
 }

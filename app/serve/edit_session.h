@@ -1,18 +1,20 @@
 // One browser tab's state in `intrinsic serve`: its Parameterizer, the
-// BoundaryEditor on it (fixed boundary) and the options they were built
-// with (paper section 4.2; docs/maths.md §5, §6). A request is answered from
-// the kept factorization whenever the system matrix is unchanged:
-//   responses    same options and constraints: the moves superposed from the
-//                editor's impulse responses, no solve;
+// BoundaryEditor on it (fixed boundary or natural pins) and the options they
+// were built with (paper section 4.2; docs/maths.md §5, §6). A request is
+// answered from the kept factorization whenever the system matrix is
+// unchanged:
+//   responses    same options and constraint rows: moved boundary vertices,
+//                moved pins and new constraint targets superposed from the
+//                editor's responses (computed on an input's first move,
+//                then kept; a natural map's pins with the build), no solve;
 //   resolve      same, but one solve with the kept factorization (many
-//                vertices moved at once, or new pin positions);
-//   targets      same constraint rows with new targets (a constraint dragged
-//                in the plane): a new right-hand side, then as above;
-//   constraints  other constraints (added, removed, a new line): the
+//                inputs moved at once, or circle <-> square: the same fixed
+//                vertices at other positions);
+//   constraints  other constraint rows (added, removed, a new line): the
 //                constraint block re-set on the kept factorization (one
 //                solve per constraint row, a small dense factorization);
-//   factor       another method, lambda, mu, boundary shape or set of pins:
-//                a new Parameterizer (K itself changes: nothing to reuse).
+//   factor       another method, lambda, mu, natural vs fixed boundary or
+//                set of pins: a new Parameterizer (K itself changes).
 // Not thread-safe: the caller holds the session's mutex.
 #pragma once
 
@@ -29,7 +31,7 @@ namespace intrinsic::app {
 struct SolveAnswer {
   MatrixX2d uv;
   double update_ms = 0;             // the solve or update only (not parsing, metrics, JSON)
-  std::string path;                 // "responses" | "resolve" | "targets" | "constraints" | "factor"
+  std::string path;                 // "responses" | "resolve" | "constraints" | "factor"
   std::vector<FixedVertex> pins;    // natural map: the pins used (output coordinates)
   int factorizations = 0;           // sparse factorizations of the session's Parameterizer so far
 };
@@ -50,17 +52,20 @@ class EditSession {
   std::string update_constraints(const SolveRequest& r);
   SolveAnswer move_fixed(const SolveRequest& r);
   SolveAnswer move_pins(const SolveRequest& r);
-  void start_editor();
+  void set_base();
+  void prepare_pins();
   void reset();
 
   const Mesh& mesh_;
   std::unique_ptr<Parameterizer> parameterizer_;
-  std::unique_ptr<BoundaryEditor> editor_;  // fixed boundary only; destroyed before the parameterizer
+  std::unique_ptr<BoundaryEditor> editor_;  // destroyed before the parameterizer
   std::string key_;                         // options the parameterizer was built with (constraints aside)
   std::string constraints_key_;             // the constraints it holds now
+  std::string shape_;                       // "circle" | "square" | "natural": the boundary it holds now
   std::vector<FixedVertex> base_;           // fixed boundary: the base positions (output coordinates)
   std::vector<int> base_index_;             // vertex -> index in base_, -1 when not fixed
   std::vector<int> moved_;                  // vertices the last request moved away from base_
+  std::vector<FixedVertex> default_pins_;   // natural map: the default pins as placed (kept across rebuilds)
 };
 
 }  // namespace intrinsic::app

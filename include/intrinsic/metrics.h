@@ -55,6 +55,18 @@ double area_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV);
 
 // UV is #V x 2 (one coordinate per vertex, indexed like V).
 FaceDistortion face_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV);
+
+// What face_distortion needs of the 3D surface, for any map: per face the
+// inverse of its edge matrix in the face's own 2D frame (row-major 2x2) and
+// its area. Computed once, it serves many maps of the same mesh (the
+// editor's answers); face_distortion(V, F, UV) is face_distortion of these.
+struct FaceFrames {
+  Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor> P_inverse;
+  Eigen::VectorXd area_3d;
+  double total_area_3d = 0;
+};
+FaceFrames face_frames(const MatrixX3d& V, const MatrixX3i& F);
+FaceDistortion face_distortion(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV);
 DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV);
 
 // ---- Atlases and other tools' outputs (issue 13 item 7) -------------------

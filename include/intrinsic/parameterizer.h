@@ -18,6 +18,10 @@
 //                          constraint_setups()). Changing only the targets
 //                          (set_constraint_targets) is a new right-hand side.
 //   clear_constraints()    free.
+//   set_boundary_shape()   circle <-> square: the same fixed vertices (the
+//                          outer loop), new positions placed as construction
+//                          places them (Surface scale: one unconstrained
+//                          solve); no refactorization.
 // Counters: factorizations() counts sparse numeric factorizations over the
 // object's life.
 //
@@ -41,7 +45,7 @@
 // into [0, 1]^2 by a similarity; Surface: pins at their
 // 3D distance); given pins are output coordinates. The constrained result is
 // not rescaled. solve_with_boundary() takes new pin positions (same pins: no
-// refactorization). BoundaryEditor refuses this layout (Error(Usage)).
+// refactorization); BoundaryEditor moves them through two responses per pin.
 #pragma once
 
 #include <memory>
@@ -69,6 +73,12 @@ class Parameterizer {
   // when this refactors. Throws Error(Input) when a constraint's fixed-only
   // row disagrees with the new positions.
   ParamResult solve_with_boundary(const std::vector<FixedVertex>& fixed);
+  // Circle or square for a Parameterizer built with the other of the two:
+  // the boundary as Parameterizer(mesh, options with `shape`) would place it,
+  // on the kept factorization (constraints kept). Error(Usage) for any other
+  // shape or layout; Error(Input) when a constraint on fixed vertices only
+  // disagrees with the new boundary (nothing changes then).
+  void set_boundary_shape(BoundaryShape shape);
 
   // Resolves and adds constraints (replacing earlier ones). Throws
   // Error(Input): see resolve_constraints(), plus rows only on fixed vertices

@@ -135,6 +135,43 @@ ParamResult Parameterizer::solve_with_boundary(const std::vector<FixedVertex>& f
   return solve();
 }
 
+void Parameterizer::set_boundary_shape(BoundaryShape shape) {
+  Impl& s = *impl_;
+  auto swappable = [](BoundaryShape b) { return b == BoundaryShape::Circle || b == BoundaryShape::Square; };
+  if (s.natural || !swappable(shape) || !swappable(s.o.boundary))
+    throw_usage("only circle and square swap on the kept factorization (same fixed vertices, fixed layout)");
+  if (shape == s.o.boundary) return;
+  const ParamOptions old_options = s.o;
+  const Eigen::MatrixXd old_UB = s.UB;
+  const Placement old_placement = s.placement;
+  try {
+    s.o.boundary = shape;
+    const std::vector<FixedVertex> fixed = boundary_positions(*s.mesh, s.o);
+    if (fixed.size() != s.fixed.size()) throw_usage("the " + std::string(shape == BoundaryShape::Square ? "square" : "circle") + " fixes other vertices");
+    for (const FixedVertex& fv : fixed) {
+      if (s.p().fixed_index[fv.vertex] < 0) throw_usage("the new boundary fixes other vertices");
+      s.UB.row(s.p().fixed_index[fv.vertex]) = fv.uv.transpose();
+    }
+    s.have_X = false;
+    // Placed before any constraint, as at construction: from the unconstrained map.
+    const detail::PlacementRule rule = s.initial_placement_rule();
+    if (rule != detail::PlacementRule::AsSolved) {
+      MatrixX2d UV;
+      if (rule != detail::PlacementRule::UnitBox) UV = s.full_uv(s.sys->solve(s.sys->rhs(s.UB)), s.UB);
+      const std::vector<char> used(s.mesh->topology.is_used.begin(), s.mesh->topology.is_used.end());
+      s.place(detail::placement(rule, s.mesh->V, s.mesh->F, UV, used));
+    }
+    s.check_fixed_only(s.UB);
+    s.update_fixed_list();
+  } catch (...) {
+    s.o = old_options;
+    s.UB = old_UB;
+    s.placement = old_placement;
+    s.have_X = false;
+    throw;
+  }
+}
+
 void Parameterizer::set_constraints(const Constraints& c) { set_constraints(resolve_constraints(*impl_->mesh, c)); }
 
 void Parameterizer::set_constraints(std::vector<LinearConstraint> rows) {

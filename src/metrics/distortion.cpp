@@ -11,19 +11,24 @@
 namespace intrinsic {
 namespace {
 
-// Jacobian of the map from face f's own 2D frame to the plane.
-Eigen::Matrix2d jacobian(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, int f, double& area3d) {
+// Face f's edges in its own 2D frame (columns) and its 3D area.
+Eigen::Matrix2d edge_frame(const MatrixX3d& V, const MatrixX3i& F, int f, double& area3d) {
   const Eigen::Vector3d x0 = V.row(F(f, 0)), x1 = V.row(F(f, 1)), x2 = V.row(F(f, 2));
   const Eigen::Vector3d e1 = x1 - x0, e2 = x2 - x0;
   const double l1 = e1.norm();
   const Eigen::Vector3d n = e1.cross(e2);
   area3d = 0.5 * n.norm();
-  Eigen::Matrix2d P;  // columns: the edges in the face's frame
+  Eigen::Matrix2d P;
   P << l1, e1.dot(e2) / l1, 0, n.norm() / l1;
+  return P;
+}
+
+// Jacobian of the map from face f's own 2D frame to the plane.
+Eigen::Matrix2d jacobian(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV, int f) {
   Eigen::Matrix2d Q;
   Q.col(0) = (UV.row(F(f, 1)) - UV.row(F(f, 0))).transpose();
   Q.col(1) = (UV.row(F(f, 2)) - UV.row(F(f, 0))).transpose();
-  return Q * P.inverse();
+  return Q * Eigen::Map<const Eigen::Matrix<double, 2, 2, Eigen::RowMajor>>(frames.P_inverse.row(f).data());
 }
 
 // Singular values of a 2x2 matrix, s1 >= s2 >= 0, in closed form.
@@ -35,16 +40,14 @@ void singular_values(const Eigen::Matrix2d& J, double& s1, double& s2) {
   s2 = std::abs(q - r);
 }
 
-double normalisation(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
-  double a3 = 0, a2 = 0;
+double normalisation(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV) {
+  double a2 = 0;
   for (int f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d x0 = V.row(F(f, 0)), x1 = V.row(F(f, 1)), x2 = V.row(F(f, 2));
-    a3 += 0.5 * (x1 - x0).cross(x2 - x0).norm();
     const Eigen::Vector2d u0 = UV.row(F(f, 0)), u1 = UV.row(F(f, 1)), u2 = UV.row(F(f, 2));
     a2 += 0.5 * ((u1.x() - u0.x()) * (u2.y() - u0.y()) - (u1.y() - u0.y()) * (u2.x() - u0.x()));
   }
   a2 = std::abs(a2);
-  return a2 > 0 ? std::sqrt(a3 / a2) : 1.0;
+  return a2 > 0 ? std::sqrt(frames.total_area_3d / a2) : 1.0;
 }
 
 Stat weighted_stat(const Eigen::VectorXd& x, const Eigen::VectorXd& w) {
@@ -66,9 +69,26 @@ Stat weighted_stat(const Eigen::VectorXd& x, const Eigen::VectorXd& w) {
 
 }  // namespace
 
-FaceDistortion face_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
+FaceFrames face_frames(const MatrixX3d& V, const MatrixX3i& F) {
   const int m = static_cast<int>(F.rows());
-  const double k = normalisation(V, F, UV);
+  FaceFrames frames;
+  frames.P_inverse.resize(m, 4);
+  frames.area_3d.resize(m);
+  for (int f = 0; f < m; ++f) {
+    const Eigen::Matrix2d Pi = edge_frame(V, F, f, frames.area_3d[f]).inverse();
+    frames.P_inverse.row(f) << Pi(0, 0), Pi(0, 1), Pi(1, 0), Pi(1, 1);
+    frames.total_area_3d += frames.area_3d[f];
+  }
+  return frames;
+}
+
+FaceDistortion face_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
+  return face_distortion(face_frames(V, F), F, UV);
+}
+
+FaceDistortion face_distortion(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV) {
+  const int m = static_cast<int>(F.rows());
+  const double k = normalisation(frames, F, UV);
   const double inf = std::numeric_limits<double>::infinity();
   FaceDistortion d;
   d.angle.resize(m);
@@ -80,9 +100,8 @@ FaceDistortion face_distortion(const MatrixX3d& V, const MatrixX3i& F, const Mat
   std::vector<char> flipped(m, 0);
   detail::parallel_for(m, [&](std::int64_t begin, std::int64_t end) {
     for (int f = static_cast<int>(begin); f < end; ++f) {
-      double area3d = 0;
-      const Eigen::Matrix2d J = k * jacobian(V, F, UV, f, area3d);
-      d.area_3d[f] = area3d;
+      const Eigen::Matrix2d J = k * jacobian(frames, F, UV, f);
+      d.area_3d[f] = frames.area_3d[f];
       double s1 = 0, s2 = 0;
       singular_values(J, s1, s2);
       flipped[f] = !(J.determinant() > 0);
@@ -164,9 +183,10 @@ double area_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) 
 }
 
 DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
-  const FaceDistortion d = face_distortion(V, F, UV);
+  const FaceFrames frames = face_frames(V, F);
+  const FaceDistortion d = face_distortion(frames, F, UV);
   DistortionSummary s;
-  s.scale_factor = normalisation(V, F, UV);
+  s.scale_factor = normalisation(frames, F, UV);
   for (int f = 0; f < F.rows(); ++f) {
     s.flipped_triangles += d.flipped[f];
     s.collapsed_triangles += std::isfinite(d.angle[f]) ? 0 : 1;

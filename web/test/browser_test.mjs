@@ -8,7 +8,8 @@
 // compares the UVs again with `intrinsic param --boundary FILE --constraints
 // FILE` (and checks the session kept one factorization); then drags a
 // shift-click-selected boundary range with falloff and compares again; then checks a
-// screenshot (angle distortion colouring on) is not blank.
+// screenshot (angle distortion colouring on) is not blank; then switches to
+// the natural map, drags a pin and compares with `intrinsic param --pin`.
 // Usage: node browser_test.mjs PATH/TO/intrinsic MESH
 import { spawn, execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -140,11 +141,11 @@ async function addAndDragConstraint(page) {
   await page.mouse.up();
   await page.waitForFunction(settled, before, { timeout: 30000 });
   const answer = await page.evaluate(() => ({ path: window.__intrinsic.state.answer.path, factorizations: window.__intrinsic.state.answer.factorizations }));
-  // The last answer is either the drag's own ('targets': new right-hand
-  // side) or the exact float64 answer the page asks for on release, which
-  // the server gives from the same state ('responses'); both on the one
-  // factorization. tests/test_serve.cpp checks the 'targets' path itself.
-  if (!['targets', 'responses'].includes(answer.path) || answer.factorizations !== 1)
+  // The last answer is either the drag's own or the exact float64 answer
+  // the page asks for on release, which the server gives from the same
+  // state: both through the editor's responses (the target's response, or
+  // nothing left to move), on the one factorization.
+  if (answer.path !== 'responses' || answer.factorizations !== 1)
     throw new Error('dragging the target: ' + JSON.stringify(answer));
   const moved = maxDiff(uvBefore, await page.evaluate(() => window.__intrinsic.uv()));
   console.log(`the dragged constraint target moved the map by up to ${moved}`);
@@ -187,6 +188,46 @@ function paramFor(request, base, meshInfo, dir) {
   }
   execFileSync(binary, args);
   return objUV(path.join(dir, 'out.obj'), meshInfo.vertices);
+}
+
+// Natural map: switches the boundary to natural (the constraint stays),
+// drags a pin with real mouse events, and compares the served and the
+// page's UVs with `intrinsic param --boundary natural --pin ...`.
+async function dragPin(page, url, meshInfo, dir) {
+  let before = await page.evaluate(() => window.__intrinsic.state.updates);
+  await page.selectOption('#boundary', 'natural');
+  await page.waitForFunction(settled, before, { timeout: 60000 });
+  const pin = (await page.evaluate(() => window.__intrinsic.handles())).find((h) => h.kind === 'pin');
+  if (!pin) throw new Error('no pin handles in the natural map');
+  const uvBefore = await page.evaluate(() => window.__intrinsic.uv());
+  before = await page.evaluate(() => window.__intrinsic.state.updates);
+  await page.mouse.move(pin.x, pin.y);
+  await page.mouse.down();
+  await page.mouse.move(pin.x + 20, pin.y - 12, { steps: 5 });
+  await page.mouse.up();
+  await page.waitForFunction(settled, before, { timeout: 30000 });
+  const { session, request, pageUV, answer } = await page.evaluate(() => ({
+    session: window.__intrinsic.session, request: window.__intrinsic.request(), pageUV: window.__intrinsic.uv(),
+    answer: { path: window.__intrinsic.state.answer.path, factorizations: window.__intrinsic.state.answer.factorizations },
+  }));
+  // Default pins, then the same pins dragged: one factorization, the pins' responses.
+  if (answer.path !== 'responses' || answer.factorizations !== 1) throw new Error('dragging the pin: ' + JSON.stringify(answer));
+  if (!request.pins || !request.pins.some((p) => p[0] === pin.vertex)) throw new Error('the dragged pin is not in the request');
+  const moved = maxDiff(uvBefore, pageUV);
+  if (!(moved > 1e-4)) throw new Error('dragging the pin did not change the map');
+  const served = await api(url, '/api/solve', request, session);
+  if (served.path !== 'responses') throw new Error('expected the editor path, got ' + served.path);
+  const args = ['param', mesh, '--boundary', 'natural', '-o', path.join(dir, 'out.obj'), '-q'];
+  for (const p of request.pins) args.push('--pin', `${p[0]}:${p[1]},${p[2]}`);
+  if (request.constraints) {
+    fs.writeFileSync(path.join(dir, 'c.json'), JSON.stringify(request.constraints));
+    args.push('--constraints', path.join(dir, 'c.json'));
+  }
+  execFileSync(binary, args);
+  const cli = objUV(path.join(dir, 'out.obj'), meshInfo.vertices);
+  const dServed = maxDiff(served.uv, cli), dPage = maxDiff(pageUV, cli);
+  console.log(`pin ${pin.vertex} dragged (natural map): moved the map by up to ${moved}; |served - param| = ${dServed}, |page - param| = ${dPage}`);
+  if (!(dServed < 1e-9) || !(dPage < 1e-9)) throw new Error('served UVs differ from intrinsic param --pin');
 }
 
 async function compareWithParam(page, url, base, meshInfo, dir, what) {
@@ -237,6 +278,7 @@ async function main() {
     console.log(`screenshot grey-level spread: page ${spread.toFixed(1)}, 3D view ${spread3d.toFixed(1)}`);
     if (!(spread > 5)) throw new Error('the screenshot is blank');
     if (!(spread3d > 5)) throw new Error('the 3D view is blank');
+    await dragPin(page, url, meshInfo, dir);
     console.log('browser test passed');
   } finally {
     if (browser) await browser.close();

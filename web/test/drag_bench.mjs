@@ -52,6 +52,7 @@ async function browserSide() {
       const start = await page.evaluate(() => window.__intrinsic.state.latencies.length);
       const startRt = await page.evaluate(() => window.__intrinsic.state.roundTrips.length);
       const startDraw = await page.evaluate(() => window.__intrinsic.state.drawTimes.length);
+      const startUp = await page.evaluate(() => (window.__intrinsic.state.uploadTimes || []).length);
       await page.mouse.move(h.x, h.y);
       await page.mouse.down();
       for (let i = 1; i <= runs + 3; i++) {
@@ -63,9 +64,14 @@ async function browserSide() {
       const lat = (await page.evaluate(() => window.__intrinsic.state.latencies)).slice(start + 3);  // the first moves compute responses
       const rt = (await page.evaluate(() => window.__intrinsic.state.roundTrips)).slice(startRt + 3);
       const dt = (await page.evaluate(() => window.__intrinsic.state.drawTimes)).slice(startDraw + 3);
+      const ph = (await page.evaluate(() => window.__intrinsic.state.phases || [])).slice(startRt + 3);
+      const up = (await page.evaluate(() => window.__intrinsic.state.uploadTimes || [])).slice(startUp + 3);
+      const m = (k) => med(ph.map((p) => p[k])).toFixed(2);
       console.log(`browser (${pass}): mouse event to frame median ${med(lat).toFixed(1)} ms (min ${Math.min(...lat).toFixed(1)}, ` +
         `max ${Math.max(...lat).toFixed(1)}) over ${lat.length} moves; of which request to parsed answer median ${med(rt).toFixed(1)} ms, ` +
         `frame callback (uploads, overlay, GL calls) median ${med(dt).toFixed(1)} ms`);
+      if (ph.length) console.log(`  medians: event to request sent ${m('wait')} ms, request to headers ${m('headers')} ms (server update ${m('server')} ms), ` +
+        `body (UVs) ${m('body')} ms, buffer uploads ${med(up).toFixed(2)} ms, frame callback without uploads ${(med(dt) - med(up)).toFixed(2)} ms`);
     }
   } finally {
     await browser.close();
