@@ -95,6 +95,11 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOpti
 // The chart's area over the square on the longer side of its smallest
 // bounding box (UV area = 3D area): low for sparse or long thin charts.
 double square_fill(const FlatChart& chart);
+// The same before the chart is flattened, from its projection onto the
+// plane of its mean normal (lengths only shrink there, so a chart sparse in
+// projection is about as sparse flattened; its natural map would be solved
+// only to be split).
+double planar_square_fill(const ChartMesh& chart);
 
 // Scales all charts by one factor, turns them and packs their texel masks
 // with padding on a bitmap (atlas_packing.cpp), and fits the layout into

@@ -293,12 +293,37 @@ bool place_all(const std::vector<std::array<Mask, 4>>& masks, const std::vector<
 
 }  // namespace
 
-double square_fill(const FlatChart& chart) {
+namespace {
+
+// `area` over the square on the longer side of the smallest box of the points UV.
+double fill_of_square(const MatrixX2d& UV, double area) {
   double box = 0;
-  const Eigen::Matrix2d R = Eigen::Rotation2Dd(smallest_box_angle(chart.UV, box)).toRotationMatrix();
-  const MatrixX2d turned = chart.UV * R.transpose();
+  const Eigen::Matrix2d R = Eigen::Rotation2Dd(smallest_box_angle(UV, box)).toRotationMatrix();
+  const MatrixX2d turned = UV * R.transpose();
   const double side = (turned.colwise().maxCoeff() - turned.colwise().minCoeff()).maxCoeff();
-  return side > 0 ? chart.summary.area_3d / (side * side) : 1;
+  return side > 0 ? area / (side * side) : 1;
+}
+
+}  // namespace
+
+double square_fill(const FlatChart& chart) { return fill_of_square(chart.UV, chart.summary.area_3d); }
+
+double planar_square_fill(const ChartMesh& chart) {
+  const MatrixX3d& V = chart.data.V;
+  const MatrixX3i& F = chart.data.F;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double area = 0;
+  for (int f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d n = (V.row(F(f, 1)) - V.row(F(f, 0))).cross(V.row(F(f, 2)) - V.row(F(f, 0)));
+    normal += n, area += n.norm() / 2;
+  }
+  if (!(normal.norm() > 0)) return 1;
+  normal.normalize();
+  const Eigen::Vector3d u = normal.unitOrthogonal(), v = normal.cross(u);
+  MatrixX2d P(V.rows(), 2);
+  P.col(0) = V * u;
+  P.col(1) = V * v;
+  return fill_of_square(P, area);
 }
 
 namespace {
