@@ -18,7 +18,13 @@ generateAtlas inside Node (no Node start-up, no wasm compilation). xatlasjs
 takes 16-bit indices: meshes with 65,536 vertices or more are skipped for it.
 
 Usage: bench/atlas_compare.py [--cli build/intrinsic] [--runs 3] [--markdown]
-                              [MESH ...]
+                              [--node node] [--check] [MESH ...]
+
+--check (the ctest atlas_vs_xatlasjs): one run per mesh; exits non-zero
+unless on every mesh our utilization is at least xatlasjs's, our charts are
+at most half of its, and ours has no flipped, mirrored or overlapping
+triangle, all measured by `intrinsic metrics`. A missing node or xatlasjs
+(bench/node_modules) is a failure, not a skip.
 """
 import argparse
 import gzip
@@ -146,7 +152,7 @@ def run_ours(cli, mesh, tmp, runs, padding, resolution):
     return r
 
 
-def run_xatlas(cli, mesh, tmp, runs, padding, resolution):
+def run_xatlas(cli, mesh, tmp, runs, padding, resolution, node="node"):
     loaded = load(mesh)
     if loaded is None:
         return None, "not read by this script (PLY)"
@@ -160,10 +166,14 @@ def run_xatlas(cli, mesh, tmp, runs, padding, resolution):
     obj = os.path.join(tmp, "x.obj")
     times = []
     for _ in range(runs):
-        p = subprocess.run(["node", os.path.join(HERE, "atlas_compare_xatlas.mjs"), data, obj], capture_output=True,
-                           text=True, cwd=HERE)
+        try:
+            p = subprocess.run([node, os.path.join(HERE, "atlas_compare_xatlas.mjs"), data, obj], capture_output=True,
+                               text=True, cwd=HERE)
+        except OSError as e:
+            return None, f"node ({node}) could not be run: {e}"
         if p.returncode != 0:
-            return None, "xatlas failed: " + (p.stderr.strip().splitlines() or ["?"])[-1]
+            lines = p.stderr.strip().splitlines() or ["?"]
+            return None, "xatlas failed: " + next((l for l in lines if "Error" in l), lines[-1]).strip()
         times.append(json.loads(p.stdout.strip().splitlines()[-1])["seconds"])
     r = metrics(cli, obj)
     r["seconds"] = statistics.median(times)
@@ -175,6 +185,32 @@ COLUMNS = [("charts", "{:d}"), ("utilization", "{:.1%}"), ("stretch_mean", "{:.3
            ("overlapping", "{:d}"), ("seconds", "{:.2f}")]
 
 
+def check(args, meshes):
+    """The comparison as a test: every mesh, ours against xatlasjs, one run each."""
+    failures = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for mesh in meshes:
+            name = os.path.basename(mesh).split(".")[0]
+            ours = run_ours(args.cli, mesh, tmp, 1, args.padding, args.resolution)
+            x, why = run_xatlas(args.cli, mesh, tmp, 1, args.padding, args.resolution, args.node)
+            if x is None:
+                failures.append(f"{name}: xatlasjs did not run ({why}; `npm ci` in bench/ installs it)")
+                continue
+            print(f"{name}: charts {ours['charts']} vs xatlasjs {x['charts']}, utilization "
+                  f"{ours['utilization']:.4f} vs {x['utilization']:.4f}, stretch {ours['stretch_mean']:.4f}",
+                  flush=True)
+            if ours["utilization"] < x["utilization"]:
+                failures.append(f"{name}: utilization {ours['utilization']:.4f} below xatlasjs's {x['utilization']:.4f}")
+            if 2 * ours["charts"] > x["charts"]:
+                failures.append(f"{name}: {ours['charts']} charts, more than half of xatlasjs's {x['charts']}")
+            for k in ("flipped", "mirrored_charts", "overlapping"):
+                if ours[k] != 0:
+                    failures.append(f"{name}: {ours[k]} {k}")
+    for f in failures:
+        print("FAIL " + f, flush=True)
+    return 1 if failures else 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("meshes", nargs="*")
@@ -183,12 +219,17 @@ def main():
     ap.add_argument("--padding", type=float, default=2)
     ap.add_argument("--resolution", type=int, default=1024)
     ap.add_argument("--markdown", action="store_true", help="print a Markdown table")
+    ap.add_argument("--node", default="node", help="the Node.js executable that runs xatlasjs")
+    ap.add_argument("--check", action="store_true",
+                    help="exit non-zero unless ours has at least xatlasjs's utilization and at most half its charts")
     args = ap.parse_args()
     meshes = args.meshes
     if not meshes:
         d = os.environ.get("INTRINSIC_SHARED_MESHES", os.path.join(ROOT, "..", "shared", "meshes"))
         d = os.path.join(d, "assets")
         meshes = sorted(os.path.join(d, n) for n in os.listdir(d) if n.split(".")[-1] in ("obj", "off", "ply", "gz"))
+    if args.check:
+        return check(args, meshes)
     head = ["mesh", "tool"] + [c for c, _ in COLUMNS]
     if args.markdown:
         print("| " + " | ".join(head) + " |")
@@ -199,7 +240,7 @@ def main():
         for mesh in meshes:
             name = os.path.basename(mesh).split(".")[0]
             rows = [("intrinsic", run_ours(args.cli, mesh, tmp, args.runs, args.padding, args.resolution), "")]
-            x, why = run_xatlas(args.cli, mesh, tmp, args.runs, args.padding, args.resolution)
+            x, why = run_xatlas(args.cli, mesh, tmp, args.runs, args.padding, args.resolution, args.node)
             rows.append(("xatlas", x, why))
             for tool, r, why in rows:
                 cells = [name, tool] + ([f.format(r[c]) for c, f in COLUMNS] if r else [why] + [""] * (len(COLUMNS) - 1))

@@ -30,11 +30,16 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
+# Node runs xatlasjs for the test atlas_vs_xatlasjs (and the browser test):
+# Debian's when the system has none of its own.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  $SUDO apt-get install -y -qq --no-install-recommends nodejs npm
+fi
 # playwright-core for the browser test (web/test/package-lock.json).
 if command -v npm >/dev/null; then
   (cd "$(dirname "$0")/../web/test" && npm ci --no-audit --no-fund) ||
     echo "install-deps: npm ci failed in web/test: the browser test will not be registered" >&2
-  # xatlasjs for bench/atlas_compare.py (benchmark only; bench/package-lock.json).
+  # xatlasjs for bench/atlas_compare.py and the test atlas_vs_xatlasjs (bench/package-lock.json).
   (cd "$(dirname "$0")/../bench" && npm ci --no-audit --no-fund) ||
-    echo "install-deps: npm ci failed in bench: bench/atlas_compare.py will compare nothing" >&2
+    echo "install-deps: npm ci failed in bench: the test atlas_vs_xatlasjs will fail" >&2
 fi

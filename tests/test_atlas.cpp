@@ -447,22 +447,6 @@ TEST(AtlasPacking, PaddingBetweenChartsAndBorderUtilizationMeasured) {
   }
 }
 
-// Packing against xatlas's utilization on the same assets (issue 13:
-// spot 68.7%, cheburashka 63%, rocker-arm 61%, fertility 57% with its own
-// example program). The goal is at least xatlas's; not reached yet with our
-// fewer, larger charts (spot 65.8%, cheburashka 61.1%, rocker-arm 59.5%,
-// fertility 56.6%), so this holds us to within 5% of it (the skyline packer
-// before: 43-55%).
-TEST(AtlasPacking, UtilizationAtLeastXatlas) {
-  for (const auto& [name, xatlas] : {std::pair<const char*, double>{"assets/spot.obj", 0.687},
-                                     {"assets/cheburashka.obj", 0.63}, {"assets/rocker-arm.obj", 0.61},
-                                     {"assets/fertility.off", 0.57}}) {
-    SCOPED_TRACE(name);
-    const AtlasResult r = atlas(read_mesh(test::shared_mesh(name)));
-    EXPECT_GE(r.utilization, 0.95 * xatlas);
-  }
-}
-
 // A bumped grid cut straight across by a row of seam edges: exactly two
 // charts (the pieces between the seams; each a valid disk, so no other
 // cut), and every seam edge is a chart boundary in the output.

@@ -97,7 +97,10 @@ struct AtlasSplits {
   int solve_failed = 0;       // the natural map's solve failed
   int flipped = 0;            // a flipped or collapsed triangle, or an interior vertex wound twice
   int boundary_crossing = 0;  // the boundary crosses itself
-  int sparse = 0;             // valid, but filling under 15% of the square on its box's longer side (64 faces or more)
+  // Filling under 15% of the square on its box's longer side (64 faces or
+  // more, at least 0.5% of the surface): once flattened, or already in its
+  // projection onto its mean plane (then split before its map is solved).
+  int sparse = 0;
   int stretch = 0;            // valid, but its mean L2 stretch above max_stretch
 };
 

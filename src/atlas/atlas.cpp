@@ -80,14 +80,19 @@ void count_split(detail::ChartStatus status, AtlasResult& r) {
 
 // Flattens one chart and checks it; a valid chart that would waste most of
 // its square (sparse, or a long thin strip) is reported Sparse when `sparse`
-// splits are wanted (not with the user's seams: those charts are theirs).
+// splits are wanted (not with the user's seams: those charts are theirs, nor
+// for charts under `min_sparse_area`). A chart already sparse in projection
+// onto its mean plane is reported Sparse before its map is solved.
 detail::ChartStatus flatten_one(const MeshData& input, const detail::CleanMesh& clean, const std::vector<int>& faces,
-                                const AtlasOptions& options, detail::FlatChart& chart) {
+                                const AtlasOptions& options, double min_sparse_area, detail::FlatChart& chart) {
   chart.mesh = detail::chart_mesh(input, clean, faces);
   chart.summary.component = clean.component[faces.front()];
+  double area = 0;
+  for (int f : faces) area += clean.area[f];
+  const bool packs = options.seams.empty() && faces.size() >= 64 && area >= min_sparse_area;
+  if (packs && detail::planar_square_fill(chart.mesh) < 0.15) return detail::ChartStatus::Sparse;
   detail::ChartStatus status = detail::flatten_chart(chart, options.degenerate_ratio);
-  if (status == detail::ChartStatus::Valid && options.seams.empty() && faces.size() >= 64 &&
-      detail::square_fill(chart) < 0.15)
+  if (status == detail::ChartStatus::Valid && packs && detail::square_fill(chart) < 0.15)
     status = detail::ChartStatus::Sparse;
   if (status == detail::ChartStatus::Valid && options.seams.empty() && faces.size() > 1 &&
       chart.summary.stretch_l2_mean > options.max_stretch)
@@ -103,13 +108,21 @@ std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::
                                            std::vector<std::vector<int>> work, const AtlasOptions& options,
                                            AtlasResult& r) {
   std::vector<detail::FlatChart> done;
+  double total_area = 0;
+  for (double a : clean.area) total_area += a;
+  // Charts under 0.5% of the surface are never split for their shape: the
+  // packer puts small masks into the gaps of the large ones, so their
+  // squares hardly matter (on a 1M-vertex sphere, 98 such splits of slivers
+  // left the utilization unchanged to 13 digits, with 141 charts instead of 45).
+  const double min_sparse_area = 0.005 * total_area;
   while (!work.empty()) {
     const std::int64_t n = static_cast<std::int64_t>(work.size());
     std::vector<detail::FlatChart> flat(work.size());
     std::vector<detail::ChartStatus> status(work.size());
     const int parts = detail::parallel_parts(n, 1);
     detail::parallel_for_parts(parts, parts, [&](int part, std::int64_t, std::int64_t) {
-      for (std::int64_t i = part; i < n; i += parts) status[i] = flatten_one(input, clean, work[i], options, flat[i]);
+      for (std::int64_t i = part; i < n; i += parts)
+        status[i] = flatten_one(input, clean, work[i], options, min_sparse_area, flat[i]);
     });
     std::vector<std::vector<int>> next;
     for (std::int64_t i = 0; i < n; ++i) {

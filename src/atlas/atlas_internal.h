@@ -4,6 +4,7 @@
 // (the natural map and the validity checks), atlas_packing.cpp.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -34,6 +35,27 @@ CleanMesh clean_mesh(const MeshData& input, const AtlasOptions& options);
 // first such vertex), for the computation only; welded counts the vertices
 // merged away. relative_distance <= 0: a copy.
 MeshData weld_vertices(const MeshData& input, double relative_distance, int& welded);
+
+// The position of a face in a chart's sorted face list, or -1: a table over
+// all faces for large charts (one lookup per glued edge in the traversals),
+// binary search for small ones (no table of the whole mesh per small chart).
+class ChartFaceIndex {
+ public:
+  ChartFaceIndex(const std::vector<int>& faces, int mesh_faces) : faces_(faces) {
+    if (faces.size() * 16 < static_cast<size_t>(mesh_faces)) return;
+    table_.assign(mesh_faces, -1);
+    for (size_t i = 0; i < faces.size(); ++i) table_[faces[i]] = static_cast<int>(i);
+  }
+  int operator()(int f) const {
+    if (!table_.empty()) return table_[f];
+    auto it = std::lower_bound(faces_.begin(), faces_.end(), f);
+    return it != faces_.end() && *it == f ? static_cast<int>(it - faces_.begin()) : -1;
+  }
+
+ private:
+  const std::vector<int>& faces_;
+  std::vector<int> table_;
+};
 
 // Charts as lists of face indices (sorted), each connected through glued edges.
 std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options);
@@ -73,6 +95,11 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOpti
 // The chart's area over the square on the longer side of its smallest
 // bounding box (UV area = 3D area): low for sparse or long thin charts.
 double square_fill(const FlatChart& chart);
+// The same before the chart is flattened, from its projection onto the
+// plane of its mean normal (lengths only shrink there, so a chart sparse in
+// projection is about as sparse flattened; its natural map would be solved
+// only to be split).
+double planar_square_fill(const ChartMesh& chart);
 
 // Scales all charts by one factor, turns them and packs their texel masks
 // with padding on a bitmap (atlas_packing.cpp), and fits the layout into

@@ -74,17 +74,28 @@ void orient_chart(FlatChart& chart) {
   chart.UV.rowwise() -= chart.UV.colwise().minCoeff();
 }
 
-// A quarter turn counter-clockwise (orientation kept), corner back at the origin.
-MatrixX2d quarter_turn(const MatrixX2d& UV) {
-  MatrixX2d T(UV.rows(), 2);
-  T.col(0) = -UV.col(1);
-  T.col(1) = UV.col(0);
-  T.rowwise() -= T.colwise().minCoeff();
-  return T;
+// The chart's size in whole texels at `scale` (its corner at the origin).
+Eigen::Vector2i cells_of(const MatrixX2d& UV, double scale) {
+  const Eigen::Vector2d size = UV.colwise().maxCoeff().transpose() * scale;
+  return {std::max(1, static_cast<int>(std::ceil(size.x()))), std::max(1, static_cast<int>(std::ceil(size.y())))};
 }
 
-// A chart's UVs in its four quarter turns, each with its corner at the origin.
-using Poses = std::array<MatrixX2d, 4>;
+// The chart (turned to its box, corner at the origin) in texels at `scale`
+// after `turns` quarter turns counter-clockwise (orientation kept), each turn
+// (x, y) -> (h - y, x) with h the texel height of the grid before it: the
+// texel grid turns onto itself, so the masks of the turned poses are the
+// first pose's mask turned (rasterized once).
+MatrixX2d texel_pose(const MatrixX2d& UV, double scale, int turns) {
+  MatrixX2d T = UV * scale;
+  Eigen::Vector2i cells = cells_of(UV, scale);
+  for (int k = 0; k < turns; ++k) {
+    const Eigen::VectorXd x = T.col(0);
+    T.col(0) = cells.y() - T.col(1).array();
+    T.col(1) = x;
+    cells = Eigen::Vector2i(cells.y(), cells.x());
+  }
+  return T;
+}
 
 // Texel spans of one row: [begin, end) pairs, sorted, disjoint.
 using Spans = std::vector<std::pair<int, int>>;
@@ -131,31 +142,17 @@ Spans spans_of(const std::vector<char>& row) {
   return s;
 }
 
-// Rasterizes UV (corner at the origin) at `scale` texels per unit.
-Mask rasterize(const FlatChart& chart, const MatrixX2d& UV, double scale, int pad) {
-  const Eigen::Vector2d size = UV.colwise().maxCoeff().transpose() * scale;
-  const int cw = std::max(1, static_cast<int>(std::ceil(size.x()))), ch = std::max(1, static_cast<int>(std::ceil(size.y())));
+// The mask of an own-texel grid (w x h, row-major) with the frame and the
+// dilation by `pad`.
+Mask mask_of(const std::vector<char>& own, int w, int h, int pad) {
   Mask m;
-  m.w = cw + 2 * pad, m.h = ch + 2 * pad;
-  std::vector<std::vector<char>> grid(m.h, std::vector<char>(m.w, 0));
-  const MatrixX3i& F = chart.mesh.data.F;
-  for (int f = 0; f < F.rows(); ++f) {
-    Eigen::Vector2d p[3];
-    for (int c = 0; c < 3; ++c) p[c] = UV.row(F(f, c)).transpose() * scale;
-    const double ylo = std::min({p[0].y(), p[1].y(), p[2].y()}), yhi = std::max({p[0].y(), p[1].y(), p[2].y()});
-    const int y0 = std::clamp(static_cast<int>(std::floor(ylo)), 0, ch - 1), y1 = std::clamp(static_cast<int>(std::floor(yhi)), 0, ch - 1);
-    for (int y = y0; y <= y1; ++y) {
-      double lo = 0, hi = 0;
-      if (!band_range(p, y, y + 1, lo, hi)) continue;
-      // Every texel of the row the range touches (closed: a shared side counts).
-      const int x0 = std::clamp(static_cast<int>(std::floor(lo)), 0, cw - 1), x1 = std::clamp(static_cast<int>(std::floor(hi)), 0, cw - 1);
-      std::fill(grid[y + pad].begin() + x0 + pad, grid[y + pad].begin() + x1 + pad + 1, 1);
-    }
-  }
+  m.w = w + 2 * pad, m.h = h + 2 * pad;
   m.own.resize(m.h);
-  for (int y = 0; y < m.h; ++y) {
-    m.own[y] = spans_of(grid[y]);
-    for (const auto& s : m.own[y]) m.texels += s.second - s.first;
+  std::vector<char> row(m.w, 0);
+  for (int y = 0; y < h; ++y) {
+    std::copy(own.begin() + static_cast<long>(y) * w, own.begin() + static_cast<long>(y + 1) * w, row.begin() + pad);
+    m.own[y + pad] = spans_of(row);
+    for (const auto& s : m.own[y + pad]) m.texels += s.second - s.first;
   }
   // Chebyshev dilation by `pad`: each row is the union of the rows within
   // `pad`, every span widened by `pad` on both sides.
@@ -173,6 +170,40 @@ Mask rasterize(const FlatChart& chart, const MatrixX2d& UV, double scale, int pa
         m.rows[y].push_back(s);
   }
   return m;
+}
+
+// Rasterizes UV (corner at the origin) at `scale` texels per unit, in its
+// four quarter turns (texel_pose).
+std::array<Mask, 4> rasterize(const FlatChart& chart, const MatrixX2d& UV, double scale, int pad) {
+  const Eigen::Vector2i cells = cells_of(UV, scale);
+  int cw = cells.x(), ch = cells.y();
+  std::vector<char> grid(static_cast<size_t>(cw) * ch, 0);
+  const MatrixX3i& F = chart.mesh.data.F;
+  for (int f = 0; f < F.rows(); ++f) {
+    Eigen::Vector2d p[3];
+    for (int c = 0; c < 3; ++c) p[c] = UV.row(F(f, c)).transpose() * scale;
+    const double ylo = std::min({p[0].y(), p[1].y(), p[2].y()}), yhi = std::max({p[0].y(), p[1].y(), p[2].y()});
+    const int y0 = std::clamp(static_cast<int>(std::floor(ylo)), 0, ch - 1), y1 = std::clamp(static_cast<int>(std::floor(yhi)), 0, ch - 1);
+    for (int y = y0; y <= y1; ++y) {
+      double lo = 0, hi = 0;
+      if (!band_range(p, y, y + 1, lo, hi)) continue;
+      // Every texel of the row the range touches (closed: a shared side counts).
+      const int x0 = std::clamp(static_cast<int>(std::floor(lo)), 0, cw - 1), x1 = std::clamp(static_cast<int>(std::floor(hi)), 0, cw - 1);
+      std::fill(grid.begin() + static_cast<long>(y) * cw + x0, grid.begin() + static_cast<long>(y) * cw + x1 + 1, 1);
+    }
+  }
+  std::array<Mask, 4> masks;
+  masks[0] = mask_of(grid, cw, ch, pad);
+  for (int k = 1; k < 4; ++k) {
+    // A quarter turn of the closed texels: texel (x, y) -> (ch - 1 - y, x).
+    std::vector<char> turned(grid.size());
+    for (int y = 0; y < ch; ++y)
+      for (int x = 0; x < cw; ++x) turned[static_cast<size_t>(x) * ch + (ch - 1 - y)] = grid[static_cast<size_t>(y) * cw + x];
+    grid.swap(turned);
+    std::swap(cw, ch);
+    masks[k] = mask_of(grid, cw, ch, pad);
+  }
+  return masks;
 }
 
 // The occupied texels of the layout, one bit each, rows of 64-bit words.
@@ -262,23 +293,47 @@ bool place_all(const std::vector<std::array<Mask, 4>>& masks, const std::vector<
 
 }  // namespace
 
-double square_fill(const FlatChart& chart) {
+namespace {
+
+// `area` over the square on the longer side of the smallest box of the points UV.
+double fill_of_square(const MatrixX2d& UV, double area) {
   double box = 0;
-  const Eigen::Matrix2d R = Eigen::Rotation2Dd(smallest_box_angle(chart.UV, box)).toRotationMatrix();
-  const MatrixX2d turned = chart.UV * R.transpose();
+  const Eigen::Matrix2d R = Eigen::Rotation2Dd(smallest_box_angle(UV, box)).toRotationMatrix();
+  const MatrixX2d turned = UV * R.transpose();
   const double side = (turned.colwise().maxCoeff() - turned.colwise().minCoeff()).maxCoeff();
-  return side > 0 ? chart.summary.area_3d / (side * side) : 1;
+  return side > 0 ? area / (side * side) : 1;
+}
+
+}  // namespace
+
+double square_fill(const FlatChart& chart) { return fill_of_square(chart.UV, chart.summary.area_3d); }
+
+double planar_square_fill(const ChartMesh& chart) {
+  const MatrixX3d& V = chart.data.V;
+  const MatrixX3i& F = chart.data.F;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double area = 0;
+  for (int f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d n = (V.row(F(f, 1)) - V.row(F(f, 0))).cross(V.row(F(f, 2)) - V.row(F(f, 0)));
+    normal += n, area += n.norm() / 2;
+  }
+  if (!(normal.norm() > 0)) return 1;
+  normal.normalize();
+  const Eigen::Vector3d u = normal.unitOrthogonal(), v = normal.cross(u);
+  MatrixX2d P(V.rows(), 2);
+  P.col(0) = V * u;
+  P.col(1) = V * v;
+  return fill_of_square(P, area);
 }
 
 namespace {
 
 // Every chart's mask at `scale` in its four quarter turns, rasterized in parallel.
-std::vector<std::array<Mask, 4>> rasterize_all(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned,
-                                               double scale, int pad) {
+std::vector<std::array<Mask, 4>> rasterize_all(const std::vector<FlatChart>& charts, double scale, int pad) {
   std::vector<std::array<Mask, 4>> masks(charts.size());
   parallel_for(static_cast<std::int64_t>(charts.size()), [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t c = b; c < e; ++c) {
-      for (int k = 0; k < 4; ++k) masks[c][k] = rasterize(charts[c], turned[c][k], scale, pad);
+      masks[c] = rasterize(charts[c], charts[c].UV, scale, pad);
     }
   }, 8);
   return masks;
@@ -291,9 +346,9 @@ struct Layout {
 };
 
 // Packs at `scale` into a `side`-texel square; false when a chart does not fit.
-bool try_scale(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned, double scale, int side,
+bool try_scale(const std::vector<FlatChart>& charts, double scale, int side,
                int pad, Layout& out) {
-  const std::vector<std::array<Mask, 4>> masks = rasterize_all(charts, turned, scale, pad);
+  const std::vector<std::array<Mask, 4>> masks = rasterize_all(charts, scale, pad);
   std::vector<int> order(charts.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
@@ -309,13 +364,13 @@ bool try_scale(const std::vector<FlatChart>& charts, const std::vector<Poses>& t
 
 // The largest scale (texels per unit of surface) at which every chart fits:
 // shrink until one fits, then bisect between the fitting and the failing scale.
-Layout best_layout(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned, double area,
+Layout best_layout(const std::vector<FlatChart>& charts, double area,
                    int& side, int pad) {
   Layout fit;
   while (true) {
     double hi = side / std::sqrt(area), lo = 0;
     for (double s = hi * 0.85; s > hi * 1e-4; s *= 0.8) {
-      if (try_scale(charts, turned, s, side, pad, fit)) {
+      if (try_scale(charts, s, side, pad, fit)) {
         lo = s;
         break;
       }
@@ -325,7 +380,7 @@ Layout best_layout(const std::vector<FlatChart>& charts, const std::vector<Poses
       for (int i = 0; i < 7 && hi > lo * 1.01; ++i) {
         const double mid = std::sqrt(lo * hi);
         Layout l;
-        if (try_scale(charts, turned, mid, side, pad, l))
+        if (try_scale(charts, mid, side, pad, l))
           lo = mid, fit = std::move(l);
         else
           hi = mid;
@@ -339,19 +394,19 @@ Layout best_layout(const std::vector<FlatChart>& charts, const std::vector<Poses
 // The bisection on a bitmap of half the size first (a quarter of the
 // texels to place), then the full bitmap from just above that scale down in
 // small steps: a few full-size packings instead of a dozen.
-Layout search_layout(const std::vector<FlatChart>& charts, const std::vector<Poses>& turned, double area,
+Layout search_layout(const std::vector<FlatChart>& charts, double area,
                      int& side, int pad) {
-  if (side < 256) return best_layout(charts, turned, area, side, pad);
+  if (side < 256) return best_layout(charts, area, side, pad);
   int half = side / 2;
-  const Layout coarse = best_layout(charts, turned, area, half, (pad + 1) / 2);
+  const Layout coarse = best_layout(charts, area, half, (pad + 1) / 2);
   if (half == side / 2) {  // the half bitmap held them: its scale, doubled, is close
     double s = coarse.scale * 2 * 1.03;
     for (int i = 0; i < 6; ++i, s *= 0.985) {
       Layout l;
-      if (try_scale(charts, turned, s, side, pad, l)) return l;
+      if (try_scale(charts, s, side, pad, l)) return l;
     }
   }
-  return best_layout(charts, turned, area, side, pad);
+  return best_layout(charts, area, side, pad);
 }
 
 }  // namespace
@@ -360,11 +415,8 @@ double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, 
   overlapping = 0;
   if (charts.empty()) return 0;
   double area = 0;
-  std::vector<Poses> turned(charts.size());
   for (size_t c = 0; c < charts.size(); ++c) {
     orient_chart(charts[c]);
-    turned[c][0] = charts[c].UV;
-    for (int k = 1; k < 4; ++k) turned[c][k] = quarter_turn(turned[c][k - 1]);
     area += charts[c].summary.area_3d;
   }
   // The bitmap is at most 1024 texels wide: larger textures pack on a coarser
@@ -376,13 +428,12 @@ double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, 
   // every side, where nothing is ever taken but dilated masks may lie.
   const int edge = pad - (pad + 1) / 2;
   int bitmap = side + 2 * edge;
-  const Layout l = search_layout(charts, turned, std::max(area, 1e-300), bitmap, pad);
+  const Layout l = search_layout(charts, std::max(area, 1e-300), bitmap, pad);
   const double square = l.extent - 2 * edge;  // texels; the layout is [edge, extent - edge] of the bitmap
   for (size_t c = 0; c < charts.size(); ++c) {
     const Placement& p = l.at[c];
-    charts[c].UV = turned[c][p.turns];
+    charts[c].UV = texel_pose(charts[c].UV, l.scale, p.turns);
     charts[c].summary.rotated = p.turns != 0;
-    charts[c].UV *= l.scale;
     charts[c].UV.col(0).array() += p.x + pad - edge;
     charts[c].UV.col(1).array() += p.y + pad - edge;
     charts[c].UV /= square;

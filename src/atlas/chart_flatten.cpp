@@ -110,6 +110,10 @@ ChartStatus solve(FlatChart& chart, Mesh& mesh) {
 }  // namespace
 
 ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio) {
+  // Euler characteristic of the chart's own mesh before building it: most
+  // charts split on a large mesh are not disks, and this needs no make_mesh.
+  const long k = chart.mesh.data.F.rows(), local_edges = (3 * k + chart.mesh.open_edges) / 2;
+  if (chart.mesh.data.V.rows() - local_edges + k != 1) return ChartStatus::NotDisk;
   ValidateOptions vo;
   vo.degenerate_ratio = degenerate_ratio;
   vo.allow_closed = true;

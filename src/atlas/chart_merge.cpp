@@ -5,9 +5,14 @@
 // with; the unions are flattened (in parallel, the same natural map and
 // checks as every chart: chart_flatten.cpp) and kept, smallest chart first,
 // when valid and their mean L2 stretch (Sander) stays within the bound. A
-// pair that failed is not tried again until one of its charts has changed.
+// pair that failed is not tried again until one of its charts has changed,
+// and never again when its union's stretch was far over the bound (more than
+// four times as far above 1): on the assets such pairs failed on every retry
+// as the neighbour grew (spot: a union at 2.29 retried at 2.07, 2.06, 1.89),
+// and their solves used up the work budget that other pairs can use.
 // The unions solved are bounded in total size (a work budget).
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <set>
@@ -20,7 +25,7 @@ namespace {
 
 // The neighbour chart `c` shares most glued edges with, among those not in `skip`; -1 if none.
 int best_neighbour(const CleanMesh& clean, const std::vector<int>& owner, const FlatChart& chart, int c,
-                   const std::set<std::pair<int, int>>& skip) {
+                   const std::map<std::pair<int, int>, bool>& skip) {
   std::map<int, int> shared;
   for (int f : chart.mesh.faces)
     for (int k = 0; k < 3; ++k) {
@@ -37,13 +42,14 @@ struct Proposal {
   int c, d;  // merge c into d
   FlatChart merged;
   bool valid = false;
+  double stretch = INFINITY;  // of the union's map, when valid
 };
 
 // One pass: proposals from every live chart (smallest first), unions solved
 // in parallel, then the acceptable ones applied. Returns the merges made.
 int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options, double bound,
                int wanted, long& budget, std::vector<FlatChart>& charts, std::vector<char>& gone,
-               std::vector<int>& owner, std::set<std::pair<int, int>>& failed) {
+               std::vector<int>& owner, std::map<std::pair<int, int>, bool>& failed) {
   std::vector<int> order;
   for (size_t c = 0; c < charts.size(); ++c)
     if (!gone[c]) order.push_back(static_cast<int>(c));
@@ -70,6 +76,7 @@ int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions
       p.merged.mesh = chart_mesh(input, clean, faces);
       p.merged.summary.component = charts[p.d].summary.component;
       if (flatten_chart(p.merged, options.degenerate_ratio) != ChartStatus::Valid) continue;
+      p.stretch = p.merged.summary.stretch_l2_mean;
       // Slivers below min_chart_faces may go up to their neighbour's own stretch.
       const bool small = static_cast<int>(charts[p.c].mesh.faces.size()) < options.min_chart_faces;
       const double limit = small ? std::max(bound, charts[p.d].summary.stretch_l2_mean) : bound;
@@ -81,7 +88,8 @@ int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions
   for (Proposal& p : props) {
     if (wanted > 0 && live <= wanted) break;
     if (!p.valid) {
-      failed.insert({std::min(p.c, p.d), std::max(p.c, p.d)});
+      // true: hopeless, never retried
+      failed[{std::min(p.c, p.d), std::max(p.c, p.d)}] = std::isfinite(p.stretch) && p.stretch - 1 > 4 * (bound - 1);
       continue;
     }
     if (touched[p.c] || touched[p.d]) continue;  // solved against a chart that has just changed: next pass
@@ -92,9 +100,9 @@ int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions
     gone[p.c] = 1;
     ++merges, --live;
   }
-  // Pairs with a changed chart may succeed now.
+  // Pairs with a changed chart may succeed now (unless hopeless).
   for (auto it = failed.begin(); it != failed.end();)
-    it = touched[it->first] || touched[it->second] ? failed.erase(it) : std::next(it);
+    it = !it->second && (touched[it->first.first] || touched[it->first.second]) ? failed.erase(it) : std::next(it);
   return merges;
 }
 
@@ -106,12 +114,18 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOpti
   for (size_t c = 0; c < charts.size(); ++c)
     for (int f : charts[c].mesh.faces) owner[f] = static_cast<int>(c);
   std::vector<char> gone(charts.size(), 0);
-  std::set<std::pair<int, int>> failed;
+  std::map<std::pair<int, int>, bool> failed;
   // Merging costs a solve of every union tried: at most 150,000 faces in
   // all (smallest charts first), so that meshes of up to about 20k faces
   // merge fully and large ones stay fast (the splits' rounds have already
   // made every chart valid; merges only make fewer of them).
-  long budget = 150000;
+  // Each chart under 100 faces (a sliver the validity splits left, what
+  // merging is for) adds 500 faces, about one union with a neighbour each:
+  // on beast (64k faces, many slivers) 150,000 alone left 655 charts, 271
+  // of them under 20 faces; with this 294, while igea's budget grows ~10%.
+  long small = 0;
+  for (const FlatChart& c : charts) small += c.mesh.faces.size() < 100;
+  long budget = 150000 + 500 * small;
   while (merge_pass(input, clean, options, options.max_stretch, 0, budget, charts, gone, owner, failed) > 0) {
   }
   auto live = [&] { return static_cast<int>(std::count(gone.begin(), gone.end(), 0)); };

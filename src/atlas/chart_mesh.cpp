@@ -22,10 +22,7 @@ ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::v
   ChartMesh chart;
   chart.faces = faces;
   const int k = static_cast<int>(faces.size());
-  auto index = [&](int f) {
-    auto it = std::lower_bound(faces.begin(), faces.end(), f);
-    return it != faces.end() && *it == f ? static_cast<int>(it - faces.begin()) : -1;
-  };
+  const ChartFaceIndex index(faces, static_cast<int>(clean.glued.size() / 3));
   std::vector<int> parent(3 * k);
   std::iota(parent.begin(), parent.end(), 0);
   for (int i = 0; i < k; ++i) {

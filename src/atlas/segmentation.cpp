@@ -55,13 +55,9 @@ struct Grower {
   }
 };
 
-// Breadth-first distances (in faces) from `sources` inside the chart; the last face reached.
-int farthest(const CleanMesh& m, const std::vector<int>& faces, int source) {
+// Breadth-first distances (in faces) from `source` inside the chart; the last face reached.
+int farthest(const CleanMesh& m, const std::vector<int>& faces, const ChartFaceIndex& index, int source) {
   std::vector<char> seen(faces.size(), 0);
-  auto index = [&](int f) {
-    auto it = std::lower_bound(faces.begin(), faces.end(), f);
-    return it != faces.end() && *it == f ? static_cast<int>(it - faces.begin()) : -1;
-  };
   std::deque<int> queue{source};
   seen[index(source)] = 1;
   int last = source;
@@ -137,14 +133,11 @@ std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& cl
 }
 
 std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::vector<int>& faces) {
-  const int a = farthest(clean, faces, faces.front());
-  const int b = farthest(clean, faces, a);
+  const ChartFaceIndex index(faces, static_cast<int>(clean.glued.size() / 3));
+  const int a = farthest(clean, faces, index, faces.front());
+  const int b = farthest(clean, faces, index, a);
   // Two fronts grown together, one face layer at a time: both halves connected.
   std::vector<int> side(faces.size(), -1);
-  auto index = [&](int f) {
-    auto it = std::lower_bound(faces.begin(), faces.end(), f);
-    return it != faces.end() && *it == f ? static_cast<int>(it - faces.begin()) : -1;
-  };
   std::deque<int> queue{a, b};
   side[index(a)] = 0;
   side[index(b)] = a == b ? 0 : 1;
