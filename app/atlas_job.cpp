@@ -70,6 +70,7 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
                         {"flipped", sr.flipped}, {"boundary_crossing", sr.boundary_crossing}, {"sparse", sr.sparse}, {"stretch", sr.stretch}};
   j["utilization"] = r.utilization;
   j["stretch_l2_mean"] = r.stretch_l2_mean;
+  j["seam_length"] = r.seam_length;
   j["flipped"] = r.flipped;
   j["overlapping"] = r.overlapping;
   j["resolution"] = o.resolution;
@@ -81,8 +82,6 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
                    {"nonmanifold_edges", r.cleaning.nonmanifold_edges},
                    {"nonmanifold_vertices", r.cleaning.nonmanifold_vertices},
                    {"inconsistent_edges", r.cleaning.inconsistent_edges},
-                   {"reversed_faces", r.cleaning.reversed_faces},
-                   {"nonorientable_cuts", r.cleaning.nonorientable_cuts},
                    {"unreferenced_vertices", r.cleaning.unreferenced_vertices},
                    {"welded_vertices", r.cleaning.welded_vertices}};
   j["weld"] = o.weld;
@@ -91,7 +90,7 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
     charts.push_back({{"component", c.component}, {"faces", c.faces}, {"vertices", c.vertices},
                       {"method", chart_method_name(c.method)}, {"flipped", c.flipped},
                       {"angle_distortion_mean", c.angle_distortion_mean}, {"stretch_l2_mean", c.stretch_l2_mean},
-                      {"area_3d", c.area_3d}, {"rotated", c.rotated}});
+                      {"area_3d", c.area_3d}, {"boundary_length", c.boundary_length}, {"rotated", c.rotated}});
   j["chart_list"] = charts;
   return j;
 }

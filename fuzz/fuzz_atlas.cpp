@@ -31,18 +31,14 @@ void check(const intrinsic::MeshData& m, const intrinsic::AtlasResult& r) {
   if (r.FUV.rows() != m.F.rows()) broken("FUV rows", r.FUV.rows());
   if (!r.UV.allFinite()) broken("non-finite UV", 0);
   if (r.UV.rows() > 0 && (r.UV.minCoeff() < 0 || r.UV.maxCoeff() > 1)) broken("UV outside [0,1]^2", 0);
-  // Faces listed as the computation oriented them (face_reversed), as in
-  // tests/test_atlas.cpp: charts are laid out in that orientation.
+  // Faces as the input lists them: every chart keeps its faces' winding.
   MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
-  MatrixX3i oriented = r.FUV;
-  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f)
     for (int c = 0; c < 3; ++c) {
       if (r.FUV(f, c) < 0 || r.FUV(f, c) >= r.UV.rows()) broken("FUV out of range in face", f);
       PT.row(r.FUV(f, c)) = m.V.row(m.F(f, c));
     }
-    if (r.face_reversed.at(f)) std::swap(oriented(f, 1), oriented(f, 2));
-  }
-  const UvAtlasMetrics um = uv_atlas_metrics(PT, oriented, r.UV);
+  const UvAtlasMetrics um = uv_atlas_metrics(PT, r.FUV, r.UV);
   if (um.flipped_triangles) broken("flipped triangles", um.flipped_triangles);
   if (um.collapsed_triangles) broken("collapsed triangles", um.collapsed_triangles);
   if (um.mirrored_charts) broken("mirrored charts", um.mirrored_charts);

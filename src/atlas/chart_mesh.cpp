@@ -34,6 +34,7 @@ ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::v
       const int g = clean.glued[3 * f + c], j = g < 0 ? -1 : index(g);
       if (j < 0) {
         ++chart.open_edges;
+        chart.boundary_length += (input.V.row(input.F(f, c)) - input.V.row(input.F(f, (c + 1) % 3))).norm();
         continue;
       }
       for (int e = 0; e < 3; ++e)
@@ -57,7 +58,7 @@ ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::v
   for (size_t v = 0; v < vertex.size(); ++v) chart.data.V.row(static_cast<int>(v)) = input.V.row(vertex[v]);
   chart.data.F.resize(k, 3);
   for (int i = 0; i < k; ++i)
-    for (int c = 0; c < 3; ++c) chart.data.F(i, c) = chart.corner[3 * i + (clean.reversed[faces[i]] ? (3 - c) % 3 : c)];
+    for (int c = 0; c < 3; ++c) chart.data.F(i, c) = chart.corner[3 * i + c];
   chart.data.path = input.path;
   return chart;
 }
