@@ -18,11 +18,6 @@
 namespace intrinsic {
 namespace {
 
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-
 // Per texture coordinate, a representative of those with the same UV and
 // position (non-finite ones stand alone: NaN has no order to sort by).
 std::vector<int> canonical_corners(const MatrixX3d& PT, const MatrixX2d& UV) {
