@@ -43,11 +43,11 @@ void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResu
       s += '\n';
       flush(false);
     }
-    for (int f = 0; f < m.F.rows(); ++f) {
+    for (int f = 0; f < r.F.rows(); ++f) {
       s += "f";
       for (int c = 0; c < 3; ++c) {
         s += ' ';
-        put(s, static_cast<long>(m.F(f, c)) + 1);
+        put(s, static_cast<long>(r.F(f, c)) + 1);
         s += '/';
         put(s, static_cast<long>(r.FUV(f, c)) + 1);
       }
@@ -82,9 +82,12 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
                    {"nonmanifold_edges", r.cleaning.nonmanifold_edges},
                    {"nonmanifold_vertices", r.cleaning.nonmanifold_vertices},
                    {"inconsistent_edges", r.cleaning.inconsistent_edges},
+                   {"reversed_faces", r.cleaning.reversed_faces},
+                   {"orientation_cuts", r.cleaning.orientation_cuts},
                    {"unreferenced_vertices", r.cleaning.unreferenced_vertices},
                    {"welded_vertices", r.cleaning.welded_vertices}};
   j["weld"] = o.weld;
+  j["reorient"] = o.reorient;
   nlohmann::json charts = nlohmann::json::array();
   for (const AtlasChart& c : r.charts)
     charts.push_back({{"component", c.component}, {"faces", c.faces}, {"vertices", c.vertices},

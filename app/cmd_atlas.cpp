@@ -38,7 +38,7 @@ int run_atlas(const AtlasArgs& a) {
   const double read_ms = elapsed_ms(t0);
   const AtlasResult r = atlas(data, options);
   const auto t1 = std::chrono::steady_clock::now();
-  if (ext == ".glb") write_glb(a.output, data.V, data.F, r.UV, r.FUV);  // vertices split at seams
+  if (ext == ".glb") write_glb(a.output, data.V, r.F, r.UV, r.FUV);  // vertices split at seams
   else write_atlas_obj(a.output, data, r);
   const double write_ms = elapsed_ms(t1);
   nlohmann::json j = atlas_report(data, options, r);
@@ -97,6 +97,9 @@ void register_atlas(CLI::App& app, Runner& run) {
                   "(unwelded seams); the output keeps the input's vertices")
       ->check(CLI::Range(0.0, 0.999999))
       ->capture_default_str();
+  cmd->add_flag("--reorient", a->options.reorient,
+                "Write faces listed against their piece's orientation reversed, so charts may span them "
+                "(default: keep the input's winding and cut there)");
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

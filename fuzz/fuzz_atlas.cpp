@@ -29,15 +29,15 @@ namespace {
 // The atlas's promises, measured independently of the packer.
 void check(const intrinsic::MeshData& m, const intrinsic::AtlasResult& r, bool padded) {
   using namespace intrinsic;
-  if (r.FUV.rows() != m.F.rows()) broken("FUV rows", r.FUV.rows());
+  if (r.FUV.rows() != m.F.rows() || r.F.rows() != m.F.rows() || r.F != m.F) broken("FUV rows or faces not the input's", r.FUV.rows());
   if (!r.UV.allFinite()) broken("non-finite UV", 0);
   if (r.UV.rows() > 0 && (r.UV.minCoeff() < 0 || r.UV.maxCoeff() > 1)) broken("UV outside [0,1]^2", 0);
-  // Faces as the input lists them: every chart keeps its faces' winding.
+  // Faces as written (the input's): every chart keeps its faces' winding.
   MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
   for (Eigen::Index f = 0; f < m.F.rows(); ++f)
     for (int c = 0; c < 3; ++c) {
       if (r.FUV(f, c) < 0 || r.FUV(f, c) >= r.UV.rows()) broken("FUV out of range in face", f);
-      PT.row(r.FUV(f, c)) = m.V.row(m.F(f, c));
+      PT.row(r.FUV(f, c)) = m.V.row(r.F(f, c));
     }
   const UvAtlasMetrics um = uv_atlas_metrics(PT, r.FUV, r.UV);
   if (um.flipped_triangles) broken("flipped triangles", um.flipped_triangles);

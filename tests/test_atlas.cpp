@@ -13,6 +13,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_support.h"
 #include "intrinsic/atlas.h"
 #include "intrinsic/generate.h"
@@ -134,6 +136,14 @@ void expect_valid_atlas(const MeshData& m, const AtlasResult& r) {
   EXPECT_LE(r.UV.maxCoeff(), 1.0);
   ASSERT_GE(r.FUV.minCoeff(), 0);
   ASSERT_LT(r.FUV.maxCoeff(), r.UV.rows());
+  // The faces written: the input's, each as listed or (reorient) as 0, 2, 1.
+  const MatrixX3i F = r.F.rows() ? r.F : m.F;
+  ASSERT_EQ(F.rows(), m.F.rows());
+  for (int f = 0; f < m.F.rows(); ++f) {
+    const bool same = F.row(f) == m.F.row(f);
+    const bool reversed = F(f, 0) == m.F(f, 0) && F(f, 1) == m.F(f, 2) && F(f, 2) == m.F(f, 1);
+    EXPECT_TRUE(same || (reversed && r.cleaning.reversed_faces > 0)) << "face " << f;
+  }
   long flipped = 0;
   for (int f = 0; f < m.F.rows(); ++f) {
     const double a = twice_area(r.UV.row(r.FUV(f, 0)), r.UV.row(r.FUV(f, 1)), r.UV.row(r.FUV(f, 2)));
@@ -142,7 +152,7 @@ void expect_valid_atlas(const MeshData& m, const AtlasResult& r) {
       EXPECT_NEAR(a, 0.0, 1e-14);
     } else {
       EXPECT_GE(r.face_chart[f], 0) << "face " << f;
-      flipped += a > 0 ? 0 : 1;  // counter-clockwise in the input's own corner order
+      flipped += a > 0 ? 0 : 1;  // counter-clockwise in the written corner order
     }
   }
   EXPECT_EQ(flipped, 0);
@@ -151,10 +161,10 @@ void expect_valid_atlas(const MeshData& m, const AtlasResult& r) {
   EXPECT_EQ(count_overlaps(r.FUV, r.UV), 0);
   // The same through `metrics`' own measures (exact overlaps, folds and
   // mirrored charts judged per UV chart, test_atlas_metrics.cpp), on the
-  // faces as the input lists them.
+  // faces as written.
   MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
   for (int f = 0; f < m.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(m.F(f, c));
+    for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(F(f, c));
   const UvAtlasMetrics um = uv_atlas_metrics(PT, r.FUV, r.UV);
   EXPECT_EQ(um.flipped_triangles, 0);
   EXPECT_EQ(um.collapsed_triangles, 0);
@@ -369,6 +379,39 @@ TEST(Atlas, InconsistentOrientationIsCutNotMirrored) {
   }
 }
 
+// The same strip with reorient: the backwards faces are written reversed
+// (the minority of the piece), so nothing is cut and one chart remains.
+TEST(Atlas, ReorientWritesTheMinorityReversed) {
+  MeshData m;
+  const int n = 12;
+  m.V.resize(2 * (n + 1), 3);
+  for (int i = 0; i <= n; ++i) {
+    m.V.row(2 * i) << i, 0, 0.1 * i * i;
+    m.V.row(2 * i + 1) << i, 1, 0.1 * i * i;
+  }
+  m.F.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 * i, b = 2 * i + 2, c = 2 * i + 1, d = 2 * i + 3;
+    m.F.row(2 * i) << a, b, d;
+    if (i % 3 == 0) m.F.row(2 * i + 1) << a, c, d;  // backwards
+    else m.F.row(2 * i + 1) << a, d, c;
+  }
+  AtlasOptions o;
+  o.reorient = true;
+  const AtlasResult r = atlas(m, o);
+  expect_valid_atlas(m, r);
+  EXPECT_EQ(r.cleaning.inconsistent_edges, 7);
+  EXPECT_EQ(r.cleaning.reversed_faces, 4);
+  EXPECT_EQ(r.cleaning.orientation_cuts, 0);
+  EXPECT_EQ(r.charts.size(), 1u);
+  for (int f = 0; f < m.F.rows(); ++f) {
+    SCOPED_TRACE(f);
+    if (f % 6 == 1) EXPECT_EQ(r.F.row(f), Eigen::RowVector3i(m.F(f, 0), m.F(f, 2), m.F(f, 1)));
+    else EXPECT_EQ(r.F.row(f), m.F.row(f));
+  }
+  EXPECT_EQ(atlas(m).F, m.F);  // without it the input's winding is kept
+}
+
 // A closed surface with every third face listed backwards, through the CLI:
 // the written faces are the input's (winding kept), and `metrics`' own code
 // finds no flipped triangle and no chart mirrored against that winding.
@@ -396,6 +439,15 @@ TEST(AtlasCli, ReversedFacesKeepWindingNoneMirrored) {
     const Vec2 a = back.TC.row(back.FTC(f, 0)), b = back.TC.row(back.FTC(f, 1)), c = back.TC.row(back.FTC(f, 2));
     EXPECT_GT(twice_area(a, b, c), 0) << f;
   }
+  // --reorient writes the reversed third back: the generated surface's own
+  // faces, and as many charts as the atlas of that surface.
+  const std::string fixed = dir / "fixed.obj", rep = dir / "r.json";
+  ASSERT_EQ(test::run_cli("atlas " + in + " -o " + fixed + " --reorient --report " + rep + " -q", dir).code, 0);
+  const MeshData original = generate_surface("sphere", o), again = read_mesh(fixed);
+  EXPECT_EQ(again.F, original.F);
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(rep));
+  EXPECT_EQ(j.at("charts").get<size_t>(), atlas(original).charts.size());
+  EXPECT_EQ(j.at("cleaning").at("reversed_faces").get<long>(), (m.F.rows() + 2) / 3);
 }
 
 TEST(Atlas, DeterministicAndIndependentOfNothingElse) {
@@ -445,6 +497,25 @@ TEST(Atlas, LargeAssets) {
                            "assets/bumpy-cube.obj", "assets/beast.obj.gz", "assets/rocker-arm.obj",
                            "assets/ogre.obj.gz"})
     check_file(name);
+}
+
+// inverted-triangles.obj lists 42% of its faces against the rest: by
+// default each such edge is cut (thousands of charts); with reorient the
+// reversed faces are the ones the shared meshes' README counts, and the faces
+// written are consistently oriented.
+TEST(Atlas, ReorientInvertedTriangles) {
+  const MeshData m = read_mesh(test::shared_mesh("inverted-triangles.obj"));
+  AtlasOptions o;
+  o.reorient = true;
+  const AtlasResult r = atlas(m, o);
+  expect_valid_atlas(m, r);
+  EXPECT_EQ(r.cleaning.reversed_faces, 10408);  // README: "10,408 faces (42 %) must be flipped"
+  EXPECT_EQ(r.cleaning.orientation_cuts, 0);
+  MeshData fixed = m;
+  fixed.F = r.F;
+  const AtlasResult again = atlas(fixed);
+  EXPECT_EQ(again.cleaning.inconsistent_edges, 0);  // the faces written agree everywhere
+  expect_valid_atlas(fixed, again);
 }
 
 TEST(Atlas, LargeAssetIgea) {

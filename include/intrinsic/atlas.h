@@ -59,6 +59,11 @@ struct AtlasOptions {
   // keeps the input's vertices, and welded corners share texture
   // coordinates. 0: no welding.
   double weld = 0;
+  // Reverse the faces listed against their piece's majority orientation in
+  // the output (AtlasResult::F), so charts may span them. Off: the output
+  // keeps the input's winding and such edges are seams (a mesh with faces
+  // listed at random then falls into many charts).
+  bool reorient = false;
   // The user's seams: every listed edge is cut (a chart boundary in the
   // output); charts are then the pieces between seams, split only where a
   // piece is not a disk or its map is invalid (no stretch or packing splits).
@@ -82,14 +87,18 @@ struct AtlasChart {
   bool rotated = false;  // turned for packing
 };
 
-// What cleaning found; each is handled for the computation, never changes the output's faces.
+// What cleaning found; each is handled for the computation and never changes
+// the output's faces (reorient aside: it reverses some).
 struct AtlasCleaning {
-  int degenerate_faces = 0;       // zero area or repeated vertex: UVs collapsed onto a neighbour, chart -1
+  int degenerate_faces = 0;       // zero area or repeated vertex: zero UV area (docs/maths.md §9.6), chart -1
   int nonmanifold_edges = 0;      // edges with more than two faces: every face there gets a seam
   int nonmanifold_vertices = 0;   // vertices whose corners fall into several charts' pieces without a seam edge
-  // Edges two faces list in the same direction: cut (a seam), so every chart
-  // keeps its faces' input winding (this also cuts non-orientable pieces).
-  int inconsistent_edges = 0;
+  int inconsistent_edges = 0;  // two faces listing the edge in the same direction
+  int reversed_faces = 0;      // reorient: faces listed against their piece's majority, written reversed
+  // Edges cut so every chart is consistently oriented as written: the
+  // inconsistent ones, or with reorient those still inconsistent after it
+  // (a Moebius band keeps one).
+  int orientation_cuts = 0;
   int unreferenced_vertices = 0;  // written unchanged, no UV
   int welded_vertices = 0;        // --weld: vertices merged into an earlier one within the distance
 };
@@ -111,6 +120,9 @@ struct AtlasTimings {
 
 struct AtlasResult {
   MatrixX2d UV;       // texture coordinates, all in [0,1]^2
+  // The faces to write: the input's, except that with reorient the
+  // reversed_faces are listed 0, 2, 1. FUV follows this corner order.
+  MatrixX3i F;
   MatrixX3i FUV;      // #F x 3: per face corner, a row of UV
   std::vector<int> face_chart;  // per face; -1 for degenerate faces
   std::vector<AtlasChart> charts;

@@ -100,9 +100,11 @@ std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::
   return done;
 }
 
-// Per-corner indices into one UV array (the input's vertex indices, for the
-// output); degenerate faces get theirs from place_degenerate_faces.
-void assemble(const MeshData& input, const std::vector<detail::FlatChart>& charts, AtlasResult& r) {
+// The faces to write (the input's; with reorient, reversed ones 0, 2, 1) and
+// per-corner indices into one UV array in their corner order; degenerate
+// faces get theirs from place_degenerate_faces.
+void assemble(const MeshData& input, const std::vector<char>& reversed, const std::vector<detail::FlatChart>& charts,
+              AtlasResult& r) {
   const int nf = static_cast<int>(input.F.rows());
   long rows = 0;
   for (const detail::FlatChart& c : charts) rows += c.UV.rows();
@@ -120,17 +122,23 @@ void assemble(const MeshData& input, const std::vector<detail::FlatChart>& chart
     }
     offset += static_cast<int>(c.UV.rows());
   }
+  r.F = input.F;
+  for (int f = 0; f < nf; ++f)
+    if (reversed[f]) {
+      std::swap(r.F(f, 1), r.F(f, 2));
+      std::swap(r.FUV(f, 1), r.FUV(f, 2));
+    }
   r.UV.row(offset) << 0, 0;  // for degenerate faces none of whose vertices is in a chart
-  detail::place_degenerate_faces(input, r.face_chart, r.UV, r.FUV, offset);
+  detail::place_degenerate_faces(input.V, r.F, r.face_chart, r.UV, r.FUV, offset);
 }
 
 // AtlasResult::seam_length: distinct UV pairs per input edge, beyond the first.
-double seam_length(const MeshData& input, const MatrixX3i& FUV) {
+double seam_length(const MatrixX3d& V, const MatrixX3i& F, const MatrixX3i& FUV) {
   std::vector<std::array<int, 4>> edges;  // (lower vertex, higher vertex, its UV, the other's UV)
-  edges.reserve(3 * static_cast<size_t>(input.F.rows()));
-  for (int f = 0; f < input.F.rows(); ++f)
+  edges.reserve(3 * static_cast<size_t>(F.rows()));
+  for (int f = 0; f < F.rows(); ++f)
     for (int c = 0; c < 3; ++c) {
-      const int d = (c + 1) % 3, a = input.F(f, c), b = input.F(f, d);
+      const int d = (c + 1) % 3, a = F(f, c), b = F(f, d);
       if (a == b) continue;
       if (a < b) edges.push_back({a, b, FUV(f, c), FUV(f, d)});
       else edges.push_back({b, a, FUV(f, d), FUV(f, c)});
@@ -139,7 +147,7 @@ double seam_length(const MeshData& input, const MatrixX3i& FUV) {
   double length = 0;
   for (size_t i = 1; i < edges.size(); ++i)
     if (edges[i][0] == edges[i - 1][0] && edges[i][1] == edges[i - 1][1] && edges[i] != edges[i - 1])
-      length += (input.V.row(edges[i][0]) - input.V.row(edges[i][1])).norm();
+      length += (V.row(edges[i][0]) - V.row(edges[i][1])).norm();
   return length;
 }
 
@@ -173,9 +181,9 @@ AtlasResult atlas(const MeshData& given, const AtlasOptions& options) {
   r.timings.merge_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
   r.utilization = detail::pack_charts(charts, options, r.overlapping);
-  assemble(given, charts, r);
+  assemble(given, clean.reversed, charts, r);
   double area = 0, stretch = 0;
-  r.seam_length = seam_length(given, r.FUV);
+  r.seam_length = seam_length(given.V, r.F, r.FUV);
   for (const detail::FlatChart& c : charts) {
     r.charts.push_back(c.summary);
     r.charts.back().boundary_length = c.mesh.boundary_length;

@@ -14,12 +14,13 @@ namespace intrinsic::detail {
 
 // The input seen by the computation. Half-edge c of face f runs from F(f,c)
 // to F(f,(c+1)%3); glued[3f+c] is the face across it when exactly two
-// non-degenerate faces share the edge and list it in opposite directions,
-// else -1 (a seam whatever the segmentation does). Every chart is therefore
-// oriented as its faces are listed in the input.
+// non-degenerate faces share the edge and list it in opposite directions
+// (after `reversed`), else -1 (a seam whatever the segmentation does). Every
+// chart is therefore oriented as its faces are written.
 struct CleanMesh {
   std::vector<char> good;  // per face: not degenerate
   std::vector<int> glued;  // per half-edge
+  std::vector<char> reversed;  // per face: taken (and, with reorient, written) 0, 2, 1; all 0 without reorient
   std::vector<Eigen::Vector3d> normal;  // unit, per face as listed (zero for degenerate faces)
   std::vector<double> area;
   std::vector<int> component;  // per face: connected component (faces sharing vertices)
@@ -50,7 +51,7 @@ std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::
 struct ChartMesh {
   std::vector<int> faces;   // input faces, sorted
   std::vector<int> corner;  // per face corner (3 * k + c): local vertex
-  MeshData data;            // local vertices (positions of their input vertex), faces as listed in the input
+  MeshData data;            // local vertices (positions of their input vertex), faces as written (reversed ones 0, 2, 1)
   long open_edges = 0;      // half-edges not glued to another face of the chart: must all be boundary edges
   double boundary_length = 0;  // 3D length of those half-edges
 };
@@ -91,9 +92,9 @@ double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, 
 // chart (or of such a face placed before) where that keeps every UV edge
 // between at most two faces, else collapsed onto a UV of one of its vertices
 // (zero_row when none has one). A corner given another vertex's UV gets a
-// new row of UV (a copy), so each row belongs to one vertex. `mesh`: the
-// output's vertices and faces.
-void place_degenerate_faces(const MeshData& mesh, const std::vector<int>& face_chart, MatrixX2d& UV, MatrixX3i& FUV,
-                            int zero_row);
+// new row of UV (a copy), so each row belongs to one vertex. V, F: the
+// output's vertices and faces (FUV in F's corner order).
+void place_degenerate_faces(const MatrixX3d& V, const MatrixX3i& F, const std::vector<int>& face_chart, MatrixX2d& UV,
+                            MatrixX3i& FUV, int zero_row);
 
 }  // namespace intrinsic::detail

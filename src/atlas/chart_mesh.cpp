@@ -58,7 +58,7 @@ ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::v
   for (size_t v = 0; v < vertex.size(); ++v) chart.data.V.row(static_cast<int>(v)) = input.V.row(vertex[v]);
   chart.data.F.resize(k, 3);
   for (int i = 0; i < k; ++i)
-    for (int c = 0; c < 3; ++c) chart.data.F(i, c) = chart.corner[3 * i + c];
+    for (int c = 0; c < 3; ++c) chart.data.F(i, c) = chart.corner[3 * i + (clean.reversed[faces[i]] ? (3 - c) % 3 : c)];
   chart.data.path = input.path;
   return chart;
 }

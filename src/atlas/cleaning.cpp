@@ -2,10 +2,11 @@
 // input is never changed; this decides which faces take part in a solve
 // (non-degenerate ones, by the same area test as make_mesh) and across which
 // edges charts may be glued: edges with exactly two such faces that list the
-// edge in opposite directions. Everything else (non-manifold edges,
+// edge in opposite directions (after the minority of each piece is reversed,
+// with AtlasOptions::reorient). Everything else (non-manifold edges,
 // inconsistently oriented edges, hence every non-orientable piece) is a seam,
-// so every chart is manifold and oriented as its faces are listed in the
-// input (docs/maths.md §9.6).
+// so every chart is manifold and oriented as its faces are written
+// (docs/maths.md §9.6).
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -86,20 +87,61 @@ std::vector<std::pair<int, int>> manifold_edges(const MeshData& in, CleanMesh& m
   return pairs;
 }
 
-// Glues each manifold edge whose two faces list it in opposite directions.
-// The output keeps the input's faces and winding, so a chart may only span
-// faces that agree: an edge listed the same way by both faces is cut (a seam)
+// AtlasOptions::reorient: by breadth-first search over manifold edges, a
+// face is reversed when its neighbour's orientation requires it; in each
+// connected piece the smaller set of faces is the one reversed.
+void orient_pieces(const MeshData& in, const std::vector<std::pair<int, int>>& pairs, CleanMesh& m) {
+  const int nf = static_cast<int>(in.F.rows());
+  std::vector<int> across(3 * nf, -1);  // half-edge -> the other half-edge of its manifold edge
+  for (const auto& [h, k] : pairs) across[h] = k, across[k] = h;
+  std::vector<int> piece(nf, -1), queue;
+  for (int s = 0; s < nf; ++s) {
+    if (!m.good[s] || piece[s] >= 0) continue;
+    queue.assign(1, s);
+    piece[s] = s;
+    long flipped = 0;
+    for (size_t q = 0; q < queue.size(); ++q) {
+      const int f = queue[q];
+      flipped += m.reversed[f];
+      for (int c = 0; c < 3; ++c) {
+        const int k = across[3 * f + c], g = k < 0 ? -1 : k / 3;
+        if (g < 0 || piece[g] >= 0) continue;
+        piece[g] = s;
+        const bool same_direction = in.F(f, c) == in.F(g, k % 3);
+        m.reversed[g] = static_cast<char>(m.reversed[f] ^ (same_direction ? 1 : 0));
+        queue.push_back(g);
+      }
+    }
+    if (2 * flipped > static_cast<long>(queue.size()))
+      for (int f : queue) m.reversed[f] ^= 1;
+  }
+}
+
+// Glues each manifold edge whose two faces list it in opposite directions
+// once the `reversed` faces are taken 0, 2, 1. Without reorient none is, as
+// the output keeps the input's winding: a chart may then only span faces
+// that agree, and an edge listed the same way by both faces is cut (a seam)
 // rather than one face reoriented, which would lay that face (or a whole
 // chart made of such faces) out mirrored against its own listing
-// (docs/maths.md §9.6). This also cuts every non-orientable piece (a Moebius
-// band has such an edge however it is listed).
-void glue_consistent_edges(const MeshData& in, CleanMesh& m) {
+// (docs/maths.md §9.6). Either way every non-orientable piece is cut.
+void orient_and_glue(const MeshData& in, bool reorient, CleanMesh& m) {
   const int nf = static_cast<int>(in.F.rows());
+  const std::vector<std::pair<int, int>> pairs = manifold_edges(in, m);
+  m.reversed.assign(nf, 0);
+  if (reorient) orient_pieces(in, pairs, m);
   m.glued.assign(3 * nf, -1);
-  for (const auto& [h, k] : manifold_edges(in, m)) {
-    if (in.F(h / 3, h % 3) == in.F(k / 3, k % 3)) continue;  // same direction in both: counted, cut
+  for (const auto& [h, k] : pairs) {
+    const bool same_direction = in.F(h / 3, h % 3) == in.F(k / 3, k % 3);
+    if ((m.reversed[h / 3] ^ m.reversed[k / 3]) != (same_direction ? 1 : 0)) {
+      ++m.cleaning.orientation_cuts;
+      continue;
+    }
     m.glued[h] = k / 3;
     m.glued[k] = h / 3;
+  }
+  for (int f = 0; f < nf; ++f) {
+    m.cleaning.reversed_faces += m.reversed[f];
+    if (m.reversed[f]) m.normal[f] = -m.normal[f];  // the normal of the orientation used
   }
 }
 
@@ -195,7 +237,7 @@ CleanMesh clean_mesh(const MeshData& input, const AtlasOptions& options) {
   check_input(input);
   CleanMesh m;
   face_geometry(input, options.degenerate_ratio, m);
-  glue_consistent_edges(input, m);
+  orient_and_glue(input, options.reorient, m);
   count_components(input, m);
   return m;
 }

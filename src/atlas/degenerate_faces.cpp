@@ -19,8 +19,13 @@ namespace {
 
 using Position = std::array<double, 3>;
 
+struct Surface {  // the output's vertices and faces
+  const MatrixX3d& V;
+  const MatrixX3i& F;
+};
+
 struct UvEdges {
-  const MeshData& mesh;
+  const Surface& mesh;
   int rows = 0;                 // rows of UV before the copies
   std::vector<Eigen::Vector2d> copies;
   std::vector<int> source;      // per copy: the row it copies
@@ -55,7 +60,7 @@ struct UvEdges {
 };
 
 // The UV row of face f's corner at vertex v.
-int row_at(const MeshData& m, const MatrixX3i& FUV, int f, int v) {
+int row_at(const Surface& m, const MatrixX3i& FUV, int f, int v) {
   for (int c = 0; c < 3; ++c)
     if (m.F(f, c) == v) return FUV(f, c);
   return -1;
@@ -66,7 +71,7 @@ int row_at(const MeshData& m, const MatrixX3i& FUV, int f, int v) {
 // corner distinct from both. Only if that UV edge has exactly one face so
 // far and f's two other UV edges none (metrics pairs an edge of exactly two faces).
 bool lay_along(UvEdges& e, const MatrixX2d& UV, MatrixX3i& FUV, int f) {
-  const MeshData& m = e.mesh;
+  const Surface& m = e.mesh;
   for (int c = 0; c < 3; ++c) {
     const int a = m.F(f, c), b = m.F(f, (c + 1) % 3), x = m.F(f, (c + 2) % 3);
     const auto it = e.on.find(UvEdges::key(a, b));
@@ -88,8 +93,9 @@ bool lay_along(UvEdges& e, const MatrixX2d& UV, MatrixX3i& FUV, int f) {
 
 }  // namespace
 
-void place_degenerate_faces(const MeshData& mesh, const std::vector<int>& face_chart, MatrixX2d& UV, MatrixX3i& FUV,
-                            int zero_row) {
+void place_degenerate_faces(const MatrixX3d& V, const MatrixX3i& F, const std::vector<int>& face_chart, MatrixX2d& UV,
+                            MatrixX3i& FUV, int zero_row) {
+  const Surface mesh{V, F};
   const int nf = static_cast<int>(mesh.F.rows());
   std::vector<int> left;
   std::set<Position> near;  // positions of their vertices: only UV edges there can meet them
