@@ -5,6 +5,8 @@
 
 #include <charconv>
 
+#include "mesh_paths.h"
+#include "intrinsic/error.h"
 #include "intrinsic/io.h"
 
 namespace intrinsic::app {
@@ -21,6 +23,20 @@ void put(std::string& s, long x) {
 }
 
 }  // namespace
+
+void check_atlas_output(const std::string& path) {
+  const std::string ext = mesh_extension(path);
+  if (ext != ".obj" && ext != ".glb")
+    throw_usage("output '" + path + "': the atlas is written as .obj (one texture coordinate per corner) or .glb");
+  if (ext == ".glb" && path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0)
+    throw_usage("output '" + path + "': .glb is written uncompressed (drop the .gz)");
+}
+
+void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r) {
+  check_atlas_output(path);
+  if (mesh_extension(path) == ".glb") write_glb(path, m.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
+  else write_atlas_obj(path, m, r);
+}
 
 // The OBJ, streamed in blocks of lines.
 void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r) {

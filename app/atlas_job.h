@@ -14,6 +14,12 @@ namespace intrinsic::app {
 // the per-corner texture coordinates); atomically.
 void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r);
 
+// The atlas in the format the extension names: .obj (write_atlas_obj) or .glb
+// (write_glb, vertices split at seams). Throws Error(Usage) for any other
+// extension, before anything is written.
+void check_atlas_output(const std::string& path);
+void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r);
+
 // vertices, faces, components, charts, splits, split_reasons, utilization,
 // flipped, overlapping, resolution, padding, cleaning, chart_list (README
 // "intrinsic atlas"). The caller adds input, output and timings_ms.

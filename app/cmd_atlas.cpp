@@ -24,11 +24,7 @@ struct AtlasArgs {
 
 int run_atlas(const AtlasArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::string ext = mesh_extension(a.output);
-  if (ext != ".obj" && ext != ".glb")
-    throw_usage("output '" + a.output + "': the atlas is written as .obj (one texture coordinate per corner) or .glb");
-  if (ext == ".glb" && a.output.size() > 3 && a.output.compare(a.output.size() - 3, 3, ".gz") == 0)
-    throw_usage("output '" + a.output + "': .glb is written uncompressed (drop the .gz)");
+  check_atlas_output(a.output);
   ReadOptions ro;
   ro.max_vertices = a.max_vertices;
   ro.max_faces = faces_for_vertices(ro.max_vertices);
@@ -38,8 +34,7 @@ int run_atlas(const AtlasArgs& a) {
   const double read_ms = elapsed_ms(t0);
   const AtlasResult r = atlas(data, options);
   const auto t1 = std::chrono::steady_clock::now();
-  if (ext == ".glb") write_glb(a.output, data.V, r.F, r.UV, r.FUV);  // vertices split at seams
-  else write_atlas_obj(a.output, data, r);
+  write_atlas_file(a.output, data, r);
   const double write_ms = elapsed_ms(t1);
   nlohmann::json j = atlas_report(data, options, r);
   j["input"] = a.input;

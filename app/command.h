@@ -9,6 +9,8 @@
 #include <functional>
 #include <string>
 
+#include "mesh_paths.h"
+
 namespace intrinsic::app {
 
 using Runner = std::function<int()>;
@@ -25,12 +27,6 @@ void register_serve(CLI::App& app, Runner& run);  // built when cpp-httplib is f
 
 // Milliseconds since t0.
 double elapsed_ms(std::chrono::steady_clock::time_point t0);
-// Lower-case extension after stripping a trailing ".gz": "mesh.OBJ.gz" -> ".obj".
-std::string mesh_extension(const std::string& path);
-// The face cap that goes with a vertex cap: a manifold triangle mesh has about
-// twice as many faces as vertices (4x leaves room for high genus and seams).
-// It also bounds the gzip inflate cap, so --max-vertices limits memory.
-std::int64_t faces_for_vertices(std::int64_t max_vertices);
 // Throws Error(Usage) unless `path` ends in .obj or .ply.
 void check_output_mesh_path(const std::string& path);
 

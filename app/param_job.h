@@ -16,6 +16,7 @@
 #include "intrinsic/io.h"
 #include "intrinsic/mesh.h"
 #include "intrinsic/parameterize.h"
+#include "mesh_paths.h"
 #include "weight_args.h"
 
 namespace intrinsic::app {
@@ -40,13 +41,6 @@ struct ParamArgs {
   std::shared_ptr<const Constraints> given_constraints;
   bool has_constraints() const { return !constraints.empty() || given_constraints != nullptr; }
 };
-
-// The lower-case extension of a mesh path, ".gz" removed ("" when none;
-// also declared in command.h).
-std::string mesh_extension(const std::string& path);
-
-// The face cap that goes with a vertex cap (also declared in command.h).
-std::int64_t faces_for_vertices(std::int64_t max_vertices);
 
 // "V:U,V" -> pin. Malformed text is a usage error; the vertex range is
 // checked against the mesh later (an input error).

@@ -60,7 +60,8 @@ TEST(Glb, AtlasReadsBackEqual) {
   ASSERT_EQ(ia.count, static_cast<size_t>(3 * m.F.rows()));
   const tinygltf::Accessor& pa = model.accessors.at(p.attributes.at("POSITION"));
   const tinygltf::Accessor& ta = model.accessors.at(p.attributes.at("TEXCOORD_0"));
-  // As many glTF vertices as distinct (vertex, texture coordinate) corners.
+  // As many glTF vertices as distinct (vertex, texture coordinate) corners:
+  // the torus is smooth, so normals split nothing more.
   std::set<std::pair<int, int>> corners;
   for (int f = 0; f < m.F.rows(); ++f)
     for (int c = 0; c < 3; ++c) corners.insert({m.F(f, c), r.FUV(f, c)});
@@ -83,6 +84,66 @@ TEST(Glb, AtlasReadsBackEqual) {
     EXPECT_EQ(pa.minValues[k], static_cast<float>(m.V.col(k).minCoeff()));
     EXPECT_EQ(pa.maxValues[k], static_cast<float>(m.V.col(k).maxCoeff()));
   }
+}
+
+// The NORMAL attribute of every glTF vertex, per face corner.
+Eigen::Vector3d corner_normal(const tinygltf::Model& model, int f, int c) {
+  const tinygltf::Primitive& p = model.meshes.at(0).primitives.at(0);
+  const auto* idx = accessor_data<std::uint32_t>(model, p.indices);
+  const auto* nrm = accessor_data<float>(model, p.attributes.at("NORMAL"));
+  const std::uint32_t i = idx[3 * f + c];
+  return Eigen::Vector3d(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]);
+}
+
+// A smooth surface shades smoothly: on a fine regular torus (R = 1, r = 0.4)
+// every corner's normal is within 1.5 degrees of the analytic normal at its
+// vertex, with one orientation throughout, and a vertex is split only where
+// its texture coordinates differ.
+TEST(Glb, NormalsOfSmoothSurfaceFollowTheSurface) {
+  GenerateOptions g;
+  g.rings = 24;
+  g.jitter = 0;
+  const MeshData m = generate_torus(g);
+  const AtlasResult r = atlas(m);
+  test::TempDir dir;
+  write_glb(dir / "t.glb", m.V, m.F, r.UV, r.FUV);
+  const tinygltf::Model model = load_glb(dir / "t.glb");
+  std::set<std::pair<int, int>> corners;
+  double sign = 0;
+  for (int f = 0; f < m.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      corners.insert({m.F(f, c), r.FUV(f, c)});
+      const Eigen::Vector3d x = m.V.row(m.F(f, c));
+      const Eigen::Vector3d centre = Eigen::Vector3d(x.x(), x.y(), 0).normalized();
+      const Eigen::Vector3d exact = (x - centre).normalized(), n = corner_normal(model, f, c);
+      ASSERT_NEAR(n.norm(), 1, 1e-6);
+      if (sign == 0) sign = n.dot(exact) > 0 ? 1 : -1;
+      ASSERT_GT(sign * n.dot(exact), std::cos(1.5 * M_PI / 180)) << "face " << f << " corner " << c;
+    }
+  const tinygltf::Primitive& p = model.meshes.at(0).primitives.at(0);
+  EXPECT_EQ(model.accessors.at(p.attributes.at("NORMAL")).count, corners.size());
+}
+
+// Hard edges stay hard: on a cube each corner's normal is its own face's
+// axis, so each cube vertex becomes three glTF vertices (24), even with one
+// texture coordinate per vertex.
+TEST(Glb, NormalsOfCubeAreItsFaceNormals) {
+  MatrixX3d V(8, 3);
+  for (int v = 0; v < 8; ++v) V.row(v) << (v & 1), (v >> 1 & 1), (v >> 2 & 1);
+  const MatrixX3i F = (MatrixX3i(12, 3) << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,  //
+                       2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5)
+                          .finished();
+  const MatrixX2d UV = V.leftCols(2);
+  test::TempDir dir;
+  write_glb(dir / "c.glb", V, F, UV, F);
+  const tinygltf::Model model = load_glb(dir / "c.glb");
+  for (int f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const Eigen::Vector3d face = (b - a).cross(c - a).normalized();
+    for (int k = 0; k < 3; ++k) EXPECT_LT((corner_normal(model, f, k) - face).norm(), 1e-7) << f;
+  }
+  const tinygltf::Primitive& p = model.meshes.at(0).primitives.at(0);
+  EXPECT_EQ(model.accessors.at(p.attributes.at("POSITION")).count, 24u);
 }
 
 TEST(Glb, FailuresLeaveNoFile) {
@@ -122,13 +183,15 @@ TEST(Glb, ParamWritesGlbWithOneUvPerVertex) {
   const MeshData obj = read_mesh(dir / "p.obj");
   const tinygltf::Model model = load_glb(dir / "p.glb");
   const tinygltf::Primitive& p = model.meshes.at(0).primitives.at(0);
-  ASSERT_EQ(model.accessors.at(p.attributes.at("POSITION")).count, static_cast<size_t>(obj.V.rows()));
+  // Without seams, glTF vertices are split only at hard edges (NORMAL).
+  ASSERT_GE(model.accessors.at(p.attributes.at("POSITION")).count, static_cast<size_t>(obj.V.rows()));
   const auto* idx = accessor_data<std::uint32_t>(model, p.indices);
   const auto* tex = accessor_data<float>(model, p.attributes.at("TEXCOORD_0"));
+  const auto* pos = accessor_data<float>(model, p.attributes.at("POSITION"));
   for (int f = 0; f < obj.F.rows(); ++f)
     for (int c = 0; c < 3; ++c) {
-      // Without seams the glTF vertices are the mesh's, in order of first use.
       const std::uint32_t i = idx[3 * f + c];
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(pos[3 * i + k], static_cast<float>(obj.V(obj.F(f, c), k)));
       EXPECT_NEAR(tex[2 * i], obj.TC(obj.FTC(f, c), 0), 1e-6);
       EXPECT_NEAR(tex[2 * i + 1], 1 - obj.TC(obj.FTC(f, c), 1), 1e-6);
     }

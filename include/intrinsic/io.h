@@ -44,8 +44,11 @@ void write_mesh(const std::string& path, const MatrixX3d& V, const MatrixX3i& F,
 // (FUV: #F x 3 rows of UV, as an atlas gives them), for engines and Blender.
 // glTF attributes are per vertex, so a vertex is written once per distinct
 // texture coordinate among its corners (split at seams), in order of first
-// use by the faces; unreferenced vertices are left out. One mesh, one
-// triangle primitive: POSITION (float32, with min/max), TEXCOORD_0 (float32,
+// use by the faces; unreferenced vertices are left out. NORMAL is smoothed
+// as modelling tools' "auto smooth": per corner, the area-weighted mean of
+// the normals of the faces around its vertex within 60 degrees of its own
+// face's, so a vertex is also split at hard edges. One mesh, one triangle
+// primitive: POSITION (float32, with min/max), NORMAL, TEXCOORD_0 (float32,
 // (u, 1 - v): glTF's texture origin is the top-left corner, ours the
 // bottom-left), uint32 indices, faces in input order. Throws Error(Input) for
 // an empty or inconsistent mesh or coordinates beyond float32, Error(Output)

@@ -160,6 +160,10 @@ def atlas(
     resolution: int = 1024,
     max_normal_deviation: float = 60,
     min_chart_faces: int = 20,
+    max_stretch: float = 1.05,
+    max_charts: int = 0,
+    weld: float = 0,
+    seams: Any = None,
     max_vertices: int = 50_000_000,
 ) -> Atlas:
     """`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or a mesh file (atlas(path)).
@@ -169,9 +173,14 @@ def atlas(
     with `padding` texels (of a `resolution`-wide texture) between charts, without flipped or
     overlapping triangles. Returns an Atlas: uv (k x 2), uv_index (#F x 3, per face corner a row of
     uv), face_chart (#F, -1 for degenerate faces), V, F (the input, unchanged) and report (the
-    command line's report as a dict). write_atlas(path, atlas) writes the command line's .obj.
+    command line's report as a dict). write_atlas(path, atlas) writes the command line's .obj or .glb.
+    As on the command line: charts above `max_stretch` (area-weighted L2 stretch) are split and
+    neighbours merged below it; `max_charts` (0: no limit) merges further; `weld` merges vertices
+    closer than that fraction of the bounding box diagonal for the computation only; `seams`, a
+    seams file's path or k x 2 vertex indices, cuts exactly those edges.
     Raises UsageError for bad options and InputError for unreadable or invalid input.
     """
     return _intrinsic.atlas(V, F, padding=padding, resolution=resolution,
                             max_normal_deviation=max_normal_deviation, min_chart_faces=min_chart_faces,
+                            max_stretch=max_stretch, max_charts=max_charts, weld=weld, seams=seams,
                             max_vertices=max_vertices)

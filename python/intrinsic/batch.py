@@ -176,7 +176,8 @@ def make_parser() -> argparse.ArgumentParser:
     where = p.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS", help="an existing Dask scheduler, e.g. tcp://host:8786")
     where.add_argument("--workers", type=int, metavar="N", help="local worker processes (default 2)")
-    p.add_argument("--format", choices=("obj", "ply"), help="output format (default obj; ply with --binary)")
+    p.add_argument("--format", choices=("obj", "ply", "glb"),
+                   help="output format (default obj; ply with --binary; atlas: obj or glb)")
     p.add_argument("--force", action="store_true", help="redo files whose output is already complete")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress on standard error")
     g = p.add_argument_group("param options (as `intrinsic param`, README 'Command line')")
@@ -207,11 +208,15 @@ def make_parser() -> argparse.ArgumentParser:
     t.add_argument("--resolution", type=int, default=S)
     t.add_argument("--max-normal-deviation", type=float, default=S)
     t.add_argument("--min-chart-faces", type=int, default=S)
+    t.add_argument("--max-stretch", type=float, default=S)
+    t.add_argument("--max-charts", type=int, default=S)
+    t.add_argument("--weld", type=float, default=S)
     return p
 
 
 BATCH_KEYS = {"input_dir", "output_dir", "command", "scheduler", "workers", "format", "force", "quiet", "binary"}
-ATLAS_KEYS = {"padding", "resolution", "max_normal_deviation", "min_chart_faces", "max_vertices"}
+ATLAS_KEYS = {"padding", "resolution", "max_normal_deviation", "min_chart_faces", "max_stretch", "max_charts", "weld",
+              "max_vertices"}
 
 # A small disk (hexagon fan around one interior vertex): the options are tried on
 # it first, so a usage error (--lambda without --method mixed, an unknown value)
@@ -247,8 +252,8 @@ def parse(argv: Optional[List[str]]):
     fmt = a.format or ("ply" if a.binary else "obj")
     if a.binary and fmt != "ply":
         parser.error("--binary writes PLY: use --format ply")
-    if a.command == "atlas" and fmt != "obj":
-        parser.error("--command atlas writes .obj (one texture coordinate per corner)")
+    if a.command == "atlas" and fmt not in ("obj", "glb"):
+        parser.error("--command atlas writes .obj (one texture coordinate per corner) or .glb")
     options = {k: v for k, v in vars(a).items() if k not in BATCH_KEYS}
     for key in ("boundary", "constraints"):  # files: absolute, so that workers find them
         if key in options and os.path.exists(options[key]):

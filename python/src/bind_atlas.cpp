@@ -14,7 +14,23 @@ struct AtlasOutput {
   py::object uv, uv_index, face_chart, report;
 };
 
-AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices) {
+// seams: a path to a seams file (read against the mesh, errors name its
+// lines) or k x 2 vertex indices (checked by atlas() itself).
+struct SeamsArg {
+  py::object value = py::none();
+  bool is_path() const { return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"); }
+};
+
+std::vector<SeamEdge> to_seams(const py::handle& obj) {
+  const py::array a = c_array_int32(obj, 2, "seams");
+  const auto* p = static_cast<const std::int32_t*>(a.data());
+  std::vector<SeamEdge> seams(static_cast<size_t>(a.shape(0)));
+  for (size_t k = 0; k < seams.size(); ++k) seams[k] = {p[2 * k], p[2 * k + 1]};
+  return seams;
+}
+
+// Range checks are atlas()'s own (Error(Usage)), as for the command line.
+AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices, SeamsArg& seams) {
   AtlasOptions o;
   for (const auto& [key, value] : kwargs) {
     const std::string k = py::str(key);
@@ -22,20 +38,23 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices)
     else if (k == "resolution") o.resolution = value.cast<int>();
     else if (k == "max_normal_deviation") o.max_normal_deviation_deg = value.cast<double>();
     else if (k == "min_chart_faces") o.min_chart_faces = value.cast<int>();
+    else if (k == "max_stretch") o.max_stretch = value.cast<double>();
+    else if (k == "max_charts") o.max_charts = value.cast<int>();
+    else if (k == "weld") o.weld = value.cast<double>();
     else if (k == "reorient") o.reorient = value.cast<bool>();
+    else if (k == "seams") seams.value = py::reinterpret_borrow<py::object>(value);
     else if (k == "max_vertices") max_vertices = value.cast<std::int64_t>();
     else throw_usage("unknown option '" + k + "'");
   }
-  if (o.resolution < 1 || o.resolution > (1 << 20)) throw_usage("--resolution: value out of range [1, 1048576]");
-  if (!(o.max_normal_deviation_deg >= 1 && o.max_normal_deviation_deg <= 180))
-    throw_usage("--max-normal-deviation: value out of range [1, 180]");
-  if (o.min_chart_faces < 0) throw_usage("--min-chart-faces: must be non-negative");
+  if (!seams.value.is_none() && !seams.is_path()) o.seams = to_seams(seams.value);
   return o;
 }
 
 AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs& kwargs) {
   std::int64_t max_vertices = ReadOptions().max_vertices;
-  const AtlasOptions o = atlas_options(kwargs, max_vertices);
+  SeamsArg seams;
+  AtlasOptions o = atlas_options(kwargs, max_vertices, seams);
+  const std::string seams_path = seams.is_path() ? to_path(seams.value) : "";
   AtlasOutput out;
   const bool from_file = F.is_none();
   const std::string path = from_file ? to_path(V) : "";
@@ -51,6 +70,7 @@ AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs
       ro.max_faces = app::faces_for_vertices(max_vertices);
       out.data = read_mesh(path, ro);
     }
+    if (!seams_path.empty()) o.seams = read_seams_file(seams_path, out.data);
     out.result = atlas(out.data, o);
   }
   nlohmann::json report = app::atlas_report(out.data, o, out.result);
@@ -73,9 +93,9 @@ AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs
 void register_atlas(py::module_& m) {
   py::class_<AtlasOutput>(m, "Atlas",
                           "An atlas: uv (k x 2 float64 in [0,1]^2), uv_index (#F x 3 int32: per face corner, a row\n"
-                          "of uv), face_chart (#F int32, -1 for degenerate faces), V (the input's vertices) and F (the\n"
-                          "input's faces; with reorient=True the reoriented ones reversed) and report (the dict `intrinsic atlas --report` writes; 'input' is the\n"
-                          "path or None, 'output' None).")
+                          "of uv), face_chart (#F int32, -1 for degenerate faces), V (the input's vertices), F (the\n"
+                          "input's faces; with reorient=True the reoriented ones reversed) and report (the dict\n"
+                          "`intrinsic atlas --report` writes; 'input' is the path or None, 'output' None).")
       .def_readonly("uv", &AtlasOutput::uv)
       .def_readonly("uv_index", &AtlasOutput::uv_index)
       .def_readonly("face_chart", &AtlasOutput::face_chart)
@@ -88,24 +108,25 @@ void register_atlas(py::module_& m) {
       });
   m.def("atlas", &run_atlas, py::arg("V"), py::arg("F") = py::none(),
         "atlas(V, F=None, *, padding=2, resolution=1024, max_normal_deviation=60, min_chart_faces=20,\n"
-        "      reorient=False, max_vertices=50000000) -> Atlas\n\n"
+        "      max_stretch=1.05, max_charts=0, weld=0, reorient=False, seams=None, max_vertices=50000000) -> Atlas\n\n"
         "`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or on a mesh file (atlas(path)):\n"
         "any triangle mesh (closed, higher genus, several components, non-manifold bits) cut into disk\n"
         "charts, each flattened by the natural conformal map, packed into [0,1]^2 without flips or\n"
-        "overlaps. Options as the command line's. The GIL is released while it runs. Raises\n"
+        "overlaps. Options as the command line's; seams is a seams file's path or k x 2 vertex\n"
+        "indices (edges to cut). The GIL is released while it runs. Raises\n"
         "UsageError / InputError as the command line exits 1 / 2.");
   m.def(
       "write_atlas",
       [](const py::object& path, const AtlasOutput& a) {
         const std::string p = to_path(path);
-        if (app::mesh_extension(p) != ".obj")
-          throw_usage("output '" + p + "': the atlas is written as .obj (one texture coordinate per corner)");
+        app::check_atlas_output(p);
         py::gil_scoped_release release;
-        app::write_atlas_obj(p, a.data, a.result);
+        app::write_atlas_file(p, a.data, a.result);
       },
       py::arg("path"), py::arg("atlas"),
-      "write_atlas(path, atlas)\n\nWrites the .obj `intrinsic atlas -o path` writes (same bytes): the input's\n"
-      "vertices in input order, one vt per atlas UV, faces f v/vt; atomically. Raises OutputError.");
+      "write_atlas(path, atlas)\n\nWrites the file `intrinsic atlas -o path` writes (same bytes): .obj (the\n"
+      "input's vertices in input order, one vt per atlas UV, faces f v/vt) or .glb (glTF 2.0 binary,\n"
+      "vertices split at seams); atomically. Raises UsageError for another extension, OutputError.");
 }
 
 }  // namespace intrinsic::python

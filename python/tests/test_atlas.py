@@ -59,3 +59,55 @@ def test_atlas_errors(tmp_path):
         intrinsic.write_atlas(str(tmp_path / "x.ply"), a)
     with pytest.raises(intrinsic.OutputError):
         intrinsic.write_atlas(str(tmp_path / "missing" / "x.obj"), a)
+
+
+def torus(tmp_path):
+    path = str(tmp_path / "torus.obj")
+    assert run_cli("generate", "torus", "--rings", "16", "-o", path).returncode == 0
+    return path
+
+
+def test_atlas_options_equal_cli(tmp_path):
+    """max_stretch, max_charts, weld and seams (a file or an array) give the command line's bytes."""
+    path = torus(tmp_path)
+    V, F = intrinsic.read_mesh(path)
+    edges = [(int(F[f, 0]), int(F[f, 1])) for f in range(0, 40, 4)]
+    seams_file = tmp_path / "seams.txt"
+    seams_file.write_text("# ten edges\n" + "".join(f"{a} {b}\n" for a, b in edges))
+    cli = str(tmp_path / "cli.obj")
+    r = run_cli("atlas", path, "-o", cli, "-q", "--max-stretch", "1.2", "--max-charts", "3", "--weld", "1e-6",
+                "--seams", seams_file)
+    assert r.returncode == 0, r.stderr
+    for seams in (seams_file, str(seams_file), np.array(edges, dtype=np.int64)):
+        a = intrinsic.atlas(path, max_stretch=1.2, max_charts=3, weld=1e-6, seams=seams)
+        mine = str(tmp_path / "py.obj")
+        intrinsic.write_atlas(mine, a)
+        assert open(mine, "rb").read() == open(cli, "rb").read()
+    # How the seams are cut is checked against the seams file in tests/test_atlas.cpp.
+
+
+def test_write_atlas_glb_equals_cli(tmp_path):
+    path = torus(tmp_path)
+    cli, mine = str(tmp_path / "cli.glb"), str(tmp_path / "py.glb")
+    assert run_cli("atlas", path, "-o", cli, "-q").returncode == 0
+    intrinsic.write_atlas(mine, intrinsic.atlas(path))
+    assert open(mine, "rb").read() == open(cli, "rb").read()
+    assert open(mine, "rb").read(4) == b"glTF"
+
+
+def test_atlas_seams_errors(tmp_path):
+    path = torus(tmp_path)
+    V, F = intrinsic.read_mesh(path)
+    bad = tmp_path / "bad.txt"
+    bad.write_text("0 1\n0 999999\n")
+    with pytest.raises(intrinsic.InputError, match="bad.txt:2"):
+        intrinsic.atlas(path, seams=bad)
+    with pytest.raises(intrinsic.InputError):
+        intrinsic.atlas(V, F, seams=np.array([[0, len(V) + 5]]))
+    far = [v for v in range(len(V)) if not np.any(np.any(F == 0, axis=1) & np.any(F == v, axis=1))][1]
+    with pytest.raises(intrinsic.InputError):
+        intrinsic.atlas(V, F, seams=np.array([[0, far]]))
+    with pytest.raises((intrinsic.UsageError, ValueError, TypeError)):
+        intrinsic.atlas(V, F, seams=np.zeros((2, 3), dtype=np.int32))
+    with pytest.raises(intrinsic.UsageError, match="stretch"):
+        intrinsic.atlas(V, F, max_stretch=0.5)

@@ -131,6 +131,26 @@ def test_atlas_batch_equals_cli(folder, tmp_path):
     assert files["broken.obj"]["kind"] == "input" and files["broken.obj"]["message"] == cli_message(p.stderr)
 
 
+def test_atlas_batch_glb_with_chart_options(folder, tmp_path):
+    """--format glb and the atlas's stretch/chart options reach every file as
+    on the command line: the same report (charts, stretch) per file."""
+    cli = cli_path()
+    out = tmp_path / "out"
+    opts = ["--max-stretch", "1.2", "--max-charts", "2", "--weld", "1e-7"]
+    r = batch(folder, out, "--command", "atlas", "--format", "glb", *opts, "--workers", 1, "-q")
+    assert r.returncode == 1, r.stderr  # broken.obj
+    for m in MESHES[:2]:
+        name = m[:-4]
+        assert (out / (name + ".glb")).read_bytes()[:4] == b"glTF"
+        rep = tmp_path / (name + ".json")
+        p = subprocess.run([cli, "atlas", str(folder / m), "-o", str(tmp_path / (name + ".glb")), "--report",
+                            str(rep), "-q", *opts], capture_output=True, text=True)
+        assert p.returncode == 0, p.stderr
+        mine, theirs = json.loads((out / (name + ".report.json")).read_text()), json.loads(rep.read_text())
+        assert mine["charts"] == theirs["charts"]
+        assert abs(mine["stretch_l2_mean"] - theirs["stretch_l2_mean"]) < 1e-9
+
+
 @pytest.mark.parametrize("args,needle", [
     (["--command", "atlas", "--method", "authalic"], "--method does not apply to --command atlas"),
     (["--padding", "3"], "--padding does not apply to --command param"),
