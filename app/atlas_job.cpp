@@ -34,7 +34,7 @@ void check_atlas_output(const std::string& path) {
 
 void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r) {
   check_atlas_output(path);
-  if (mesh_extension(path) == ".glb") write_glb(path, m.V, m.F, r.UV, r.FUV);
+  if (mesh_extension(path) == ".glb") write_glb(path, m.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
   else write_atlas_obj(path, m, r);
 }
 
@@ -59,11 +59,11 @@ void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResu
       s += '\n';
       flush(false);
     }
-    for (int f = 0; f < m.F.rows(); ++f) {
+    for (int f = 0; f < r.F.rows(); ++f) {
       s += "f";
       for (int c = 0; c < 3; ++c) {
         s += ' ';
-        put(s, static_cast<long>(m.F(f, c)) + 1);
+        put(s, static_cast<long>(r.F(f, c)) + 1);
         s += '/';
         put(s, static_cast<long>(r.FUV(f, c)) + 1);
       }
@@ -86,6 +86,7 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
                         {"flipped", sr.flipped}, {"boundary_crossing", sr.boundary_crossing}, {"sparse", sr.sparse}, {"stretch", sr.stretch}};
   j["utilization"] = r.utilization;
   j["stretch_l2_mean"] = r.stretch_l2_mean;
+  j["seam_length"] = r.seam_length;
   j["flipped"] = r.flipped;
   j["overlapping"] = r.overlapping;
   j["resolution"] = o.resolution;
@@ -98,16 +99,17 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
                    {"nonmanifold_vertices", r.cleaning.nonmanifold_vertices},
                    {"inconsistent_edges", r.cleaning.inconsistent_edges},
                    {"reversed_faces", r.cleaning.reversed_faces},
-                   {"nonorientable_cuts", r.cleaning.nonorientable_cuts},
+                   {"orientation_cuts", r.cleaning.orientation_cuts},
                    {"unreferenced_vertices", r.cleaning.unreferenced_vertices},
                    {"welded_vertices", r.cleaning.welded_vertices}};
   j["weld"] = o.weld;
+  j["reorient"] = o.reorient;
   nlohmann::json charts = nlohmann::json::array();
   for (const AtlasChart& c : r.charts)
     charts.push_back({{"component", c.component}, {"faces", c.faces}, {"vertices", c.vertices},
                       {"method", chart_method_name(c.method)}, {"flipped", c.flipped},
                       {"angle_distortion_mean", c.angle_distortion_mean}, {"stretch_l2_mean", c.stretch_l2_mean},
-                      {"area_3d", c.area_3d}, {"rotated", c.rotated}});
+                      {"area_3d", c.area_3d}, {"boundary_length", c.boundary_length}, {"rotated", c.rotated}});
   j["chart_list"] = charts;
   return j;
 }

@@ -9,8 +9,9 @@
 
 namespace intrinsic::app {
 
-// The input's vertices in input order, one `vt` per atlas UV, faces `f v/vt`
-// (seams only through the per-corner texture coordinates); atomically.
+// The input's vertices in input order, one `vt` per atlas UV, the result's
+// faces (the input's, reoriented ones reversed) `f v/vt` (seams only through
+// the per-corner texture coordinates); atomically.
 void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r);
 
 // The atlas in the format the extension names: .obj (write_atlas_obj) or .glb

@@ -62,8 +62,10 @@ nlohmann::json atlas_metrics_json(const UvAtlasMetrics& a) {
   nlohmann::json list = nlohmann::json::array();
   for (const UvChart& c : a.charts)
     list.push_back({{"faces", c.faces}, {"uv_area", c.uv_area}, {"area_3d", c.area_3d},
-                    {"mirrored", c.mirrored}, {"flipped", c.flipped}, {"collapsed", c.collapsed}});
-  return {{"charts", a.charts.size()},
+                    {"mirrored", c.mirrored}, {"flipped", c.flipped}, {"collapsed", c.collapsed},
+                    {"degenerate", c.degenerate}});
+  return {{"charts", static_cast<int>(a.charts.size()) - a.degenerate_charts},
+          {"degenerate_charts", a.degenerate_charts},
           {"utilization", a.utilization},
           {"utilization_of", a.utilization_in_unit_square ? "unit_square" : "bounding_square"},
           {"utilization_bbox", a.utilization_bbox},

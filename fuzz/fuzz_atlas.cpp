@@ -2,8 +2,9 @@
 // atlas() (cleaning, optional weld, segmentation, flattening, merging,
 // packing), then checks the atlas's promises with `metrics`' own measures
 // (metrics.h: charts, flips per chart, exact overlaps): a result with a
-// flipped, collapsed or overlapping triangle, a mirrored chart, or a UV
-// outside [0,1]^2 aborts (a finding), as does any exception but Error.
+// flipped, collapsed or overlapping triangle, a mirrored chart, a chart count
+// other than the atlas's (with padding), or a UV outside [0,1]^2 aborts (a
+// finding), as does any exception but Error.
 // Input: one option byte, then the mesh file.
 //   bits 0-1: format (obj, off, ply, obj)
 //   bit 2: Segmentation::Components (else NormalCones)
@@ -26,27 +27,27 @@ namespace {
 }
 
 // The atlas's promises, measured independently of the packer.
-void check(const intrinsic::MeshData& m, const intrinsic::AtlasResult& r) {
+void check(const intrinsic::MeshData& m, const intrinsic::AtlasResult& r, bool padded) {
   using namespace intrinsic;
-  if (r.FUV.rows() != m.F.rows()) broken("FUV rows", r.FUV.rows());
+  if (r.FUV.rows() != m.F.rows() || r.F.rows() != m.F.rows() || r.F != m.F) broken("FUV rows or faces not the input's", r.FUV.rows());
   if (!r.UV.allFinite()) broken("non-finite UV", 0);
   if (r.UV.rows() > 0 && (r.UV.minCoeff() < 0 || r.UV.maxCoeff() > 1)) broken("UV outside [0,1]^2", 0);
-  // Faces listed as the computation oriented them (face_reversed), as in
-  // tests/test_atlas.cpp: charts are laid out in that orientation.
+  // Faces as written (the input's): every chart keeps its faces' winding.
   MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
-  MatrixX3i oriented = r.FUV;
-  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f)
     for (int c = 0; c < 3; ++c) {
       if (r.FUV(f, c) < 0 || r.FUV(f, c) >= r.UV.rows()) broken("FUV out of range in face", f);
-      PT.row(r.FUV(f, c)) = m.V.row(m.F(f, c));
+      PT.row(r.FUV(f, c)) = m.V.row(r.F(f, c));
     }
-    if (r.face_reversed.at(f)) std::swap(oriented(f, 1), oriented(f, 2));
-  }
-  const UvAtlasMetrics um = uv_atlas_metrics(PT, oriented, r.UV);
+  const UvAtlasMetrics um = uv_atlas_metrics(PT, r.FUV, r.UV);
   if (um.flipped_triangles) broken("flipped triangles", um.flipped_triangles);
   if (um.collapsed_triangles) broken("collapsed triangles", um.collapsed_triangles);
   if (um.mirrored_charts) broken("mirrored charts", um.mirrored_charts);
   if (um.overlapping_triangles) broken("overlapping triangles", um.overlapping_triangles);
+  // As many charts as the atlas reports (zero-area faces form none of their
+  // own). Without padding two charts' corners may coincide and join.
+  const long charts = static_cast<long>(um.charts.size()) - um.degenerate_charts;
+  if (padded && charts != static_cast<long>(r.charts.size())) broken("metrics' chart count differs", charts);
 }
 
 }  // namespace
@@ -66,6 +67,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     o.min_chart_faces = kMinFaces[(opt >> 4) & 3];
     o.padding = (opt & 64) ? 0 : 2;
     o.resolution = (opt & 128) ? 64 : 1024;
-    check(m, atlas(m, o));
+    check(m, atlas(m, o), o.padding > 0);
   });
 }

@@ -13,6 +13,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_support.h"
 #include "intrinsic/atlas.h"
 #include "intrinsic/generate.h"
@@ -129,12 +131,19 @@ void expect_disk_charts(const AtlasResult& r) {
 void expect_valid_atlas(const MeshData& m, const AtlasResult& r) {
   ASSERT_EQ(r.FUV.rows(), m.F.rows());
   ASSERT_EQ(r.face_chart.size(), static_cast<size_t>(m.F.rows()));
-  ASSERT_EQ(r.face_reversed.size(), static_cast<size_t>(m.F.rows()));
   ASSERT_TRUE(r.UV.allFinite());
   EXPECT_GE(r.UV.minCoeff(), 0.0);
   EXPECT_LE(r.UV.maxCoeff(), 1.0);
   ASSERT_GE(r.FUV.minCoeff(), 0);
   ASSERT_LT(r.FUV.maxCoeff(), r.UV.rows());
+  // The faces written: the input's, each as listed or (reorient) as 0, 2, 1.
+  const MatrixX3i F = r.F.rows() ? r.F : m.F;
+  ASSERT_EQ(F.rows(), m.F.rows());
+  for (int f = 0; f < m.F.rows(); ++f) {
+    const bool same = F.row(f) == m.F.row(f);
+    const bool reversed = F(f, 0) == m.F(f, 0) && F(f, 1) == m.F(f, 2) && F(f, 2) == m.F(f, 1);
+    EXPECT_TRUE(same || (reversed && r.cleaning.reversed_faces > 0)) << "face " << f;
+  }
   long flipped = 0;
   for (int f = 0; f < m.F.rows(); ++f) {
     const double a = twice_area(r.UV.row(r.FUV(f, 0)), r.UV.row(r.FUV(f, 1)), r.UV.row(r.FUV(f, 2)));
@@ -143,7 +152,7 @@ void expect_valid_atlas(const MeshData& m, const AtlasResult& r) {
       EXPECT_NEAR(a, 0.0, 1e-14);
     } else {
       EXPECT_GE(r.face_chart[f], 0) << "face " << f;
-      flipped += (r.face_reversed[f] ? -a : a) > 0 ? 0 : 1;
+      flipped += a > 0 ? 0 : 1;  // counter-clockwise in the written corner order
     }
   }
   EXPECT_EQ(flipped, 0);
@@ -151,21 +160,19 @@ void expect_valid_atlas(const MeshData& m, const AtlasResult& r) {
   EXPECT_EQ(r.overlapping, 0);
   EXPECT_EQ(count_overlaps(r.FUV, r.UV), 0);
   // The same through `metrics`' own measures (exact overlaps, folds and
-  // mirrored charts judged per UV chart, test_atlas_metrics.cpp), with the
-  // faces listed as the computation oriented them (face_reversed: a chart
-  // mostly listed against its piece's majority would otherwise count as
-  // mirrored, which is what `metrics` says of such a file).
+  // mirrored charts judged per UV chart, test_atlas_metrics.cpp), on the
+  // faces as written.
   MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
-  MatrixX3i oriented = r.FUV;
-  for (int f = 0; f < m.F.rows(); ++f) {
-    for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(m.F(f, c));
-    if (r.face_reversed[f]) std::swap(oriented(f, 1), oriented(f, 2));
-  }
-  const UvAtlasMetrics um = uv_atlas_metrics(PT, oriented, r.UV);
+  for (int f = 0; f < m.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(F(f, c));
+  const UvAtlasMetrics um = uv_atlas_metrics(PT, r.FUV, r.UV);
   EXPECT_EQ(um.flipped_triangles, 0);
   EXPECT_EQ(um.collapsed_triangles, 0);
   EXPECT_EQ(um.mirrored_charts, 0);
   EXPECT_EQ(um.overlapping_triangles, 0);
+  // Zero-area faces form no chart of their own in `metrics`' count (laid
+  // along a chart's UV edge, or a component of zero-area faces only).
+  EXPECT_EQ(um.charts.size() - um.degenerate_charts, r.charts.size());
   expect_disk_charts(r);
   EXPECT_GT(r.utilization, 0.0);
   EXPECT_LE(r.utilization, 1.0);
@@ -280,7 +287,7 @@ TEST(Atlas, GeneratedClosedSurfaces) {
     expect_valid_atlas(m, r);
     EXPECT_GE(r.charts.size(), 2u);  // closed: cut
     EXPECT_EQ(r.components, 1);
-    EXPECT_EQ(r.cleaning.reversed_faces, 0);  // consistently oriented input: every UV triangle counter-clockwise
+    EXPECT_EQ(r.cleaning.inconsistent_edges, 0);  // consistently oriented input: nothing cut for orientation
   }
 }
 
@@ -340,9 +347,11 @@ TEST(Atlas, MessyHandMadeMeshes) {
   expect_valid_atlas(s, atlas(s));
 }
 
-// A strip of quads whose every other face is listed backwards: one piece,
-// reoriented for the solve (the minority reversed), then one valid chart.
-TEST(Atlas, InconsistentOrientationIsFixedNotCut) {
+// A strip of quads whose second triangle is listed backwards in every third
+// quad: the output keeps that winding, so each such face shares no edge with
+// its neighbours in UV (a chart of its own, laid out counter-clockwise in its
+// own listing) rather than being reoriented (which would mirror it).
+TEST(Atlas, InconsistentOrientationIsCutNotMirrored) {
   MeshData m;
   const int n = 12;
   m.V.resize(2 * (n + 1), 3);
@@ -359,9 +368,86 @@ TEST(Atlas, InconsistentOrientationIsFixedNotCut) {
   }
   const AtlasResult r = atlas(m);
   expect_valid_atlas(m, r);
+  // By hand: a backwards face lists its diagonal as its quad's first face
+  // does, and its left edge as the previous quad's first face does (none for
+  // quad 0): 1 + 3 * 2 edges.
+  EXPECT_EQ(r.cleaning.inconsistent_edges, 7);
+  for (int f = 0; f < m.F.rows(); ++f) {
+    if (f % 6 != 1) continue;
+    SCOPED_TRACE(f);
+    EXPECT_EQ(r.charts.at(r.face_chart[f]).faces, 1);
+  }
+}
+
+// The same strip with reorient: the backwards faces are written reversed
+// (the minority of the piece), so nothing is cut and one chart remains.
+TEST(Atlas, ReorientWritesTheMinorityReversed) {
+  MeshData m;
+  const int n = 12;
+  m.V.resize(2 * (n + 1), 3);
+  for (int i = 0; i <= n; ++i) {
+    m.V.row(2 * i) << i, 0, 0.1 * i * i;
+    m.V.row(2 * i + 1) << i, 1, 0.1 * i * i;
+  }
+  m.F.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 * i, b = 2 * i + 2, c = 2 * i + 1, d = 2 * i + 3;
+    m.F.row(2 * i) << a, b, d;
+    if (i % 3 == 0) m.F.row(2 * i + 1) << a, c, d;  // backwards
+    else m.F.row(2 * i + 1) << a, d, c;
+  }
+  AtlasOptions o;
+  o.reorient = true;
+  const AtlasResult r = atlas(m, o);
+  expect_valid_atlas(m, r);
+  EXPECT_EQ(r.cleaning.inconsistent_edges, 7);
   EXPECT_EQ(r.cleaning.reversed_faces, 4);
+  EXPECT_EQ(r.cleaning.orientation_cuts, 0);
   EXPECT_EQ(r.charts.size(), 1u);
-  for (int f = 0; f < m.F.rows(); ++f) EXPECT_EQ(r.face_reversed[f], f % 6 == 1) << f;
+  for (int f = 0; f < m.F.rows(); ++f) {
+    SCOPED_TRACE(f);
+    if (f % 6 == 1) EXPECT_EQ(r.F.row(f), Eigen::RowVector3i(m.F(f, 0), m.F(f, 2), m.F(f, 1)));
+    else EXPECT_EQ(r.F.row(f), m.F.row(f));
+  }
+  EXPECT_EQ(atlas(m).F, m.F);  // without it the input's winding is kept
+}
+
+// A closed surface with every third face listed backwards, through the CLI:
+// the written faces are the input's (winding kept), and `metrics`' own code
+// finds no flipped triangle and no chart mirrored against that winding.
+TEST(AtlasCli, ReversedFacesKeepWindingNoneMirrored) {
+  test::TempDir dir;
+  GenerateOptions o;
+  o.rings = 10;
+  MeshData m = generate_surface("sphere", o);
+  for (int f = 0; f < m.F.rows(); f += 3) std::swap(m.F(f, 1), m.F(f, 2));
+  const std::string in = dir / "in.obj", out = dir / "out.obj";
+  write_mesh(in, m.V, m.F, MatrixX2d());
+  ASSERT_EQ(test::run_cli("atlas " + in + " -o " + out + " -q", dir).code, 0);
+  const MeshData src = read_mesh(in), back = read_mesh(out);
+  EXPECT_EQ(back.F, src.F);
+  ASSERT_TRUE(back.has_uv());
+  MatrixX3d PT = MatrixX3d::Zero(back.TC.rows(), 3);
+  for (int f = 0; f < back.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) PT.row(back.FTC(f, c)) = back.V.row(back.F(f, c));
+  const UvAtlasMetrics um = uv_atlas_metrics(PT, back.FTC, back.TC);
+  EXPECT_EQ(um.flipped_triangles, 0);
+  EXPECT_EQ(um.collapsed_triangles, 0);
+  EXPECT_EQ(um.mirrored_charts, 0);
+  EXPECT_EQ(um.overlapping_triangles, 0);
+  for (int f = 0; f < back.F.rows(); ++f) {  // and counter-clockwise face by face, in the file's corner order
+    const Vec2 a = back.TC.row(back.FTC(f, 0)), b = back.TC.row(back.FTC(f, 1)), c = back.TC.row(back.FTC(f, 2));
+    EXPECT_GT(twice_area(a, b, c), 0) << f;
+  }
+  // --reorient writes the reversed third back: the generated surface's own
+  // faces, and as many charts as the atlas of that surface.
+  const std::string fixed = dir / "fixed.obj", rep = dir / "r.json";
+  ASSERT_EQ(test::run_cli("atlas " + in + " -o " + fixed + " --reorient --report " + rep + " -q", dir).code, 0);
+  const MeshData original = generate_surface("sphere", o), again = read_mesh(fixed);
+  EXPECT_EQ(again.F, original.F);
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(rep));
+  EXPECT_EQ(j.at("charts").get<size_t>(), atlas(original).charts.size());
+  EXPECT_EQ(j.at("cleaning").at("reversed_faces").get<long>(), (m.F.rows() + 2) / 3);
 }
 
 TEST(Atlas, DeterministicAndIndependentOfNothingElse) {
@@ -411,6 +497,25 @@ TEST(Atlas, LargeAssets) {
                            "assets/bumpy-cube.obj", "assets/beast.obj.gz", "assets/rocker-arm.obj",
                            "assets/ogre.obj.gz"})
     check_file(name);
+}
+
+// inverted-triangles.obj lists 42% of its faces against the rest: by
+// default each such edge is cut (thousands of charts); with reorient the
+// reversed faces are the ones the shared meshes' README counts, and the faces
+// written are consistently oriented.
+TEST(Atlas, ReorientInvertedTriangles) {
+  const MeshData m = read_mesh(test::shared_mesh("inverted-triangles.obj"));
+  AtlasOptions o;
+  o.reorient = true;
+  const AtlasResult r = atlas(m, o);
+  expect_valid_atlas(m, r);
+  EXPECT_EQ(r.cleaning.reversed_faces, 10408);  // README: "10,408 faces (42 %) must be flipped"
+  EXPECT_EQ(r.cleaning.orientation_cuts, 0);
+  MeshData fixed = m;
+  fixed.F = r.F;
+  const AtlasResult again = atlas(fixed);
+  EXPECT_EQ(again.cleaning.inconsistent_edges, 0);  // the faces written agree everywhere
+  expect_valid_atlas(fixed, again);
 }
 
 TEST(Atlas, LargeAssetIgea) {
@@ -469,8 +574,58 @@ TEST(AtlasSeams, CutExactlyThereAndNowhereElseOnAPatch) {
   expect_valid_atlas(m, r);
   EXPECT_EQ(r.charts.size(), 2u);
   EXPECT_EQ(uncut_seams(m, r, o.seams), 0);
-  // Without the seams the patch is one chart.
-  EXPECT_EQ(atlas(m).charts.size(), 1u);
+  // Seam length: the listed edges' lengths, summed here. Each chart's
+  // boundary: the seam plus its half of the patch's border, so the two
+  // boundaries add up to twice the seam plus the border, measured here too.
+  double seam = 0, border = 0;
+  for (const SeamEdge& e : o.seams) seam += (m.V.row(e.a) - m.V.row(e.b)).norm();
+  for (int k = 0; k + 1 < n; ++k)
+    for (auto [a, b] : {std::pair{k, k + 1}, {k * n, (k + 1) * n}, {k * n + n - 1, (k + 1) * n + n - 1},
+                        {(n - 1) * n + k, (n - 1) * n + k + 1}})
+      border += (m.V.row(a) - m.V.row(b)).norm();
+  EXPECT_NEAR(r.seam_length, seam, 1e-12 * seam);
+  EXPECT_NEAR(r.charts[0].boundary_length + r.charts[1].boundary_length, 2 * seam + border, 1e-12 * border);
+  // Without the seams the patch is one chart, bounded by the border alone.
+  const AtlasResult whole = atlas(m);
+  EXPECT_EQ(whole.charts.size(), 1u);
+  EXPECT_EQ(whole.seam_length, 0.0);
+  EXPECT_NEAR(whole.charts[0].boundary_length, border, 1e-12 * border);
+}
+
+// Zero-area faces on a hand-made patch: a sliver (its third vertex on the
+// middle of the opposite edge), a face with a repeated vertex and a face
+// whose three corners are at one point. None is a chart in the report; in
+// `metrics` the first two share a UV edge with a chart (so they are not
+// components of their own) and only the point face, which has no edge to
+// share, forms a component of zero-area faces.
+TEST(Atlas, ZeroAreaFacesFormNoChartsOfTheirOwn) {
+  MeshData m;
+  m.V.resize(7, 3);
+  m.V << 0, 0, 0,  // a
+      1, 0, 0,     // b
+      0.5, 0, 0,   // m: on the edge a b
+      0.5, 1, 0,   // t
+      0.5, -1, 0,  // l
+      0.5, 1, 0,   // t again, twice
+      0.5, 1, 0;
+  m.F.resize(6, 3);
+  m.F << 0, 1, 3,  // above a b
+      0, 4, 2, 2, 4, 1,  // below, through m
+      0, 2, 1,  // the sliver
+      3, 3, 1,  // a repeated vertex
+      3, 5, 6;  // one point
+  const AtlasResult r = atlas(m);
+  expect_valid_atlas(m, r);
+  EXPECT_EQ(r.cleaning.degenerate_faces, 3);
+  EXPECT_EQ(r.charts.size(), 2u);
+  MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
+  for (int f = 0; f < m.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(m.F(f, c));
+  const UvAtlasMetrics um = uv_atlas_metrics(PT, r.FUV, r.UV);
+  EXPECT_EQ(um.degenerate_charts, 1);
+  EXPECT_EQ(um.charts.size(), 3u);
+  for (int f : {3, 4}) EXPECT_FALSE(um.charts[um.face_chart[f]].degenerate) << f;
+  EXPECT_TRUE(um.charts[um.face_chart[5]].degenerate);
 }
 
 // Scattered seams on closed surfaces (slits that end inside a chart too):
@@ -512,9 +667,17 @@ TEST(AtlasSeams, BadSeamsAreRefused) {
   test::expect_error([&] { read_seams_file("/nonexistent/seams.txt", m); }, ErrorKind::Input, "cannot open");
   AtlasOptions o;
   o.seams = {{0, 3}};
-  test::expect_error([&] { atlas(m, o); }, ErrorKind::Input, "seam edge 0 3 is not an edge");
+  test::expect_error([&] { atlas(m, o); }, ErrorKind::Input, "seam edge 0: vertices 0 and 3 are not an edge");
   o.seams = {{0, 9}};
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Input, "out of range");
+  // One check (find_seam_problem): the library names the seam's index, the
+  // file reader maps it to the line that listed it (a repeated line skipped).
+  o.seams = {{1, 2}, {2, 3}, {3, 0}};
+  test::expect_error([&] { atlas(m, o); }, ErrorKind::Input, "seam edge 2: vertices 3 and 0 are not an edge");
+  EXPECT_EQ(find_seam_problem(m, o.seams).index, 2);
+  EXPECT_EQ(find_seam_problem(m, {{1, 2}, {2, 3}}).index, -1);
+  test::expect_error([&] { parse_seams_text("1 2\n2 1\n# c\n\n2 3\n3 0\n", "s.txt", m); }, ErrorKind::Input,
+                     "s.txt:6: vertices 3 and 0 are not an edge");
 }
 
 TEST(AtlasCli, SeamsFileOptionsAndErrors) {
@@ -582,7 +745,7 @@ TEST(AtlasCli, KeepsVerticesWritesCornersDeterministic) {
   r.FUV = out.FTC;
   const AtlasResult lib = atlas(src);
   r.face_chart = lib.face_chart;
-  r.face_reversed = lib.face_reversed;
+  r.charts = lib.charts;
   r.utilization = lib.utilization;
   expect_valid_atlas(src, r);  // what the file holds, read back
   const std::string report = test::slurp(rep);

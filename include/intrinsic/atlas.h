@@ -1,8 +1,9 @@
 // Whole assets (issue 13): a packed, overlap-free UV atlas of any triangle
 // mesh, closed, higher-genus or messy. The input is cleaned for the
 // computation only (zero-area faces set aside, non-manifold edges and vertices
-// split, inconsistently oriented edges cut), segmented into disk charts, each
-// chart flattened by the natural conformal map of the paper (section 4.2,
+// split, inconsistently oriented edges cut, so every chart keeps its faces'
+// input winding and is laid out counter-clockwise in it), segmented into disk
+// charts, each chart flattened by the natural conformal map of the paper (section 4.2,
 // eq. 7; docs/maths.md §3) through the one Parameterizer, checked (no flipped
 // triangle, simple boundary) and split until valid, then packed into
 // [0,1]^2 at one texel density (paper section 1.3: an atlas of charts).
@@ -58,6 +59,11 @@ struct AtlasOptions {
   // keeps the input's vertices, and welded corners share texture
   // coordinates. 0: no welding.
   double weld = 0;
+  // Reverse the faces listed against their piece's majority orientation in
+  // the output (AtlasResult::F), so charts may span them. Off: the output
+  // keeps the input's winding and such edges are seams (a mesh with faces
+  // listed at random then falls into many charts).
+  bool reorient = false;
   // The user's seams: every listed edge is cut (a chart boundary in the
   // output); charts are then the pieces between seams, split only where a
   // piece is not a disk or its map is invalid (no stretch or packing splits).
@@ -75,17 +81,24 @@ struct AtlasChart {
   int flipped = 0;  // always 0 in a result: flipped charts are split
   double angle_distortion_mean = 1, stretch_l2_mean = 1;  // docs/maths.md §9, area-weighted
   double area_3d = 0;
+  // 3D length of the chart's boundary: its edges not shared with another of
+  // its faces (seams and the mesh's own boundary alike; docs/maths.md §9.6).
+  double boundary_length = 0;
   bool rotated = false;  // turned for packing
 };
 
-// What cleaning found; each is handled for the computation, never changes the output's faces.
+// What cleaning found; each is handled for the computation and never changes
+// the output's faces (reorient aside: it reverses some).
 struct AtlasCleaning {
-  int degenerate_faces = 0;       // zero area or repeated vertex: UVs collapsed onto a neighbour, chart -1
+  int degenerate_faces = 0;       // zero area or repeated vertex: zero UV area (docs/maths.md §9.6), chart -1
   int nonmanifold_edges = 0;      // edges with more than two faces: every face there gets a seam
   int nonmanifold_vertices = 0;   // vertices whose corners fall into several charts' pieces without a seam edge
-  int inconsistent_edges = 0;     // two faces listing the edge in the same direction
-  int reversed_faces = 0;         // faces listed against their piece's orientation (the fewer), reversed for the solve
-  int nonorientable_cuts = 0;     // edges cut because the orientations could not agree (a Moebius band)
+  int inconsistent_edges = 0;  // two faces listing the edge in the same direction
+  int reversed_faces = 0;      // reorient: faces listed against their piece's majority, written reversed
+  // Edges cut so every chart is consistently oriented as written: the
+  // inconsistent ones, or with reorient those still inconsistent after it
+  // (a Moebius band keeps one).
+  int orientation_cuts = 0;
   int unreferenced_vertices = 0;  // written unchanged, no UV
   int welded_vertices = 0;        // --weld: vertices merged into an earlier one within the distance
 };
@@ -110,12 +123,11 @@ struct AtlasTimings {
 
 struct AtlasResult {
   MatrixX2d UV;       // texture coordinates, all in [0,1]^2
+  // The faces to write: the input's, except that with reorient the
+  // reversed_faces are listed 0, 2, 1. FUV follows this corner order.
+  MatrixX3i F;
   MatrixX3i FUV;      // #F x 3: per face corner, a row of UV
   std::vector<int> face_chart;  // per face; -1 for degenerate faces
-  // Per face: listed against its chart's orientation in the input (fixed for
-  // the computation). Its UV triangle, read in the input's corner order, is
-  // then clockwise: the texture still lies on the surface as on its neighbours.
-  std::vector<char> face_reversed;
   std::vector<AtlasChart> charts;
   int components = 0;
   int splits = 0;          // charts split: not disks, flipped, boundary crossing, or too sparse for packing
@@ -125,16 +137,31 @@ struct AtlasResult {
   // (Sander; docs/maths.md §9): every chart has UV area = 3D area before
   // packing, so this is the whole atlas's figure at one texel density.
   double stretch_l2_mean = 1;
+  // 3D length of the seams in the output: per edge of the input's faces (a
+  // vertex pair), the number of distinct per-corner UV pairs on it minus one,
+  // times its length. The mesh's own boundary is no seam; a manifold edge cut
+  // counts once (docs/maths.md §9.6; bench/atlas_compare.py measures xatlas so).
+  double seam_length = 0;
   int flipped = 0;         // non-degenerate faces with signed UV area <= 0 in their chart's orientation (0 by construction)
   int overlapping = 0;     // charts whose texel masks meet another's (0 by construction of the packer)
   AtlasCleaning cleaning;
   AtlasTimings timings;
 };
 
+// The first of `seams` that atlas() refuses (index -1: none): a vertex out
+// of range, or a pair that is not an edge of a face of `mesh`. The one check
+// of seams (src/atlas/seam_edges.cpp): atlas() throws Error(Input) "seam edge
+// INDEX: MESSAGE" with it; the seams file reader names the file and line.
+struct SeamProblem {
+  int index = -1;
+  std::string message;  // e.g. "vertices 0 and 3 are not an edge of any face"
+};
+SeamProblem find_seam_problem(const MeshData& mesh, const std::vector<SeamEdge>& seams);
+
 // Seams files (src/io/seams_file.cpp): one edge `i j` per line, 0-based
 // vertex indices in input order, `#` comments. Throws Error(Input) naming the
 // file and line for a malformed line, an out-of-range index, a pair that is
-// not an edge of `mesh`, and for a file with no edge.
+// not an edge of `mesh` (find_seam_problem), and for a file with no edge.
 std::vector<SeamEdge> parse_seams_text(const std::string& text, const std::string& name, const MeshData& mesh);
 std::vector<SeamEdge> read_seams_file(const std::string& path, const MeshData& mesh);
 

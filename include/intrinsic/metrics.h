@@ -86,13 +86,18 @@ struct UvChart {
   bool mirrored = false;
   int flipped = 0;    // faces whose UV orientation is opposite to the chart's (local folds)
   int collapsed = 0;  // faces with zero UV area (and non-zero 3D area)
+  // Every face has zero 3D area (e.g. a zero-area face whose UVs are
+  // collapsed apart from its neighbours): no surface to texture, so not
+  // counted among the charts of the report (docs/maths.md §9.5).
+  bool degenerate = false;
 };
 
 struct UvAtlasMetrics {
   std::vector<int> face_chart;  // per face, the index into charts
   std::vector<char> face_folded;       // per face: locally flipped or collapsed
   std::vector<char> face_overlapping;  // per face: meets another face's interior
-  std::vector<UvChart> charts;
+  std::vector<UvChart> charts;  // all UV-connected components, degenerate ones included
+  int degenerate_charts = 0;    // components of zero-area faces only: charts.size() minus this is the chart count
   int mirrored_charts = 0, mirrored_faces = 0;  // whole charts mirrored (not counted in flipped_triangles)
   int flipped_triangles = 0;    // locally flipped, over all charts
   int collapsed_triangles = 0;  // zero UV area, non-zero 3D area

@@ -41,6 +41,7 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices,
     else if (k == "max_stretch") o.max_stretch = value.cast<double>();
     else if (k == "max_charts") o.max_charts = value.cast<int>();
     else if (k == "weld") o.weld = value.cast<double>();
+    else if (k == "reorient") o.reorient = value.cast<bool>();
     else if (k == "seams") seams.value = py::reinterpret_borrow<py::object>(value);
     else if (k == "max_vertices") max_vertices = value.cast<std::int64_t>();
     else throw_usage("unknown option '" + k + "'");
@@ -92,22 +93,22 @@ AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs
 void register_atlas(py::module_& m) {
   py::class_<AtlasOutput>(m, "Atlas",
                           "An atlas: uv (k x 2 float64 in [0,1]^2), uv_index (#F x 3 int32: per face corner, a row\n"
-                          "of uv), face_chart (#F int32, -1 for degenerate faces), V and F (the input as read,\n"
-                          "never changed) and report (the dict `intrinsic atlas --report` writes; 'input' is the\n"
-                          "path or None, 'output' None).")
+                          "of uv), face_chart (#F int32, -1 for degenerate faces), V (the input's vertices), F (the\n"
+                          "input's faces; with reorient=True the reoriented ones reversed) and report (the dict\n"
+                          "`intrinsic atlas --report` writes; 'input' is the path or None, 'output' None).")
       .def_readonly("uv", &AtlasOutput::uv)
       .def_readonly("uv_index", &AtlasOutput::uv_index)
       .def_readonly("face_chart", &AtlasOutput::face_chart)
       .def_readonly("report", &AtlasOutput::report)
       .def_property_readonly("V", [](const AtlasOutput& a) { return from_V(a.data.V); })
-      .def_property_readonly("F", [](const AtlasOutput& a) { return from_F(a.data.F); })
+      .def_property_readonly("F", [](const AtlasOutput& a) { return from_F(a.result.F); })
       .def("__repr__", [](const AtlasOutput& a) {
         return "<intrinsic.Atlas " + std::to_string(a.result.charts.size()) + " charts, utilization " +
                std::to_string(static_cast<int>(100 * a.result.utilization + 0.5)) + "%>";
       });
   m.def("atlas", &run_atlas, py::arg("V"), py::arg("F") = py::none(),
         "atlas(V, F=None, *, padding=2, resolution=1024, max_normal_deviation=60, min_chart_faces=20,\n"
-        "      max_stretch=1.05, max_charts=0, weld=0, seams=None, max_vertices=50000000) -> Atlas\n\n"
+        "      max_stretch=1.05, max_charts=0, weld=0, reorient=False, seams=None, max_vertices=50000000) -> Atlas\n\n"
         "`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or on a mesh file (atlas(path)):\n"
         "any triangle mesh (closed, higher genus, several components, non-manifold bits) cut into disk\n"
         "charts, each flattened by the natural conformal map, packed into [0,1]^2 without flips or\n"

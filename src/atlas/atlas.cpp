@@ -3,9 +3,10 @@
 // non-degenerate triangle always is) -> pack -> per-corner UVs. Every chart is
 // flattened by the paper's natural conformal map (section 4.2) through the
 // one Parameterizer (chart_flatten.cpp).
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <deque>
-#include <unordered_set>
 
 #include "atlas/atlas_internal.h"
 #include "intrinsic/error.h"
@@ -34,33 +35,6 @@ void check_options(const AtlasOptions& o) {
   if (!(o.degenerate_ratio >= 0 && o.degenerate_ratio < 1)) throw_usage("the degenerate ratio must be in [0, 1)");
   if (!(o.weld >= 0 && o.weld < 1))
     throw_usage("the weld distance must be in [0, 1) (a fraction of the bounding box diagonal)");
-}
-
-// Cuts the user's seam edges for the computation (no face is glued across
-// one). Throws Error(Input) for an index out of range or a pair that is not
-// an edge of a face.
-void cut_seams(const MeshData& input, const std::vector<SeamEdge>& seams, detail::CleanMesh& clean) {
-  auto key = [](int a, int b) {
-    if (a > b) std::swap(a, b);
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-  };
-  std::unordered_set<std::uint64_t> wanted, found;
-  for (const SeamEdge& e : seams) {
-    if (e.a < 0 || e.b < 0 || e.a >= input.V.rows() || e.b >= input.V.rows())
-      throw_input("seam edge " + std::to_string(e.a) + " " + std::to_string(e.b) + ": vertex out of range (the mesh has " +
-                  std::to_string(input.V.rows()) + " vertices)");
-    wanted.insert(key(e.a, e.b));
-  }
-  for (int f = 0; f < input.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const std::uint64_t k = key(input.F(f, c), input.F(f, (c + 1) % 3));
-      if (!wanted.count(k)) continue;
-      found.insert(k);
-      clean.glued[3 * f + c] = -1;
-    }
-  for (const SeamEdge& e : seams)
-    if (e.a == e.b || !found.count(key(e.a, e.b)))
-      throw_input("seam edge " + std::to_string(e.a) + " " + std::to_string(e.b) + " is not an edge of any face");
 }
 
 void count_split(detail::ChartStatus status, AtlasResult& r) {
@@ -139,15 +113,17 @@ std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::
   return done;
 }
 
-// Per-corner indices into one UV array; degenerate faces collapse onto a UV of one of their vertices.
-void assemble(const MeshData& input, const std::vector<detail::FlatChart>& charts, AtlasResult& r) {
+// The faces to write (the input's; with reorient, reversed ones 0, 2, 1) and
+// per-corner indices into one UV array in their corner order; degenerate
+// faces get theirs from place_degenerate_faces.
+void assemble(const MeshData& input, const std::vector<char>& reversed, const std::vector<detail::FlatChart>& charts,
+              AtlasResult& r) {
   const int nf = static_cast<int>(input.F.rows());
   long rows = 0;
   for (const detail::FlatChart& c : charts) rows += c.UV.rows();
   r.UV.resize(rows + 1, 2);
   r.FUV = MatrixX3i::Constant(nf, 3, -1);
   r.face_chart.assign(nf, -1);
-  std::vector<int> vertex_uv(input.V.rows(), -1);
   int offset = 0;
   for (size_t k = 0; k < charts.size(); ++k) {
     const detail::FlatChart& c = charts[k];
@@ -155,21 +131,37 @@ void assemble(const MeshData& input, const std::vector<detail::FlatChart>& chart
     for (size_t i = 0; i < c.mesh.faces.size(); ++i) {
       const int f = c.mesh.faces[i];
       r.face_chart[f] = static_cast<int>(k);
-      for (int j = 0; j < 3; ++j) {
-        r.FUV(f, j) = offset + c.mesh.corner[3 * i + j];
-        if (vertex_uv[input.F(f, j)] < 0) vertex_uv[input.F(f, j)] = r.FUV(f, j);
-      }
+      for (int j = 0; j < 3; ++j) r.FUV(f, j) = offset + c.mesh.corner[3 * i + j];
     }
     offset += static_cast<int>(c.UV.rows());
   }
-  r.UV.row(offset) << 0, 0;  // for degenerate faces none of whose vertices is in a chart
+  r.F = input.F;
   for (int f = 0; f < nf; ++f)
-    if (r.face_chart[f] < 0) {
-      int uv = offset;
-      for (int j = 2; j >= 0; --j)
-        if (vertex_uv[input.F(f, j)] >= 0) uv = vertex_uv[input.F(f, j)];
-      r.FUV.row(f).setConstant(uv);
+    if (reversed[f]) {
+      std::swap(r.F(f, 1), r.F(f, 2));
+      std::swap(r.FUV(f, 1), r.FUV(f, 2));
     }
+  r.UV.row(offset) << 0, 0;  // for degenerate faces none of whose vertices is in a chart
+  detail::place_degenerate_faces(input.V, r.F, r.face_chart, r.UV, r.FUV, offset);
+}
+
+// AtlasResult::seam_length: distinct UV pairs per input edge, beyond the first.
+double seam_length(const MatrixX3d& V, const MatrixX3i& F, const MatrixX3i& FUV) {
+  std::vector<std::array<int, 4>> edges;  // (lower vertex, higher vertex, its UV, the other's UV)
+  edges.reserve(3 * static_cast<size_t>(F.rows()));
+  for (int f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int d = (c + 1) % 3, a = F(f, c), b = F(f, d);
+      if (a == b) continue;
+      if (a < b) edges.push_back({a, b, FUV(f, c), FUV(f, d)});
+      else edges.push_back({b, a, FUV(f, d), FUV(f, c)});
+    }
+  std::sort(edges.begin(), edges.end());
+  double length = 0;
+  for (size_t i = 1; i < edges.size(); ++i)
+    if (edges[i][0] == edges[i - 1][0] && edges[i][1] == edges[i - 1][1] && edges[i] != edges[i - 1])
+      length += (V.row(edges[i][0]) - V.row(edges[i][1])).norm();
+  return length;
 }
 
 }  // namespace
@@ -185,7 +177,7 @@ AtlasResult atlas(const MeshData& given, const AtlasOptions& options) {
   const MeshData& input = options.weld > 0 ? welded_mesh : given;
   detail::CleanMesh clean = detail::clean_mesh(input, options);
   // Seams name the user's vertices; faces keep their rows through welding.
-  if (!options.seams.empty()) cut_seams(given, options.seams, clean);
+  if (!options.seams.empty()) detail::cut_seams(given, options.seams, clean);
   r.cleaning = clean.cleaning;
   r.cleaning.welded_vertices = welded;
   r.components = clean.components;
@@ -202,11 +194,12 @@ AtlasResult atlas(const MeshData& given, const AtlasOptions& options) {
   r.timings.merge_ms = ms_since(t);
   t = std::chrono::steady_clock::now();
   r.utilization = detail::pack_charts(charts, options, r.overlapping);
-  assemble(input, charts, r);
-  r.face_reversed = clean.reversed;
+  assemble(given, clean.reversed, charts, r);
   double area = 0, stretch = 0;
+  r.seam_length = seam_length(given.V, r.F, r.FUV);
   for (const detail::FlatChart& c : charts) {
     r.charts.push_back(c.summary);
+    r.charts.back().boundary_length = c.mesh.boundary_length;
     r.flipped += c.summary.flipped;
     area += c.summary.area_3d;
     stretch += c.summary.area_3d * c.summary.stretch_l2_mean;

@@ -15,13 +15,14 @@ namespace intrinsic::detail {
 
 // The input seen by the computation. Half-edge c of face f runs from F(f,c)
 // to F(f,(c+1)%3); glued[3f+c] is the face across it when exactly two
-// non-degenerate faces share the edge and their orientations (after
-// `reversed`) agree, else -1 (a seam whatever the segmentation does).
+// non-degenerate faces share the edge and list it in opposite directions
+// (after `reversed`), else -1 (a seam whatever the segmentation does). Every
+// chart is therefore oriented as its faces are written.
 struct CleanMesh {
   std::vector<char> good;  // per face: not degenerate
   std::vector<int> glued;  // per half-edge
-  std::vector<char> reversed;  // per face: its corners are taken in the order 0, 2, 1 for the computation
-  std::vector<Eigen::Vector3d> normal;  // unit, per face (zero for degenerate faces)
+  std::vector<char> reversed;  // per face: taken (and, with reorient, written) 0, 2, 1; all 0 without reorient
+  std::vector<Eigen::Vector3d> normal;  // unit, per face as listed (zero for degenerate faces)
   std::vector<double> area;
   std::vector<int> component;  // per face: connected component (faces sharing vertices)
   int components = 0;
@@ -57,6 +58,11 @@ class ChartFaceIndex {
   std::vector<int> table_;
 };
 
+// Cuts the user's seams (seam_edges.cpp): no face is glued across one.
+// Throws Error(Input) "seam edge INDEX: ..." for the first seam
+// find_seam_problem refuses.
+void cut_seams(const MeshData& input, const std::vector<SeamEdge>& seams, CleanMesh& clean);
+
 // Charts as lists of face indices (sorted), each connected through glued edges.
 std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options);
 // Two connected halves grown from two far-apart faces of the chart (at least two faces).
@@ -67,8 +73,9 @@ std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::
 struct ChartMesh {
   std::vector<int> faces;   // input faces, sorted
   std::vector<int> corner;  // per face corner (3 * k + c): local vertex
-  MeshData data;            // local vertices (positions of their input vertex), faces oriented (reversed ones 0, 2, 1)
+  MeshData data;            // local vertices (positions of their input vertex), faces as written (reversed ones 0, 2, 1)
   long open_edges = 0;      // half-edges not glued to another face of the chart: must all be boundary edges
+  double boundary_length = 0;  // 3D length of those half-edges
 };
 ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces);
 
@@ -106,5 +113,15 @@ double planar_square_fill(const ChartMesh& chart);
 // [0,1]^2 (UVs changed in place). Returns the utilization; `overlapping` is
 // 0: a mask is only placed where its dilated texels meet no taken texel.
 double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping);
+
+// Per-corner UV rows for the faces no chart holds (face_chart -1: zero area
+// or a repeated vertex), each with zero UV area: laid along a UV edge of a
+// chart (or of such a face placed before) where that keeps every UV edge
+// between at most two faces, else collapsed onto a UV of one of its vertices
+// (zero_row when none has one). A corner given another vertex's UV gets a
+// new row of UV (a copy), so each row belongs to one vertex. V, F: the
+// output's vertices and faces (FUV in F's corner order).
+void place_degenerate_faces(const MatrixX3d& V, const MatrixX3i& F, const std::vector<int>& face_chart, MatrixX2d& UV,
+                            MatrixX3i& FUV, int zero_row);
 
 }  // namespace intrinsic::detail

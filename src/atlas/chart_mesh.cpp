@@ -31,6 +31,7 @@ ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::v
       const int g = clean.glued[3 * f + c], j = g < 0 ? -1 : index(g);
       if (j < 0) {
         ++chart.open_edges;
+        chart.boundary_length += (input.V.row(input.F(f, c)) - input.V.row(input.F(f, (c + 1) % 3))).norm();
         continue;
       }
       for (int e = 0; e < 3; ++e)

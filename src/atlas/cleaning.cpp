@@ -1,11 +1,12 @@
 // Cleaning for the atlas (issue 13, "cleaning, reported, never silent"): the
 // input is never changed; this decides which faces take part in a solve
-// (non-degenerate ones, by the same area test as make_mesh), which faces are
-// reversed for the computation (inconsistent orientation fixed, as make_mesh
-// does, the minority flipped), and across which edges charts may be glued:
-// edges with exactly two such faces, consistently oriented once reversed.
-// Everything else (non-manifold edges, the cut that makes a non-orientable
-// piece orientable) is a seam, so every chart is manifold and oriented.
+// (non-degenerate ones, by the same area test as make_mesh) and across which
+// edges charts may be glued: edges with exactly two such faces that list the
+// edge in opposite directions (after the minority of each piece is reversed,
+// with AtlasOptions::reorient). Everything else (non-manifold edges,
+// inconsistently oriented edges, hence every non-orientable piece) is a seam,
+// so every chart is manifold and oriented as its faces are written
+// (docs/maths.md §9.6).
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -58,7 +59,8 @@ void face_geometry(const MeshData& in, double ratio, CleanMesh& m) {
 }
 
 // Manifold edges (exactly two good faces) as pairs of half-edges, from the
-// half-edges of good faces sorted by undirected edge; counts the others.
+// half-edges of good faces sorted by undirected edge; counts the others and
+// the inconsistently listed ones.
 std::vector<std::pair<int, int>> manifold_edges(const MeshData& in, CleanMesh& m) {
   const int nf = static_cast<int>(in.F.rows());
   std::vector<std::tuple<int, int, int>> he;  // (min vertex, max vertex, half-edge)
@@ -85,17 +87,13 @@ std::vector<std::pair<int, int>> manifold_edges(const MeshData& in, CleanMesh& m
   return pairs;
 }
 
-// Orientation by breadth-first search over manifold edges: a face is reversed
-// when its neighbour's orientation requires it; an edge is glued when the two
-// orientations agree across it (a Moebius band keeps one cut edge). In each
+// AtlasOptions::reorient: by breadth-first search over manifold edges, a
+// face is reversed when its neighbour's orientation requires it; in each
 // connected piece the smaller set of faces is the one reversed.
-void orient_and_glue(const MeshData& in, CleanMesh& m) {
+void orient_pieces(const MeshData& in, const std::vector<std::pair<int, int>>& pairs, CleanMesh& m) {
   const int nf = static_cast<int>(in.F.rows());
-  const std::vector<std::pair<int, int>> pairs = manifold_edges(in, m);
   std::vector<int> across(3 * nf, -1);  // half-edge -> the other half-edge of its manifold edge
   for (const auto& [h, k] : pairs) across[h] = k, across[k] = h;
-  auto same_direction = [&](int h, int k) { return in.F(h / 3, h % 3) == in.F(k / 3, k % 3); };
-  m.reversed.assign(nf, 0);
   std::vector<int> piece(nf, -1), queue;
   for (int s = 0; s < nf; ++s) {
     if (!m.good[s] || piece[s] >= 0) continue;
@@ -109,21 +107,38 @@ void orient_and_glue(const MeshData& in, CleanMesh& m) {
         const int k = across[3 * f + c], g = k < 0 ? -1 : k / 3;
         if (g < 0 || piece[g] >= 0) continue;
         piece[g] = s;
-        m.reversed[g] = static_cast<char>(m.reversed[f] ^ (same_direction(3 * f + c, k) ? 1 : 0));
+        const bool same_direction = in.F(f, c) == in.F(g, k % 3);
+        m.reversed[g] = static_cast<char>(m.reversed[f] ^ (same_direction ? 1 : 0));
         queue.push_back(g);
       }
     }
     if (2 * flipped > static_cast<long>(queue.size()))
       for (int f : queue) m.reversed[f] ^= 1;
   }
+}
+
+// Glues each manifold edge whose two faces list it in opposite directions
+// once the `reversed` faces are taken 0, 2, 1. Without reorient none is, as
+// the output keeps the input's winding: a chart may then only span faces
+// that agree, and an edge listed the same way by both faces is cut (a seam)
+// rather than one face reoriented, which would lay that face (or a whole
+// chart made of such faces) out mirrored against its own listing
+// (docs/maths.md §9.6). Either way every non-orientable piece is cut.
+void orient_and_glue(const MeshData& in, bool reorient, CleanMesh& m) {
+  const int nf = static_cast<int>(in.F.rows());
+  const std::vector<std::pair<int, int>> pairs = manifold_edges(in, m);
+  m.reversed.assign(nf, 0);
+  if (reorient) orient_pieces(in, pairs, m);
   m.glued.assign(3 * nf, -1);
-  for (const auto& [h, k] : pairs)
-    if ((m.reversed[h / 3] ^ m.reversed[k / 3]) == (same_direction(h, k) ? 1 : 0)) {
-      m.glued[h] = k / 3;
-      m.glued[k] = h / 3;
-    } else {
-      ++m.cleaning.nonorientable_cuts;
+  for (const auto& [h, k] : pairs) {
+    const bool same_direction = in.F(h / 3, h % 3) == in.F(k / 3, k % 3);
+    if ((m.reversed[h / 3] ^ m.reversed[k / 3]) != (same_direction ? 1 : 0)) {
+      ++m.cleaning.orientation_cuts;
+      continue;
     }
+    m.glued[h] = k / 3;
+    m.glued[k] = h / 3;
+  }
   for (int f = 0; f < nf; ++f) {
     m.cleaning.reversed_faces += m.reversed[f];
     if (m.reversed[f]) m.normal[f] = -m.normal[f];  // the normal of the orientation used
@@ -222,7 +237,7 @@ CleanMesh clean_mesh(const MeshData& input, const AtlasOptions& options) {
   check_input(input);
   CleanMesh m;
   face_geometry(input, options.degenerate_ratio, m);
-  orient_and_glue(input, m);
+  orient_and_glue(input, options.reorient, m);
   count_components(input, m);
   return m;
 }

@@ -1,10 +1,11 @@
 // The seams file of `intrinsic atlas --seams FILE` (issue 13, "uses the
 // user's own seams, as artists mark them"): one edge per line, `i j`, two
 // 0-based vertex indices in the input's vertex order (as boundary files),
-// `#` comments and blank lines allowed. Each pair must be an edge of a face.
+// `#` comments and blank lines allowed. Each pair must be an edge of a face
+// (find_seam_problem, src/atlas/seam_edges.cpp).
 #include <charconv>
 #include <sstream>
-#include <unordered_set>
+#include <set>
 
 #include "intrinsic/atlas.h"
 #include "intrinsic/error.h"
@@ -12,11 +13,6 @@
 
 namespace intrinsic {
 namespace {
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 int parse_index(const std::string& s, long long num_vertices, const std::string& at) {
   long long v = 0;
@@ -29,12 +25,13 @@ int parse_index(const std::string& s, long long num_vertices, const std::string&
 
 }  // namespace
 
+// Syntax and range here, line by line; whether each pair is an edge is the
+// library's one check (find_seam_problem), its seam index mapped back to the
+// line that listed it.
 std::vector<SeamEdge> parse_seams_text(const std::string& text, const std::string& name, const MeshData& mesh) {
-  std::unordered_set<std::uint64_t> edges;
-  for (int f = 0; f < mesh.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) edges.insert(edge_key(mesh.F(f, c), mesh.F(f, (c + 1) % 3)));
   std::vector<SeamEdge> out;
-  std::unordered_set<std::uint64_t> seen;
+  std::vector<int> line_of;  // per seam in `out`
+  std::set<std::pair<int, int>> seen;
   std::istringstream in(text);
   std::string line;
   int line_no = 0;
@@ -48,11 +45,13 @@ std::vector<SeamEdge> parse_seams_text(const std::string& text, const std::strin
     if (!(fields >> b)) throw_input(at + "expected 'i j' (two vertex indices of an edge)");
     if (fields >> extra) throw_input(at + "unexpected '" + extra + "' after 'i j'");
     const int i = parse_index(a, mesh.V.rows(), at), j = parse_index(b, mesh.V.rows(), at);
-    if (i == j || !edges.count(edge_key(i, j)))
-      throw_input(at + "vertices " + a + " and " + b + " are not an edge of any face");
-    if (seen.insert(edge_key(i, j)).second) out.push_back({i, j});  // a repeated line changes nothing
+    if (!seen.insert({std::min(i, j), std::max(i, j)}).second) continue;  // a repeated line changes nothing
+    out.push_back({i, j});
+    line_of.push_back(line_no);
   }
   if (out.empty()) throw_input(name + ": no seam edges");
+  const SeamProblem p = find_seam_problem(mesh, out);
+  if (p.index >= 0) throw_input(name + ":" + std::to_string(line_of[p.index]) + ": " + p.message);
   return out;
 }
 

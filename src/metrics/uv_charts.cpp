@@ -6,7 +6,8 @@
 // their 3D position are equal, so soups that repeat coordinates per face still
 // form charts. Orientation is judged per chart: a chart laid out mirrored as a
 // whole is reported as such, apart from triangles folded against their own
-// chart.
+// chart. Components made only of zero-area faces are flagged degenerate and
+// counted apart from the charts.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -16,11 +17,6 @@
 
 namespace intrinsic {
 namespace {
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
 
 // Per texture coordinate, a representative of those with the same UV and
 // position (non-finite ones stand alone: NaN has no order to sort by).
@@ -144,13 +140,17 @@ UvAtlasMetrics uv_atlas_metrics(const MatrixX3d& PT, const MatrixX3i& FT, const 
     degenerate[f] = degenerate_3d(PT, FT, f);
     r.degenerate_faces += degenerate[f];
     sign[f] = (a.allFinite() && b.allFinite() && c.allFinite()) ? orient2d_sign(a, b, c) * listing[f] : 0;
-    majority[r.face_chart[f]] += listing[f];
+    if (!degenerate[f]) majority[r.face_chart[f]] += listing[f];  // zero-area faces do not vote
     if (std::isfinite(area2)) oriented_area[r.face_chart[f]] += 0.5 * std::abs(area2) * sign[f];
   }
-  // The chart's own listing is its majority; its UV orientation the sign of
-  // its oriented area in that listing.
+  // The chart's own listing is its majority (of faces with area); its UV
+  // orientation the sign of its oriented area in that listing.
   std::vector<int> chart_sign(count);
+  for (int k = 0; k < count; ++k) r.charts[k].degenerate = true;
+  for (int f = 0; f < m; ++f)
+    if (!degenerate[f]) r.charts[r.face_chart[f]].degenerate = false;
   for (int k = 0; k < count; ++k) {
+    r.degenerate_charts += r.charts[k].degenerate;
     const int listed = majority[k] >= 0 ? 1 : -1;
     chart_sign[k] = oriented_area[k] >= 0 ? 1 : -1;
     r.charts[k].mirrored = chart_sign[k] * listed < 0;
