@@ -92,9 +92,9 @@ void register_atlas(CLI::App& app, Runner& run) {
                   "(unwelded seams); the output keeps the input's vertices")
       ->check(CLI::Range(0.0, 0.999999))
       ->capture_default_str();
-  cmd->add_flag("--reorient", a->options.reorient,
-                "Write faces listed against their piece's orientation reversed, so charts may span them "
-                "(default: keep the input's winding and cut there)");
+  cmd->add_flag("!--keep-winding", a->options.reorient,
+                "Keep the winding of faces listed against their piece's orientation and cut there (default: "
+                "write them reversed, so charts may span them)");
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

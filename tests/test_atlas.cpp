@@ -221,18 +221,19 @@ double closest_charts(const AtlasResult& r, double reach) {
 // triangle), the UVs scaled by one factor so their total area is the
 // surface's. Independent of the library's singular-value route.
 double sander_l2(const MeshData& m, const AtlasResult& r) {
+  const MatrixX3i& F = r.F;  // the faces as written: FUV follows their corner order
   double a3 = 0, a2 = 0;
-  for (int f = 0; f < m.F.rows(); ++f) {
+  for (int f = 0; f < F.rows(); ++f) {
     if (r.face_chart[f] < 0) continue;
-    const Eigen::Vector3d q0 = m.V.row(m.F(f, 0)), q1 = m.V.row(m.F(f, 1)), q2 = m.V.row(m.F(f, 2));
+    const Eigen::Vector3d q0 = m.V.row(F(f, 0)), q1 = m.V.row(F(f, 1)), q2 = m.V.row(F(f, 2));
     a3 += 0.5 * (q1 - q0).cross(q2 - q0).norm();
     a2 += 0.5 * std::abs(twice_area(r.UV.row(r.FUV(f, 0)), r.UV.row(r.FUV(f, 1)), r.UV.row(r.FUV(f, 2))));
   }
   const double k = std::sqrt(a3 / a2);
   double sum = 0;
-  for (int f = 0; f < m.F.rows(); ++f) {
+  for (int f = 0; f < F.rows(); ++f) {
     if (r.face_chart[f] < 0) continue;
-    const Eigen::Vector3d q[3] = {m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2))};
+    const Eigen::Vector3d q[3] = {m.V.row(F(f, 0)), m.V.row(F(f, 1)), m.V.row(F(f, 2))};
     Vec2 p[3];
     for (int c = 0; c < 3; ++c) p[c] = k * r.UV.row(r.FUV(f, c)).transpose();
     const double A = 0.5 * twice_area(p[0], p[1], p[2]);
@@ -246,10 +247,11 @@ double sander_l2(const MeshData& m, const AtlasResult& r) {
 // Seam edges (i, j): the two faces on each have different corner UVs at the
 // edge (it is a chart boundary edge in the output). Returns the seams not cut.
 int uncut_seams(const MeshData& m, const AtlasResult& r, const std::vector<SeamEdge>& seams) {
+  const MatrixX3i& F = r.F;
   std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> corners;  // edge -> (uv at min vertex, uv at max vertex) per face
-  for (int f = 0; f < m.F.rows(); ++f)
+  for (int f = 0; f < F.rows(); ++f)
     for (int c = 0; c < 3; ++c) {
-      const int a = m.F(f, c), b = m.F(f, (c + 1) % 3);
+      const int a = F(f, c), b = F(f, (c + 1) % 3);
       const int ua = r.FUV(f, c), ub = r.FUV(f, (c + 1) % 3);
       corners[{std::min(a, b), std::max(a, b)}].push_back(a < b ? std::make_pair(ua, ub) : std::make_pair(ub, ua));
     }
@@ -348,7 +350,7 @@ TEST(Atlas, MessyHandMadeMeshes) {
 }
 
 // A strip of quads whose second triangle is listed backwards in every third
-// quad: the output keeps that winding, so each such face shares no edge with
+// quad, with reorient off: the output keeps that winding, so each such face shares no edge with
 // its neighbours in UV (a chart of its own, laid out counter-clockwise in its
 // own listing) rather than being reoriented (which would mirror it).
 TEST(Atlas, InconsistentOrientationIsCutNotMirrored) {
@@ -366,7 +368,9 @@ TEST(Atlas, InconsistentOrientationIsCutNotMirrored) {
     if (i % 3 == 0) m.F.row(2 * i + 1) << a, c, d;  // backwards
     else m.F.row(2 * i + 1) << a, d, c;
   }
-  const AtlasResult r = atlas(m);
+  AtlasOptions keep;
+  keep.reorient = false;
+  const AtlasResult r = atlas(m, keep);
   expect_valid_atlas(m, r);
   // By hand: a backwards face lists its diagonal as its quad's first face
   // does, and its left edge as the previous quad's first face does (none for
@@ -379,7 +383,7 @@ TEST(Atlas, InconsistentOrientationIsCutNotMirrored) {
   }
 }
 
-// The same strip with reorient: the backwards faces are written reversed
+// The same strip with reorient (the default): the backwards faces are written reversed
 // (the minority of the piece), so nothing is cut and one chart remains.
 TEST(Atlas, ReorientWritesTheMinorityReversed) {
   MeshData m;
@@ -396,9 +400,7 @@ TEST(Atlas, ReorientWritesTheMinorityReversed) {
     if (i % 3 == 0) m.F.row(2 * i + 1) << a, c, d;  // backwards
     else m.F.row(2 * i + 1) << a, d, c;
   }
-  AtlasOptions o;
-  o.reorient = true;
-  const AtlasResult r = atlas(m, o);
+  const AtlasResult r = atlas(m);
   expect_valid_atlas(m, r);
   EXPECT_EQ(r.cleaning.inconsistent_edges, 7);
   EXPECT_EQ(r.cleaning.reversed_faces, 4);
@@ -409,11 +411,13 @@ TEST(Atlas, ReorientWritesTheMinorityReversed) {
     if (f % 6 == 1) EXPECT_EQ(r.F.row(f), Eigen::RowVector3i(m.F(f, 0), m.F(f, 2), m.F(f, 1)));
     else EXPECT_EQ(r.F.row(f), m.F.row(f));
   }
-  EXPECT_EQ(atlas(m).F, m.F);  // without it the input's winding is kept
+  AtlasOptions keep;
+  keep.reorient = false;
+  EXPECT_EQ(atlas(m, keep).F, m.F);  // without it the input's winding is kept
 }
 
-// A closed surface with every third face listed backwards, through the CLI:
-// the written faces are the input's (winding kept), and `metrics`' own code
+// A closed surface with every third face listed backwards, through the CLI
+// with --keep-winding: the written faces are the input's (winding kept), and `metrics`' own code
 // finds no flipped triangle and no chart mirrored against that winding.
 TEST(AtlasCli, ReversedFacesKeepWindingNoneMirrored) {
   test::TempDir dir;
@@ -423,7 +427,7 @@ TEST(AtlasCli, ReversedFacesKeepWindingNoneMirrored) {
   for (int f = 0; f < m.F.rows(); f += 3) std::swap(m.F(f, 1), m.F(f, 2));
   const std::string in = dir / "in.obj", out = dir / "out.obj";
   write_mesh(in, m.V, m.F, MatrixX2d());
-  ASSERT_EQ(test::run_cli("atlas " + in + " -o " + out + " -q", dir).code, 0);
+  ASSERT_EQ(test::run_cli("atlas " + in + " -o " + out + " --keep-winding -q", dir).code, 0);
   const MeshData src = read_mesh(in), back = read_mesh(out);
   EXPECT_EQ(back.F, src.F);
   ASSERT_TRUE(back.has_uv());
@@ -439,10 +443,10 @@ TEST(AtlasCli, ReversedFacesKeepWindingNoneMirrored) {
     const Vec2 a = back.TC.row(back.FTC(f, 0)), b = back.TC.row(back.FTC(f, 1)), c = back.TC.row(back.FTC(f, 2));
     EXPECT_GT(twice_area(a, b, c), 0) << f;
   }
-  // --reorient writes the reversed third back: the generated surface's own
-  // faces, and as many charts as the atlas of that surface.
+  // By default the reversed third is written back: the generated surface's
+  // own faces, and as many charts as the atlas of that surface.
   const std::string fixed = dir / "fixed.obj", rep = dir / "r.json";
-  ASSERT_EQ(test::run_cli("atlas " + in + " -o " + fixed + " --reorient --report " + rep + " -q", dir).code, 0);
+  ASSERT_EQ(test::run_cli("atlas " + in + " -o " + fixed + " --report " + rep + " -q", dir).code, 0);
   const MeshData original = generate_surface("sphere", o), again = read_mesh(fixed);
   EXPECT_EQ(again.F, original.F);
   const nlohmann::json j = nlohmann::json::parse(test::slurp(rep));
@@ -499,15 +503,13 @@ TEST(Atlas, LargeAssets) {
     check_file(name);
 }
 
-// inverted-triangles.obj lists 42% of its faces against the rest: by
-// default each such edge is cut (thousands of charts); with reorient the
+// inverted-triangles.obj lists 42% of its faces against the rest: with
+// --keep-winding each such edge is cut (thousands of charts); with reorient the
 // reversed faces are the ones the shared meshes' README counts, and the faces
 // written are consistently oriented.
 TEST(Atlas, ReorientInvertedTriangles) {
   const MeshData m = read_mesh(test::shared_mesh("inverted-triangles.obj"));
-  AtlasOptions o;
-  o.reorient = true;
-  const AtlasResult r = atlas(m, o);
+  const AtlasResult r = atlas(m);
   expect_valid_atlas(m, r);
   EXPECT_EQ(r.cleaning.reversed_faces, 10408);  // README: "10,408 faces (42 %) must be flipped"
   EXPECT_EQ(r.cleaning.orientation_cuts, 0);

@@ -60,10 +60,12 @@ struct AtlasOptions {
   // coordinates. 0: no welding.
   double weld = 0;
   // Reverse the faces listed against their piece's majority orientation in
-  // the output (AtlasResult::F), so charts may span them. Off: the output
-  // keeps the input's winding and such edges are seams (a mesh with faces
-  // listed at random then falls into many charts).
-  bool reorient = false;
+  // the output (AtlasResult::F), so charts may span them, as `param`'s
+  // validation does (the "inconsistent orientation fixed"). Off
+  // (`--keep-winding`): the output keeps the input's winding and such edges
+  // are seams (a mesh with faces listed at random then falls into many
+  // charts). Either way no chart is mirrored against the faces written.
+  bool reorient = true;
   // The user's seams: every listed edge is cut (a chart boundary in the
   // output); charts are then the pieces between seams, split only where a
   // piece is not a disk or its map is invalid (no stretch or packing splits).
