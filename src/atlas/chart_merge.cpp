@@ -133,7 +133,7 @@ int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions
 void merge_within_atlas_stretch(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
                                 std::vector<FlatChart>& charts, std::vector<char>& gone, std::vector<int>& owner) {
   AtlasStretch atlas;
-  atlas.limit = options.max_stretch;
+  atlas.limit = options.max_stretch - 1e-6;  // a margin for rounding: the sums are updated merge by merge
   for (size_t c = 0; c < charts.size(); ++c)
     if (!gone[c]) {
       atlas.weighted += charts[c].summary.area_3d * charts[c].summary.stretch_l2_mean;
