@@ -155,18 +155,19 @@ void merge_within_atlas_stretch(const MeshData& input, const CleanMesh& clean, c
   // what this phase is for.
   atlas.max_union_area = 0.01 * atlas.area;
   std::map<std::pair<int, int>, bool> failed;
-  // Work budget: 60,000 faces of unions, plus 8 times the faces of the
+  // Work budget: 20,000 faces of unions, plus 8 times the faces of the
   // small parts (components under 5% of the faces) this phase is for, at
-  // most 1,000,000 in all. On ogre (124k faces, ~30 small parts of 500-3300
-  // faces) 60,000 alone left 438 charts (no area limit then); igea and the
-  // generated sphere (one component each) get 60,000.
+  // most 1,000,000 in all. igea and the generated sphere (one component
+  // each) get 20,000: with 60,000 igea went 211 -> 171 charts but took 12-18%
+  // longer (merge and packing), with 20,000 196 charts at about the same
+  // time. ogre (124k faces, ~30 small parts of 500-3300 faces): 326 charts.
   std::vector<long> part_faces(clean.components, 0);
   for (int f = 0; f < static_cast<int>(input.F.rows()); ++f)
     if (clean.good[f]) ++part_faces[clean.component[f]];
   long small_faces = 0;
   for (long n : part_faces)
     if (n * 20 < static_cast<long>(input.F.rows())) small_faces += n;
-  long budget = 60000 + std::min(8 * small_faces, 940000L);
+  long budget = 20000 + std::min(8 * small_faces, 980000L);
   while (merge_pass(input, clean, options, INFINITY, 0, budget, charts, gone, owner, failed, &atlas) > 0) {
   }
 }
