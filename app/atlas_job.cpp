@@ -92,6 +92,7 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
   j["resolution"] = o.resolution;
   j["padding"] = o.padding;
   j["max_stretch"] = o.max_stretch;
+  j["atlas_stretch_budget"] = o.atlas_stretch_budget;
   j["max_charts"] = o.max_charts;
   j["seam_edges"] = o.seams.size();
   j["cleaning"] = {{"degenerate_faces", r.cleaning.degenerate_faces},

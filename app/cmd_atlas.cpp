@@ -83,6 +83,10 @@ void register_atlas(CLI::App& app, Runner& run) {
                   "Merge neighbouring charts while the union's area-weighted L2 stretch (Sander) stays below this")
       ->check(CLI::Range(1.0, 100.0))
       ->capture_default_str();
+  cmd->add_flag_callback(
+      "--per-chart-stretch", [a] { a->options.atlas_stretch_budget = false; },
+      "Keep every merged chart within --max-stretch (default: only the whole atlas's mean, "
+      "small parts merging past it)");
   cmd->add_option("--max-charts", a->options.max_charts,
                   "Merge further (past --max-stretch, never past validity) down to this many charts (0: no limit)")
       ->check(CLI::NonNegativeNumber)

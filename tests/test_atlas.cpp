@@ -731,6 +731,38 @@ TEST(Atlas, MaxChartsMergesFurther) {
   EXPECT_LE(static_cast<int>(fewer.charts.size()), o.max_charts);
 }
 
+// The atlas-wide stretch budget: a small closed part next to a large one
+// merges past max_stretch into fewer charts, while the whole atlas's
+// area-weighted L2 stretch (recomputed here from the output UVs and the
+// input positions) stays within max_stretch.
+TEST(Atlas, AtlasStretchBudgetMergesSmallParts) {
+  GenerateOptions g;
+  g.rings = 24;
+  const MeshData torus = generate_torus(g);
+  g.rings = 10;
+  const MeshData sphere = generate_bumpy_sphere(g);
+  MeshData m;
+  m.V.resize(torus.V.rows() + sphere.V.rows(), 3);
+  m.V << torus.V, (0.1 * sphere.V).rowwise() + Eigen::RowVector3d(3, 0, 0);  // stretch is scale-free: only its weight shrinks
+  m.F.resize(torus.F.rows() + sphere.F.rows(), 3);
+  m.F << torus.F, sphere.F.array() + static_cast<int>(torus.V.rows());
+  auto small_part_charts = [&](const AtlasResult& r) {
+    std::set<int> charts;
+    for (int f = static_cast<int>(torus.F.rows()); f < m.F.rows(); ++f) charts.insert(r.face_chart[f]);
+    return charts.size();
+  };
+  AtlasOptions per_chart;
+  per_chart.atlas_stretch_budget = false;
+  const AtlasResult bounded = atlas(m, per_chart);
+  const AtlasResult budget = atlas(m);
+  expect_valid_atlas(m, budget);
+  std::printf("  small part: %zu charts per chart bound, %zu with the atlas budget; atlas stretch %.4f / %.4f\n",
+              small_part_charts(bounded), small_part_charts(budget), sander_l2(m, bounded), sander_l2(m, budget));
+  EXPECT_LT(small_part_charts(budget), small_part_charts(bounded));
+  EXPECT_LE(budget.charts.size(), bounded.charts.size());
+  EXPECT_LE(sander_l2(m, budget), AtlasOptions().max_stretch + 1e-9);
+}
+
 TEST(AtlasCli, KeepsVerticesWritesCornersDeterministic) {
   test::TempDir dir;
   const std::string in = test::shared_mesh("assets/teapot.obj");

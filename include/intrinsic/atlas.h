@@ -42,8 +42,14 @@ struct AtlasOptions {
   double sharp_angle_deg = 70;           // dihedral angle above which an edge is always a seam
   // The distortion bound: a chart whose area-weighted mean L2 stretch
   // (Sander) exceeds it is split, and neighbouring charts are merged while
-  // the union is valid and stays within it.
+  // the union is valid and stays within it. Then, with
+  // atlas_stretch_budget, valid unions under 1% of the surface are merged
+  // past it, smallest chart first, while the whole atlas's area-weighted
+  // mean L2 stretch stays within it (single charts may then exceed it; the
+  // atlas never does).
   double max_stretch = 1.05;
+  // See max_stretch; false: every merged chart stays within max_stretch.
+  bool atlas_stretch_budget = true;
   // Charts with fewer faces may be merged up to their neighbour's own
   // stretch when that is above max_stretch. 0: no merging at all (unless
   // max_charts asks for it).

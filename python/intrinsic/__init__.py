@@ -164,6 +164,7 @@ def atlas(
     max_charts: int = 0,
     weld: float = 0,
     reorient: bool = True,
+    atlas_stretch_budget: bool = True,
     seams: Any = None,
     max_vertices: int = 50_000_000,
 ) -> Atlas:
@@ -179,10 +180,12 @@ def atlas(
     neighbours merged below it; `max_charts` (0: no limit) merges further; `weld` merges vertices
     closer than that fraction of the bounding box diagonal for the computation only; `seams`, a
     seams file's path or k x 2 vertex indices, cuts exactly those edges; `reorient=False` keeps the
-    winding of faces listed against their piece (cut there) instead of writing them reversed.
+    winding of faces listed against their piece (cut there) instead of writing them reversed;
+    `atlas_stretch_budget=False` keeps every chart within `max_stretch` (`--per-chart-stretch`).
     Raises UsageError for bad options and InputError for unreadable or invalid input.
     """
     return _intrinsic.atlas(V, F, padding=padding, resolution=resolution,
                             max_normal_deviation=max_normal_deviation, min_chart_faces=min_chart_faces,
-                            max_stretch=max_stretch, max_charts=max_charts, weld=weld, reorient=reorient, seams=seams,
+                            max_stretch=max_stretch, max_charts=max_charts, weld=weld, reorient=reorient,
+                            atlas_stretch_budget=atlas_stretch_budget, seams=seams,
                             max_vertices=max_vertices)

@@ -211,11 +211,14 @@ def make_parser() -> argparse.ArgumentParser:
     t.add_argument("--max-stretch", type=float, default=S)
     t.add_argument("--max-charts", type=int, default=S)
     t.add_argument("--weld", type=float, default=S)
+    t.add_argument("--keep-winding", dest="reorient", action="store_false", default=S)
+    t.add_argument("--per-chart-stretch", dest="atlas_stretch_budget", action="store_false", default=S)
     return p
 
 
 BATCH_KEYS = {"input_dir", "output_dir", "command", "scheduler", "workers", "format", "force", "quiet", "binary"}
 ATLAS_KEYS = {"padding", "resolution", "max_normal_deviation", "min_chart_faces", "max_stretch", "max_charts", "weld",
+              "reorient", "atlas_stretch_budget",
               "max_vertices"}
 
 # A small disk (hexagon fan around one interior vertex): the options are tried on

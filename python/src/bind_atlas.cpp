@@ -42,6 +42,7 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices,
     else if (k == "max_charts") o.max_charts = value.cast<int>();
     else if (k == "weld") o.weld = value.cast<double>();
     else if (k == "reorient") o.reorient = value.cast<bool>();
+    else if (k == "atlas_stretch_budget") o.atlas_stretch_budget = value.cast<bool>();
     else if (k == "seams") seams.value = py::reinterpret_borrow<py::object>(value);
     else if (k == "max_vertices") max_vertices = value.cast<std::int64_t>();
     else throw_usage("unknown option '" + k + "'");
@@ -108,7 +109,7 @@ void register_atlas(py::module_& m) {
       });
   m.def("atlas", &run_atlas, py::arg("V"), py::arg("F") = py::none(),
         "atlas(V, F=None, *, padding=2, resolution=1024, max_normal_deviation=60, min_chart_faces=20,\n"
-        "      max_stretch=1.05, max_charts=0, weld=0, reorient=True, seams=None, max_vertices=50000000) -> Atlas\n\n"
+        "      max_stretch=1.05, max_charts=0, weld=0, reorient=True, atlas_stretch_budget=True, seams=None, max_vertices=50000000) -> Atlas\n\n"
         "`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or on a mesh file (atlas(path)):\n"
         "any triangle mesh (closed, higher genus, several components, non-manifold bits) cut into disk\n"
         "charts, each flattened by the natural conformal map, packed into [0,1]^2 without flips or\n"

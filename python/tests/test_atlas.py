@@ -83,6 +83,13 @@ def test_atlas_options_equal_cli(tmp_path):
         mine = str(tmp_path / "py.obj")
         intrinsic.write_atlas(mine, a)
         assert open(mine, "rb").read() == open(cli, "rb").read()
+    # The winding and stretch-budget switches, without seams.
+    r = run_cli("atlas", path, "-o", cli, "-q", "--keep-winding", "--per-chart-stretch")
+    assert r.returncode == 0, r.stderr
+    a = intrinsic.atlas(V, F, reorient=False, atlas_stretch_budget=False)
+    intrinsic.write_atlas(mine, a)
+    assert open(mine, "rb").read() == open(cli, "rb").read()
+    assert a.report["atlas_stretch_budget"] is False and a.report["reorient"] is False
     # How the seams are cut is checked against the seams file in tests/test_atlas.cpp.
 
 

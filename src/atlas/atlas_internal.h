@@ -94,7 +94,8 @@ struct FlatChart {
 ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio);
 
 // Merges neighbouring charts while the union flattens validly within
-// options.max_stretch (chart_merge.cpp), then past it down to
+// options.max_stretch (chart_merge.cpp), then (atlas_stretch_budget) past it
+// while the whole atlas's mean stays within it, then past it down to
 // options.max_charts when that is set.
 void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
                   std::vector<FlatChart>& charts);
