@@ -123,7 +123,7 @@ Body handle_solve(ServeState& s, const httplib::Request& req, httplib::Response&
     answer = session->state.solve(request);
   }
   if (!binary) return {solve_api_json(s.mesh, s.frames, answer)};
-  res.set_header("X-Answer", solve_api_header(s.mesh, s.frames, answer));
+  res.set_header("X-Answer", solve_api_header(s.mesh, s.frames, answer, float32));
   return {uv_binary(answer.uv, float32), "application/octet-stream"};
 }
 

@@ -80,6 +80,32 @@ TEST(Metrics, MirrorFlipsEveryTriangle) {
   EXPECT_GE(summarize_distortion(mesh.V, mesh.F, UV).flipped_triangles, 1);
 }
 
+// count_flipped (the editor's drag answers) counts what face_distortion
+// marks: every face of a mirror image, none of the identity, and on a map
+// with a few vertices moved across their neighbours the same faces, counted
+// here by hand from the signed UV areas.
+TEST(Metrics, CountFlippedEqualsFaceDistortion) {
+  const Mesh mesh = flat_mesh();
+  const FaceFrames frames = face_frames(mesh.V, mesh.F);
+  MatrixX2d UV = mesh.V.leftCols(2);
+  EXPECT_EQ(count_flipped(frames, mesh.F, UV), 0);
+  UV.col(1) *= -1;
+  EXPECT_EQ(count_flipped(frames, mesh.F, UV), mesh.F.rows());
+  UV = mesh.V.leftCols(2);
+  for (int v = 0; v < UV.rows(); v += 7) UV.row(v) = UV.row((v + 3) % UV.rows());
+  int by_hand = 0;
+  for (int f = 0; f < mesh.F.rows(); ++f) {
+    const Eigen::Vector2d a = UV.row(mesh.F(f, 0)), b = UV.row(mesh.F(f, 1)), c = UV.row(mesh.F(f, 2));
+    by_hand += (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x() > 0 ? 0 : 1;
+  }
+  const FaceDistortion d = face_distortion(frames, mesh.F, UV);
+  int marked = 0;
+  for (const bool x : d.flipped) marked += x ? 1 : 0;
+  EXPECT_GT(by_hand, 0);
+  EXPECT_EQ(marked, by_hand);
+  EXPECT_EQ(count_flipped(frames, mesh.F, UV), by_hand);
+}
+
 TEST(Metrics, EnergiesMatchDefinitionsByHand) {
   MatrixX3d V(3, 3);
   V << 0, 0, 0, 1, 0, 0, 0, 1, 0;

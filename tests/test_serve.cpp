@@ -513,7 +513,12 @@ TEST_F(ServeTest, BinaryAnswerEqualsTheJsonAnswer) {
       std::memcpy(&x, &bits, 4);
       ASSERT_EQ(x, static_cast<float>(uv(i, k))) << i;
     }
-  EXPECT_EQ(json::parse(small->get_header_value("X-Answer"))["path"], "responses");
+  const json drag = json::parse(small->get_header_value("X-Answer"));
+  EXPECT_EQ(drag["path"], "responses");
+  // While dragging only the flips are counted (the same count); the means come with the exact answer.
+  EXPECT_EQ(drag["flipped_triangles"], text.body["flipped_triangles"]);
+  EXPECT_FALSE(drag.contains("angle_distortion_mean"));
+  EXPECT_TRUE(header.contains("angle_distortion_mean"));
 }
 
 TEST_F(ServeTest, TwoSessionsAreIndependent) {

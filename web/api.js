@@ -101,8 +101,12 @@ export function show(answer, roundTrip, stamp = null) {
   }
   if (answer.pins && !state.dragging) state.pins = answer.pins.map((p) => p.slice());
   $('flips').textContent = answer.flipped_triangles;
-  $('angle').textContent = answer.angle_distortion_mean.toFixed(4);
-  $('area').textContent = answer.area_distortion_mean.toFixed(4);
+  // Answers while dragging (float32) carry the flips only; the exact answer
+  // on release brings the means.
+  if (answer.angle_distortion_mean !== undefined) {
+    $('angle').textContent = answer.angle_distortion_mean.toFixed(4);
+    $('area').textContent = answer.area_distortion_mean.toFixed(4);
+  }
   $('updateMs').textContent = answer.update_ms.toFixed(3);
   $('roundTrip').textContent = roundTrip === null ? '-' : roundTrip.toFixed(1);
   $('path').textContent = answer.path;

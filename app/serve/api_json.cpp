@@ -78,15 +78,8 @@ Figures figures(const Mesh& mesh, const FaceFrames& frames, const MatrixX2d& uv)
   return f;
 }
 
-nlohmann::json answer_json(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& a) {
-  const Figures d = figures(mesh, frames, a.uv);
-  nlohmann::json out{{"uv", nullptr},
-                     {"flipped_triangles", d.flipped},
-                     {"angle_distortion_mean", d.angle_mean},
-                     {"area_distortion_mean", d.area_mean},
-                     {"update_ms", a.update_ms},
-                     {"path", a.path},
-                     {"factorizations", a.factorizations}};
+nlohmann::json answer_json_without_figures(const SolveAnswer& a) {
+  nlohmann::json out{{"uv", nullptr}, {"update_ms", a.update_ms}, {"path", a.path}, {"factorizations", a.factorizations}};
   if (!a.pins.empty()) {
     nlohmann::json pins = nlohmann::json::array();
     for (const FixedVertex& p : a.pins) pins.push_back({p.vertex, p.uv.x(), p.uv.y()});
@@ -95,10 +88,25 @@ nlohmann::json answer_json(const Mesh& mesh, const FaceFrames& frames, const Sol
   return out;
 }
 
+nlohmann::json answer_json(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& a) {
+  const Figures d = figures(mesh, frames, a.uv);
+  nlohmann::json out = answer_json_without_figures(a);
+  out["flipped_triangles"] = d.flipped;
+  out["angle_distortion_mean"] = d.angle_mean;
+  out["area_distortion_mean"] = d.area_mean;
+  return out;
+}
+
 }  // namespace
 
-std::string solve_api_header(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& a) {
-  nlohmann::json out = answer_json(mesh, frames, a);
+std::string solve_api_header(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& a, bool flips_only) {
+  nlohmann::json out;
+  if (flips_only) {
+    out = answer_json_without_figures(a);
+    out["flipped_triangles"] = count_flipped(frames, mesh.F, a.uv);
+  } else {
+    out = answer_json(mesh, frames, a);
+  }
   out.erase("uv");
   return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }

@@ -25,7 +25,11 @@ std::string solve_api_json(const Mesh& mesh, const FaceFrames& frames, const Sol
 // The same answer split for `POST /api/solve?uv=binary`: the JSON without
 // "uv" (sent in the X-Answer header) and the UVs as little-endian float64
 // u0 v0 u1 v1 ... (the body): no number printing or parsing on either side.
-std::string solve_api_header(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& answer);
+// `flips_only` (the float32 answers while dragging): "flipped_triangles"
+// without the distortion means, whose singular values cost ten times the
+// update at 100k vertices; the exact answer on release carries them.
+std::string solve_api_header(const Mesh& mesh, const FaceFrames& frames, const SolveAnswer& answer,
+                             bool flips_only = false);
 // `float32`: the same values rounded to little-endian float32, half the bytes
 // (`?uv=float32`, what the page asks for while a drag is under way).
 std::string uv_binary(const MatrixX2d& uv, bool float32 = false);

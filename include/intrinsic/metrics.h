@@ -67,6 +67,9 @@ struct FaceFrames {
 };
 FaceFrames face_frames(const MatrixX3d& V, const MatrixX3i& F);
 FaceDistortion face_distortion(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV);
+// The number of faces face_distortion marks flipped, without the singular
+// values (about a quarter of its cost: the editor's answers while dragging).
+int count_flipped(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV);
 DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV);
 
 // ---- Atlases and other tools' outputs (issue 13 item 7) -------------------

@@ -67,6 +67,9 @@ Stat weighted_stat(const Eigen::VectorXd& x, const Eigen::VectorXd& w) {
   return s;
 }
 
+// Flipped or collapsed: the one definition face_distortion and count_flipped share.
+bool is_flipped(const Eigen::Matrix2d& J) { return !(J.determinant() > 0); }
+
 }  // namespace
 
 FaceFrames face_frames(const MatrixX3d& V, const MatrixX3i& F) {
@@ -104,7 +107,7 @@ FaceDistortion face_distortion(const FaceFrames& frames, const MatrixX3i& F, con
       d.area_3d[f] = frames.area_3d[f];
       double s1 = 0, s2 = 0;
       singular_values(J, s1, s2);
-      flipped[f] = !(J.determinant() > 0);
+      flipped[f] = is_flipped(J);
       // Symmetric in growth and shrinkage: the area-weighted mean of s1*s2
       // itself is 1 by construction once total areas are normalised.
       const double ratio = s1 * s2;
@@ -116,6 +119,13 @@ FaceDistortion face_distortion(const FaceFrames& frames, const MatrixX3i& F, con
   });
   d.flipped.assign(flipped.begin(), flipped.end());
   return d;
+}
+
+int count_flipped(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV) {
+  const double k = normalisation(frames, F, UV);
+  int n = 0;
+  for (int f = 0; f < static_cast<int>(F.rows()); ++f) n += is_flipped(k * jacobian(frames, F, UV, f)) ? 1 : 0;
+  return n;
 }
 
 // Sorted by (smaller, larger) vertex: a counting sort on the smaller vertex,
