@@ -349,11 +349,9 @@ TEST(Atlas, MessyHandMadeMeshes) {
   expect_valid_atlas(s, atlas(s));
 }
 
-// A strip of quads whose second triangle is listed backwards in every third
-// quad, with reorient off: the output keeps that winding, so each such face shares no edge with
-// its neighbours in UV (a chart of its own, laid out counter-clockwise in its
-// own listing) rather than being reoriented (which would mirror it).
-TEST(Atlas, InconsistentOrientationIsCutNotMirrored) {
+// A curved strip of 12 quads; the second triangle of every third quad
+// (faces 1, 7, 13, 19) is listed backwards.
+MeshData strip_with_backwards_faces() {
   MeshData m;
   const int n = 12;
   m.V.resize(2 * (n + 1), 3);
@@ -368,6 +366,15 @@ TEST(Atlas, InconsistentOrientationIsCutNotMirrored) {
     if (i % 3 == 0) m.F.row(2 * i + 1) << a, c, d;  // backwards
     else m.F.row(2 * i + 1) << a, d, c;
   }
+  return m;
+}
+
+// A strip of quads whose second triangle is listed backwards in every third
+// quad, with reorient off: the output keeps that winding, so each such face shares no edge with
+// its neighbours in UV (a chart of its own, laid out counter-clockwise in its
+// own listing) rather than being reoriented (which would mirror it).
+TEST(Atlas, InconsistentOrientationIsCutNotMirrored) {
+  const MeshData m = strip_with_backwards_faces();
   AtlasOptions keep;
   keep.reorient = false;
   const AtlasResult r = atlas(m, keep);
@@ -386,20 +393,7 @@ TEST(Atlas, InconsistentOrientationIsCutNotMirrored) {
 // The same strip with reorient (the default): the backwards faces are written reversed
 // (the minority of the piece), so nothing is cut and one chart remains.
 TEST(Atlas, ReorientWritesTheMinorityReversed) {
-  MeshData m;
-  const int n = 12;
-  m.V.resize(2 * (n + 1), 3);
-  for (int i = 0; i <= n; ++i) {
-    m.V.row(2 * i) << i, 0, 0.1 * i * i;
-    m.V.row(2 * i + 1) << i, 1, 0.1 * i * i;
-  }
-  m.F.resize(2 * n, 3);
-  for (int i = 0; i < n; ++i) {
-    const int a = 2 * i, b = 2 * i + 2, c = 2 * i + 1, d = 2 * i + 3;
-    m.F.row(2 * i) << a, b, d;
-    if (i % 3 == 0) m.F.row(2 * i + 1) << a, c, d;  // backwards
-    else m.F.row(2 * i + 1) << a, d, c;
-  }
+  const MeshData m = strip_with_backwards_faces();
   const AtlasResult r = atlas(m);
   expect_valid_atlas(m, r);
   EXPECT_EQ(r.cleaning.inconsistent_edges, 7);
