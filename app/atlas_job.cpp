@@ -7,6 +7,7 @@
 
 #include "mesh_paths.h"
 #include "intrinsic/error.h"
+#include "intrinsic/boundary.h"
 #include "intrinsic/io.h"
 
 namespace intrinsic::app {
@@ -36,6 +37,29 @@ void write_atlas_file(const std::string& path, const MeshData& m, const AtlasRes
   check_atlas_output(path);
   if (mesh_extension(path) == ".glb") write_glb(path, m.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
   else write_atlas_obj(path, m, r);
+}
+
+ChartMapOptions chart_map_options(const ChartMapArgs& a) {
+  ChartMapOptions m;
+  if (a.boundary != "natural" && a.boundary != "circle" && a.boundary != "square")
+    throw_usage("--boundary: a chart's boundary is natural, circle or square");
+  m.boundary = a.boundary == "circle" ? BoundaryShape::Circle
+               : a.boundary == "square" ? BoundaryShape::Square
+                                        : BoundaryShape::Natural;
+  if (m.boundary == BoundaryShape::Natural &&
+      (a.weights->method != "conformal" || a.weights->lambda_set || a.weights->mu_set))
+    throw_usage("--method applies to fixed chart boundaries: add --boundary circle or square");
+  m.weights = a.weights->options();
+  if (!a.optimize_lambda.empty() && !a.optimize_boundary.empty())
+    throw_usage("--optimize-lambda and --optimize-boundary: choose one");
+  if (!a.optimize_lambda.empty()) {
+    m.optimizer = ChartOptimizer::OptimalLambda;
+    m.lambda_energy = parse_lambda_energy(a.optimize_lambda);
+  } else if (!a.optimize_boundary.empty()) {
+    m.optimizer = ChartOptimizer::OptimizeBoundary;
+    m.boundary_energy = parse_boundary_energy(a.optimize_boundary);
+  }
+  return m;
 }
 
 // The OBJ, streamed in blocks of lines.
@@ -105,6 +129,16 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
                    {"welded_vertices", r.cleaning.welded_vertices}};
   j["weld"] = o.weld;
   j["reorient"] = o.reorient;
+  const ChartMapOptions& cm = o.chart_map;
+  nlohmann::json map{{"boundary", boundary_shape_name(cm.boundary)}};
+  if (cm.boundary != BoundaryShape::Natural) {
+    map["method"] = method_name(cm.weights.method);
+    if (cm.weights.method == Method::Mixed) map["lambda"] = cm.weights.lambda, map["mu"] = cm.weights.mu;
+  }
+  if (cm.optimizer == ChartOptimizer::OptimalLambda) map["optimize_lambda"] = lambda_energy_name(cm.lambda_energy);
+  if (cm.optimizer == ChartOptimizer::OptimizeBoundary)
+    map["optimize_boundary"] = boundary_energy_name(cm.boundary_energy);
+  j["chart_map"] = map;
   nlohmann::json charts = nlohmann::json::array();
   for (const AtlasChart& c : r.charts)
     charts.push_back({{"component", c.component}, {"faces", c.faces}, {"vertices", c.vertices},

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "intrinsic/atlas.h"
+#include "weight_args.h"
 
 namespace intrinsic::app {
 
@@ -19,6 +20,16 @@ void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResu
 // extension, before anything is written.
 void check_atlas_output(const std::string& path);
 void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r);
+
+// The chart map as `param` spells it: --boundary natural|circle|square,
+// --method/--lambda/--mu (fixed boundaries only), --optimize-lambda
+// edge|area or --optimize-boundary edge|area|dirichlet.
+struct ChartMapArgs {
+  std::string boundary = "natural", optimize_lambda, optimize_boundary;
+  std::shared_ptr<WeightArgs> weights = std::make_shared<WeightArgs>();
+};
+// Throws Error(Usage) for inconsistent or unknown values.
+ChartMapOptions chart_map_options(const ChartMapArgs& a);
 
 // vertices, faces, components, charts, splits, split_reasons, utilization,
 // flipped, overlapping, resolution, padding, cleaning, chart_list (README

@@ -17,13 +17,15 @@ namespace {
 
 struct AtlasArgs {
   std::string input, output, report, seams;
+  ChartMapArgs chart_map;
   AtlasOptions options;
   bool quiet = false;
   std::int64_t max_vertices = ReadOptions().max_vertices;
 };
 
-int run_atlas(const AtlasArgs& a) {
+int run_atlas(AtlasArgs a) {
   const auto t0 = std::chrono::steady_clock::now();
+  a.options.chart_map = chart_map_options(a.chart_map);
   check_atlas_output(a.output);
   ReadOptions ro;
   ro.max_vertices = a.max_vertices;
@@ -64,6 +66,16 @@ void register_atlas(CLI::App& app, Runner& run) {
                   ".glb: glTF 2.0 binary, vertices split at seams)")
       ->required();
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
+  cmd->add_option("--boundary", a->chart_map.boundary,
+                  "Each chart's map: natural (the natural conformal map, default) or a fixed circle or square "
+                  "boundary with --method's weights")
+      ->check(CLI::IsMember({"natural", "circle", "square"}))
+      ->capture_default_str();
+  add_weight_options(*cmd, a->chart_map.weights);
+  cmd->add_option("--optimize-lambda", a->chart_map.optimize_lambda,
+                  "Per chart, the mixed map at the optimal lambda for this energy (edge | area); fixed boundaries");
+  cmd->add_option("--optimize-boundary", a->chart_map.optimize_boundary,
+                  "Per chart, optimize the fixed boundary for this energy (edge | area | dirichlet)");
   cmd->add_option("--padding", a->options.padding, "Texels between charts")->capture_default_str();
   cmd->add_option("--resolution", a->options.resolution, "Texture width the padding is measured in")
       ->check(CLI::Range(1, 1 << 20))

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -19,6 +20,7 @@
 #include "intrinsic/atlas.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/io.h"
+#include "intrinsic/mesh.h"
 #include "intrinsic/metrics.h"
 #include "test_support.h"
 
@@ -797,6 +799,119 @@ TEST(AtlasCli, ClosedSurfaceFromGenerateAndErrors) {
   EXPECT_NE(ply.err.find(".obj"), std::string::npos);
   EXPECT_FALSE(std::ifstream(dir / "x.obj").good());
   EXPECT_FALSE(std::ifstream(dir / "x.ply").good());
+}
+
+}  // namespace
+}  // namespace intrinsic
+
+namespace intrinsic {
+namespace {
+
+// The atlas's UVs of `m` equal `expected` (per input vertex) up to a
+// similarity without reflection: distances from two far-apart vertices scale
+// by one factor (which fixes every point up to a reflection) and no face of
+// the atlas is flipped (expect_valid_atlas), so the reflection is excluded.
+void expect_similar(const MeshData& m, const AtlasResult& r, const MatrixX2d& expected) {
+  MatrixX2d uv(m.V.rows(), 2);
+  for (int f = 0; f < m.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) uv.row(r.F(f, c)) = r.UV.row(r.FUV(f, c));
+  int far = 1;
+  for (int v = 1; v < m.V.rows(); ++v)
+    if ((expected.row(v) - expected.row(0)).norm() > (expected.row(far) - expected.row(0)).norm()) far = v;
+  const double s = (uv.row(far) - uv.row(0)).norm() / (expected.row(far) - expected.row(0)).norm();
+  for (int v = 0; v < m.V.rows(); ++v)
+    for (const int ref : {0, far}) {
+      SCOPED_TRACE(v);
+      EXPECT_NEAR((uv.row(v) - uv.row(ref)).norm(), s * (expected.row(v) - expected.row(ref)).norm(), 1e-9);
+    }
+}
+
+// Issue 13 item 3: every `param` map per chart. One chart per piece
+// (Components segmentation, a loose stretch bound), a spherical cap: the
+// chart's map equals `param`'s map of the cap with the same options, up to
+// the packing's similarity, for a fixed circle, a fixed square with authalic
+// weights, optimal lambda and boundary optimization.
+TEST(Atlas, EveryParamMapPerChart) {
+  GenerateOptions g;
+  g.rings = 8;
+  const MeshData m = generate_sphere_cap(g);
+  const Mesh mesh = make_mesh(m);
+  AtlasOptions o;
+  o.segmentation = Segmentation::Components;
+  o.max_stretch = 100;
+  o.padding = 0;
+  struct Case {
+    ChartMapOptions map;
+    ChartMethod method;
+  };
+  std::vector<Case> cases(4);
+  cases[0].map.boundary = BoundaryShape::Circle;
+  cases[0].method = ChartMethod::FixedBoundary;
+  cases[1].map.boundary = BoundaryShape::Square;
+  cases[1].map.weights.method = Method::Authalic;
+  cases[1].method = ChartMethod::FixedBoundary;
+  cases[2].map.boundary = BoundaryShape::Circle;
+  cases[2].map.optimizer = ChartOptimizer::OptimalLambda;
+  cases[2].method = ChartMethod::OptimalLambda;
+  cases[3].map.boundary = BoundaryShape::Circle;
+  cases[3].map.optimizer = ChartOptimizer::OptimizeBoundary;
+  cases[3].map.boundary_energy = BoundaryEnergy::Area;
+  cases[3].method = ChartMethod::OptimizedBoundary;
+  for (size_t k = 0; k < cases.size(); ++k) {
+    SCOPED_TRACE(k);
+    o.chart_map = cases[k].map;
+    const AtlasResult r = atlas(m, o);
+    expect_valid_atlas(m, r);
+    ASSERT_EQ(r.charts.size(), 1u);
+    EXPECT_EQ(r.charts[0].method, cases[k].method);
+    ParamOptions p;
+    p.boundary = cases[k].map.boundary;
+    p.weights = cases[k].map.weights;
+    MatrixX2d expected;
+    if (k == 2) {
+      OptimalLambdaOptions l;
+      l.base = p;
+      expected = optimal_lambda(mesh, l).map.UV;
+    } else if (k == 3) {
+      BoundaryOptimizationOptions b;
+      b.base = p;
+      b.energy = BoundaryEnergy::Area;
+      expected = optimize_boundary(mesh, b).map.UV;
+    } else {
+      expected = parameterize(mesh, p).UV;
+    }
+    expect_similar(m, r, expected);
+  }
+  // A chart map that cannot be is refused before any work.
+  o.chart_map = ChartMapOptions();
+  o.chart_map.optimizer = ChartOptimizer::OptimalLambda;
+  test::expect_error([&] { atlas(m, o); }, ErrorKind::Usage, "fixed chart boundary");
+}
+
+// The command line spells the chart map as `param` does; --method without a
+// fixed boundary is refused, with no output.
+TEST(AtlasCli, ChartMapOptions) {
+  test::TempDir dir;
+  GenerateOptions g;
+  g.rings = 10;
+  const std::string in = dir / "t.obj", out = dir / "o.obj", rep = dir / "r.json";
+  const MeshData m = generate_torus(g);
+  write_mesh(in, m.V, m.F, MatrixX2d());
+  const auto ok = test::run_cli("atlas " + in + " -o " + out + " --report " + rep +
+                                    " --boundary square --method mixed --lambda 0.5 --max-stretch 3 -q",
+                                dir);
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  const nlohmann::json j = nlohmann::json::parse(test::slurp(rep));
+  EXPECT_EQ(j.at("chart_map").at("boundary"), "square");
+  EXPECT_EQ(j.at("chart_map").at("method"), "mixed");
+  EXPECT_EQ(j.at("flipped"), 0);
+  EXPECT_EQ(j.at("overlapping"), 0);
+  for (const auto& c : j.at("chart_list"))
+    EXPECT_TRUE(c.at("method") == "fixed-boundary" || c.at("method") == "triangle") << c.at("method");
+  const std::string bad = dir / "bad.obj";
+  EXPECT_NE(test::run_cli("atlas " + in + " -o " + bad + " --method authalic -q", dir).code, 0);
+  EXPECT_NE(test::run_cli("atlas " + in + " -o " + bad + " --optimize-lambda edge -q", dir).code, 0);
+  EXPECT_FALSE(std::filesystem::exists(bad));
 }
 
 }  // namespace

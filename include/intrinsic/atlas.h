@@ -14,7 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "intrinsic/boundary_optimization.h"
 #include "intrinsic/mesh_data.h"
+#include "intrinsic/optimal_lambda.h"
+#include "intrinsic/parameterize.h"
 
 namespace intrinsic {
 
@@ -26,10 +29,30 @@ enum class Segmentation {
 
 // How a chart was flattened.
 enum class ChartMethod {
-  Natural,   // the natural conformal map (Parameterizer, BoundaryShape::Natural)
-  Triangle,  // a single triangle laid flat in its own plane (its natural map, up to a similarity)
+  Natural,            // the natural conformal map (Parameterizer, BoundaryShape::Natural)
+  Triangle,           // a single triangle laid flat in its own plane (its natural map, up to a similarity)
+  FixedBoundary,      // ChartMapOptions' weights with its circle or square boundary
+  OptimalLambda,      // the mixed map at the chart's optimal lambda (paper section 5.1)
+  OptimizedBoundary,  // the fixed-boundary map after boundary optimization (paper section 5.2)
 };
-const char* chart_method_name(ChartMethod m);  // "natural", "triangle"
+// "natural", "triangle", "fixed-boundary", "optimal-lambda", "optimized-boundary"
+const char* chart_method_name(ChartMethod m);
+
+// The map of every chart (issue 13 item 3): any map of `intrinsic param`.
+// The default is the natural conformal map. With a circle or square
+// boundary the chart's boundary is fixed (arc-length spacing) and `weights`
+// chooses the interior map; `optimizer` then optionally picks lambda or
+// moves the boundary per chart. Either way the chart is then checked and
+// split as for the natural map, so a method with more distortion or folds
+// gives more charts, never an invalid one.
+enum class ChartOptimizer { None, OptimalLambda, OptimizeBoundary };
+struct ChartMapOptions {
+  WeightOptions weights;                         // fixed boundaries only
+  BoundaryShape boundary = BoundaryShape::Natural;  // Natural, Circle or Square
+  ChartOptimizer optimizer = ChartOptimizer::None;  // needs Circle or Square
+  LambdaEnergy lambda_energy = LambdaEnergy::EdgeLength;        // OptimalLambda
+  BoundaryEnergy boundary_energy = BoundaryEnergy::EdgeLength;  // OptimizeBoundary
+};
 
 // An edge the user wants cut (`--seams FILE`): two vertex indices of the input.
 struct SeamEdge {
@@ -37,6 +60,7 @@ struct SeamEdge {
 };
 
 struct AtlasOptions {
+  ChartMapOptions chart_map;  // how each chart is flattened (default: the natural conformal map)
   Segmentation segmentation = Segmentation::NormalCones;
   double max_normal_deviation_deg = 60;  // NormalCones: face normal vs the chart's mean normal
   double sharp_angle_deg = 70;           // dihedral angle above which an edge is always a seam

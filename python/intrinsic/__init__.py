@@ -166,6 +166,12 @@ def atlas(
     reorient: bool = True,
     atlas_stretch_budget: bool = True,
     seams: Any = None,
+    boundary: str = "natural",
+    method: str = "conformal",
+    lambda_: Optional[float] = None,
+    mu: Optional[float] = None,
+    optimize_lambda: Optional[str] = None,
+    optimize_boundary: Optional[str] = None,
     max_vertices: int = 50_000_000,
 ) -> Atlas:
     """`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or a mesh file (atlas(path)).
@@ -182,10 +188,15 @@ def atlas(
     seams file's path or k x 2 vertex indices, cuts exactly those edges; `reorient=False` keeps the
     winding of faces listed against their piece (cut there) instead of writing them reversed;
     `atlas_stretch_budget=False` keeps every chart within `max_stretch` (`--per-chart-stretch`).
+    Each chart's map: the natural conformal map by default; `boundary="circle"` or `"square"` fixes
+    the chart's boundary, with `method`/`lambda_`/`mu` weights and optionally `optimize_lambda`
+    ("edge" | "area") or `optimize_boundary` ("edge" | "area" | "dirichlet"), as `parameterize`.
     Raises UsageError for bad options and InputError for unreadable or invalid input.
     """
     return _intrinsic.atlas(V, F, padding=padding, resolution=resolution,
                             max_normal_deviation=max_normal_deviation, min_chart_faces=min_chart_faces,
                             max_stretch=max_stretch, max_charts=max_charts, weld=weld, reorient=reorient,
-                            atlas_stretch_budget=atlas_stretch_budget, seams=seams,
+                            atlas_stretch_budget=atlas_stretch_budget, seams=seams, boundary=boundary,
+                            method=method, optimize_lambda=optimize_lambda, optimize_boundary=optimize_boundary,
+                            **({} if lambda_ is None else {"lambda": lambda_}), **({} if mu is None else {"mu": mu}),
                             max_vertices=max_vertices)

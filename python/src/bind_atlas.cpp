@@ -32,7 +32,20 @@ std::vector<SeamEdge> to_seams(const py::handle& obj) {
 // Range checks are atlas()'s own (Error(Usage)), as for the command line.
 AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices, SeamsArg& seams) {
   AtlasOptions o;
-  for (const auto& [key, value] : kwargs) {
+  // The chart map first, spelled as parameterize()'s options.
+  py::dict rest(kwargs);
+  app::ChartMapArgs map;
+  set_weights(*map.weights, rest);
+  for (const char* key : {"boundary", "optimize_lambda", "optimize_boundary"}) {
+    const py::object v = rest.attr("pop")(key, py::none());
+    if (v.is_none()) continue;
+    std::string& field = std::string(key) == "boundary"          ? map.boundary
+                         : std::string(key) == "optimize_lambda" ? map.optimize_lambda
+                                                                 : map.optimize_boundary;
+    field = py::str(v).cast<std::string>();
+  }
+  o.chart_map = app::chart_map_options(map);
+  for (const auto& [key, value] : rest) {
     const std::string k = py::str(key);
     if (k == "padding") o.padding = value.cast<double>();
     else if (k == "resolution") o.resolution = value.cast<int>();
@@ -109,7 +122,9 @@ void register_atlas(py::module_& m) {
       });
   m.def("atlas", &run_atlas, py::arg("V"), py::arg("F") = py::none(),
         "atlas(V, F=None, *, padding=2, resolution=1024, max_normal_deviation=60, min_chart_faces=20,\n"
-        "      max_stretch=1.05, max_charts=0, weld=0, reorient=True, atlas_stretch_budget=True, seams=None, max_vertices=50000000) -> Atlas\n\n"
+        "      max_stretch=1.05, max_charts=0, weld=0, reorient=True, atlas_stretch_budget=True, seams=None,\n"
+        "      boundary='natural', method='conformal', lambda_=None, mu=None, optimize_lambda=None,\n"
+        "      optimize_boundary=None, max_vertices=50000000) -> Atlas\n\n"
         "`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or on a mesh file (atlas(path)):\n"
         "any triangle mesh (closed, higher genus, several components, non-manifold bits) cut into disk\n"
         "charts, each flattened by the natural conformal map, packed into [0,1]^2 without flips or\n"

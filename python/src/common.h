@@ -48,6 +48,8 @@ py::object to_python(const nlohmann::json& j);
 // underscores) -> ParamArgs; Error(Usage) with the CLI's messages for unknown
 // values. `optimizers` false refuses the optimize_* options (Parameterizer).
 app::ParamArgs to_args(const py::dict& options, bool optimizers);
+// Pops method, lambda (lambda_, lam) and mu from `options` into `w`.
+void set_weights(app::WeightArgs& w, py::dict& options);
 
 void register_errors(py::module_& m);
 void register_io(py::module_& m);

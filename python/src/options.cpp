@@ -40,23 +40,27 @@ void set_constraints(app::ParamArgs& a, const py::handle& c) {
   }
 }
 
-void set_weights(app::ParamArgs& a, py::dict& o) {
-  if (o.contains("method")) a.weights->method = py::str(o.attr("pop")("method")).cast<std::string>();
-  check_member("method", a.weights->method, {"conformal", "authalic", "mixed", "tutte", "floater"});
+}  // namespace
+
+void set_weights(app::WeightArgs& w, py::dict& o) {
+  if (o.contains("method")) w.method = py::str(o.attr("pop")("method")).cast<std::string>();
+  check_member("method", w.method, {"conformal", "authalic", "mixed", "tutte", "floater"});
   int lambdas = 0;
   for (const char* key : {"lambda", "lambda_", "lam"}) {
     const py::object v = o.attr("pop")(key, py::none());
     if (v.is_none()) continue;
     if (++lambdas > 1) throw_usage("give lambda once (lam, lambda_ or 'lambda')");
-    a.weights->lambda = v.cast<double>();
-    a.weights->lambda_set = true;
+    w.lambda = v.cast<double>();
+    w.lambda_set = true;
   }
   const py::object mu = o.attr("pop")("mu", py::none());
   if (!mu.is_none()) {
-    a.weights->mu = mu.cast<double>();
-    a.weights->mu_set = true;
+    w.mu = mu.cast<double>();
+    w.mu_set = true;
   }
 }
+
+namespace {
 
 std::string pop_str(py::dict& o, const char* key, const std::string& fallback) {
   const py::object v = o.attr("pop")(key, py::none());
@@ -87,7 +91,7 @@ app::ParamArgs to_args(const py::dict& options, bool optimizers) {
   py::dict o = options.attr("copy")();
   app::ParamArgs a;
   a.quiet = true;  // the library never prints; boundary optimization's progress lines are the CLI's
-  set_weights(a, o);
+  set_weights(*a.weights, o);
   const py::object boundary = o.attr("pop")("boundary", py::none());
   if (!boundary.is_none()) a.boundary = to_path(boundary);
   a.spacing = pop_str(o, "spacing", a.spacing);

@@ -90,6 +90,16 @@ def test_atlas_options_equal_cli(tmp_path):
     intrinsic.write_atlas(mine, a)
     assert open(mine, "rb").read() == open(cli, "rb").read()
     assert a.report["atlas_stretch_budget"] is False and a.report["reorient"] is False
+    # Every param map per chart, spelled as parameterize() spells it.
+    r = run_cli("atlas", path, "-o", cli, "-q", "--boundary", "square", "--method", "mixed", "--lambda", "0.5",
+                "--max-stretch", "3")
+    assert r.returncode == 0, r.stderr
+    a = intrinsic.atlas(V, F, boundary="square", method="mixed", lambda_=0.5, max_stretch=3)
+    intrinsic.write_atlas(mine, a)
+    assert open(mine, "rb").read() == open(cli, "rb").read()
+    assert a.report["chart_map"] == {"boundary": "square", "method": "mixed", "lambda": 0.5, "mu": 0.0}
+    with pytest.raises(intrinsic.UsageError, match="fixed chart boundaries"):
+        intrinsic.atlas(V, F, method="authalic")
     # How the seams are cut is checked against the seams file in tests/test_atlas.cpp.
 
 

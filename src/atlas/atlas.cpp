@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <deque>
 
 #include "atlas/atlas_internal.h"
@@ -14,7 +15,16 @@
 
 namespace intrinsic {
 
-const char* chart_method_name(ChartMethod m) { return m == ChartMethod::Natural ? "natural" : "triangle"; }
+const char* chart_method_name(ChartMethod m) {
+  switch (m) {
+    case ChartMethod::Natural: return "natural";
+    case ChartMethod::Triangle: return "triangle";
+    case ChartMethod::FixedBoundary: return "fixed-boundary";
+    case ChartMethod::OptimalLambda: return "optimal-lambda";
+    case ChartMethod::OptimizedBoundary: return "optimized-boundary";
+  }
+  return "natural";
+}
 
 namespace {
 
@@ -35,6 +45,17 @@ void check_options(const AtlasOptions& o) {
   if (!(o.degenerate_ratio >= 0 && o.degenerate_ratio < 1)) throw_usage("the degenerate ratio must be in [0, 1)");
   if (!(o.weld >= 0 && o.weld < 1))
     throw_usage("the weld distance must be in [0, 1) (a fraction of the bounding box diagonal)");
+  const ChartMapOptions& m = o.chart_map;
+  if (m.boundary != BoundaryShape::Natural && m.boundary != BoundaryShape::Circle &&
+      m.boundary != BoundaryShape::Square)
+    throw_usage("a chart's boundary is natural, circle or square");
+  if (m.optimizer != ChartOptimizer::None && m.boundary == BoundaryShape::Natural)
+    throw_usage("optimal lambda and boundary optimization need a fixed chart boundary (circle or square)");
+  // Checked here rather than per chart: a chart whose solve fails is split,
+  // so a bad option would otherwise end in single triangles, not an error.
+  if (m.weights.method == Method::Mixed && m.weights.lambda == 0 && m.weights.mu == 0)
+    throw_usage("mixed method needs lambda and mu not both zero");
+  if (!std::isfinite(m.weights.lambda) || !std::isfinite(m.weights.mu)) throw_usage("lambda and mu must be finite");
 }
 
 void count_split(detail::ChartStatus status, AtlasResult& r) {
@@ -65,7 +86,7 @@ detail::ChartStatus flatten_one(const MeshData& input, const detail::CleanMesh& 
   for (int f : faces) area += clean.area[f];
   const bool packs = options.seams.empty() && faces.size() >= 64 && area >= min_sparse_area;
   if (packs && detail::planar_square_fill(chart.mesh) < 0.15) return detail::ChartStatus::Sparse;
-  detail::ChartStatus status = detail::flatten_chart(chart, options.degenerate_ratio);
+  detail::ChartStatus status = detail::flatten_chart(chart, options.chart_map, options.degenerate_ratio);
   if (status == detail::ChartStatus::Valid && packs && detail::square_fill(chart) < 0.15)
     status = detail::ChartStatus::Sparse;
   if (status == detail::ChartStatus::Valid && options.seams.empty() && faces.size() > 1 &&

@@ -88,10 +88,11 @@ struct FlatChart {
   AtlasChart summary;
 };
 
-// Flattens `chart` (natural conformal map, or the triangle's own plane for a
-// single face) and checks it: a disk, no flipped or collapsed triangle, a
-// simple boundary, every interior vertex wound once.
-ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio);
+// Flattens `chart` (the map `map` chooses, by default the natural conformal
+// map; the triangle's own plane for a single face) and checks it: a disk, no
+// flipped or collapsed triangle, a simple boundary, every interior vertex
+// wound once.
+ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double degenerate_ratio);
 
 // Merges neighbouring charts while the union flattens validly within
 // options.max_stretch (chart_merge.cpp), then (atlas_stretch_budget) past it

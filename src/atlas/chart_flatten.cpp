@@ -1,7 +1,9 @@
 // One chart through the one pipeline: make_mesh on the chart's own data, then
 // parameterize() with BoundaryShape::Natural (the natural conformal map,
-// paper section 4.2, eq. 7; docs/maths.md §3), scaled so its UV area is its
-// 3D area (docs/maths.md §2.4). Then the checks that make the chart safe to
+// paper section 4.2, eq. 7; docs/maths.md §3) or the map ChartMapOptions
+// chooses (a fixed circle or square boundary with any weights, optionally
+// optimal lambda or boundary optimization, paper section 5), scaled so its
+// UV area is its 3D area (docs/maths.md §2.4). Then the checks that make the chart safe to
 // ship (issue 13, "guaranteed valid"): a disk (one boundary loop, Euler
 // characteristic 1), every triangle positively oriented in the input's corner
 // order, every interior vertex wound once (angle sum below 3 pi), and a
@@ -13,6 +15,8 @@
 #include "atlas/atlas_internal.h"
 #include "intrinsic/error.h"
 #include "intrinsic/metrics.h"
+#include "intrinsic/boundary_optimization.h"
+#include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
 
 namespace intrinsic::detail {
@@ -91,12 +95,41 @@ bool folds(const Mesh& mesh, const MatrixX2d& UV, double degenerate_ratio, int& 
   return false;
 }
 
-ChartStatus solve(FlatChart& chart, Mesh& mesh) {
+ChartMethod method_of(const ChartMapOptions& map) {
+  if (map.boundary == BoundaryShape::Natural) return ChartMethod::Natural;
+  if (map.optimizer == ChartOptimizer::OptimalLambda) return ChartMethod::OptimalLambda;
+  if (map.optimizer == ChartOptimizer::OptimizeBoundary) return ChartMethod::OptimizedBoundary;
+  return ChartMethod::FixedBoundary;
+}
+
+// The chart's map through the library's own calls, as `param` makes it.
+MatrixX2d chart_map(const Mesh& mesh, const ChartMapOptions& map) {
   ParamOptions o;
-  o.boundary = BoundaryShape::Natural;
+  o.weights = map.weights;
+  o.boundary = map.boundary;
   o.scale = ScaleMode::Surface;
+  if (map.boundary == BoundaryShape::Natural) o.weights = WeightOptions();
+  switch (map.optimizer) {
+    case ChartOptimizer::OptimalLambda: {
+      OptimalLambdaOptions l;
+      l.base = o;
+      l.energy = map.lambda_energy;
+      return optimal_lambda(mesh, l).map.UV;
+    }
+    case ChartOptimizer::OptimizeBoundary: {
+      BoundaryOptimizationOptions b;
+      b.base = o;
+      b.energy = map.boundary_energy;
+      return optimize_boundary(mesh, b).map.UV;
+    }
+    case ChartOptimizer::None: break;
+  }
+  return parameterize(mesh, o).UV;
+}
+
+ChartStatus solve(FlatChart& chart, Mesh& mesh, const ChartMapOptions& map) {
   try {
-    chart.UV = parameterize(mesh, o).UV;
+    chart.UV = chart_map(mesh, map);
   } catch (const Error&) {
     return ChartStatus::SolveFailed;
   }
@@ -109,7 +142,7 @@ ChartStatus solve(FlatChart& chart, Mesh& mesh) {
 
 }  // namespace
 
-ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio) {
+ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double degenerate_ratio) {
   // Euler characteristic of the chart's own mesh before building it: most
   // charts split on a large mesh are not disks, and this needs no make_mesh.
   const long k = chart.mesh.data.F.rows(), local_edges = (3 * k + chart.mesh.open_edges) / 2;
@@ -143,8 +176,8 @@ ChartStatus flatten_chart(FlatChart& chart, double degenerate_ratio) {
     s.method = ChartMethod::Triangle;
     chart.UV = lay_triangle(mesh);
   } else {
-    s.method = ChartMethod::Natural;
-    const ChartStatus solved = solve(chart, mesh);
+    s.method = method_of(map);
+    const ChartStatus solved = solve(chart, mesh, map);
     if (solved != ChartStatus::Valid) return solved;
   }
   if (folds(mesh, chart.UV, degenerate_ratio, s.flipped)) return ChartStatus::Flipped;

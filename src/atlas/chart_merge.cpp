@@ -93,7 +93,7 @@ int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions
       std::sort(faces.begin(), faces.end());
       p.merged.mesh = chart_mesh(input, clean, faces);
       p.merged.summary.component = charts[p.d].summary.component;
-      if (flatten_chart(p.merged, options.degenerate_ratio) != ChartStatus::Valid) continue;
+      if (flatten_chart(p.merged, options.chart_map, options.degenerate_ratio) != ChartStatus::Valid) continue;
       p.stretch = p.merged.summary.stretch_l2_mean;
       // Slivers below min_chart_faces may go up to their neighbour's own stretch.
       const bool small = static_cast<int>(charts[p.c].mesh.faces.size()) < options.min_chart_faces;
