@@ -34,6 +34,10 @@ Method parse_method(const std::string& name);  // throws Error(Usage)
 // the eliminated system is then symmetric and Cholesky applies.
 bool is_symmetric(const WeightOptions& w);
 
+// Throws Error(Usage) for weights no map can use: mixed with lambda and mu
+// both zero, or a non-finite lambda or mu.
+void check_weights(const WeightOptions& w);
+
 // Cotangent of the angle between a and b, as dot over cross norm (no
 // trigonometry, no division by a near-zero sine of a small angle's complement).
 double cotangent(const Eigen::Vector3d& a, const Eigen::Vector3d& b);

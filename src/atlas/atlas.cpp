@@ -53,9 +53,7 @@ void check_options(const AtlasOptions& o) {
     throw_usage("optimal lambda and boundary optimization need a fixed chart boundary (circle or square)");
   // Checked here rather than per chart: a chart whose solve fails is split,
   // so a bad option would otherwise end in single triangles, not an error.
-  if (m.weights.method == Method::Mixed && m.weights.lambda == 0 && m.weights.mu == 0)
-    throw_usage("mixed method needs lambda and mu not both zero");
-  if (!std::isfinite(m.weights.lambda) || !std::isfinite(m.weights.mu)) throw_usage("lambda and mu must be finite");
+  check_weights(m.weights);
 }
 
 void count_split(detail::ChartStatus status, AtlasResult& r) {

@@ -38,10 +38,7 @@ void check_options(const Mesh& mesh, const ParamOptions& o) {
   if (t.component_loops[0].empty())
     throw_input((mesh.path.empty() ? "" : mesh.path + ": ") +
                 "the surface is closed (no boundary): use `intrinsic atlas` (library: atlas.h), which cuts it into disk charts");
-  if (o.weights.method == Method::Mixed && o.weights.lambda == 0 && o.weights.mu == 0)
-    throw_usage("mixed method needs lambda and mu not both zero");
-  if (!std::isfinite(o.weights.lambda) || !std::isfinite(o.weights.mu))
-    throw_usage("lambda and mu must be finite");
+  check_weights(o.weights);
   if (o.boundary == BoundaryShape::Natural) check_natural_method(o.weights);
   else if (!o.pins.empty())
     throw_usage("pins apply to the natural boundary only (use given boundary positions instead)");

@@ -26,6 +26,12 @@ Method parse_method(const std::string& name) {
   throw_usage("unknown method '" + name + "' (use conformal, authalic, mixed, tutte or floater)");
 }
 
+void check_weights(const WeightOptions& w) {
+  if (w.method == Method::Mixed && w.lambda == 0 && w.mu == 0)
+    throw_usage("mixed method needs lambda and mu not both zero");
+  if (!std::isfinite(w.lambda) || !std::isfinite(w.mu)) throw_usage("lambda and mu must be finite");
+}
+
 bool is_symmetric(const WeightOptions& w) {
   switch (w.method) {
     case Method::Conformal:
