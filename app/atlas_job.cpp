@@ -110,12 +110,15 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
                         {"flipped", sr.flipped}, {"boundary_crossing", sr.boundary_crossing}, {"sparse", sr.sparse}, {"stretch", sr.stretch}};
   j["utilization"] = r.utilization;
   j["stretch_l2_mean"] = r.stretch_l2_mean;
+  j["stretch_l2_rms"] = r.stretch_l2_rms;
+  j["face_stretch_max"] = r.face_stretch_max;
   j["seam_length"] = r.seam_length;
   j["flipped"] = r.flipped;
   j["overlapping"] = r.overlapping;
   j["resolution"] = o.resolution;
   j["padding"] = o.padding;
   j["max_stretch"] = o.max_stretch;
+  j["max_face_stretch"] = o.max_face_stretch;
   j["atlas_stretch_budget"] = o.atlas_stretch_budget;
   j["max_charts"] = o.max_charts;
   j["seam_edges"] = o.seams.size();
@@ -126,7 +129,9 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
                    {"reversed_faces", r.cleaning.reversed_faces},
                    {"orientation_cuts", r.cleaning.orientation_cuts},
                    {"unreferenced_vertices", r.cleaning.unreferenced_vertices},
-                   {"welded_vertices", r.cleaning.welded_vertices}};
+                   {"welded_vertices", r.cleaning.welded_vertices},
+                   {"hard_edges", r.cleaning.hard_edges}};
+  j["hard_angle"] = o.hard_angle_deg;
   j["weld"] = o.weld;
   j["reorient"] = o.reorient;
   const ChartMapOptions& cm = o.chart_map;
@@ -138,12 +143,16 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
   if (cm.optimizer == ChartOptimizer::OptimalLambda) map["optimize_lambda"] = lambda_energy_name(cm.lambda_energy);
   if (cm.optimizer == ChartOptimizer::OptimizeBoundary)
     map["optimize_boundary"] = boundary_energy_name(cm.boundary_energy);
+  if (cm.boundary == BoundaryShape::Natural) map["isometric_iterations"] = cm.isometric_iterations;
   j["chart_map"] = map;
   nlohmann::json charts = nlohmann::json::array();
   for (const AtlasChart& c : r.charts)
     charts.push_back({{"component", c.component}, {"faces", c.faces}, {"vertices", c.vertices},
                       {"method", chart_method_name(c.method)}, {"flipped", c.flipped},
                       {"angle_distortion_mean", c.angle_distortion_mean}, {"stretch_l2_mean", c.stretch_l2_mean},
+                      {"stretch_l2_rms", c.stretch_l2_rms}, {"face_stretch_p95", c.face_stretch_p95},
+                      {"face_stretch_max", c.face_stretch_max},
+                      {"refined", c.refined},
                       {"area_3d", c.area_3d}, {"boundary_length", c.boundary_length}, {"rotated", c.rotated}});
   j["chart_list"] = charts;
   return j;

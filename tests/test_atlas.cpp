@@ -22,6 +22,7 @@
 #include "intrinsic/io.h"
 #include "intrinsic/mesh.h"
 #include "intrinsic/metrics.h"
+#include "independent_stretch.h"
 #include "test_support.h"
 
 namespace intrinsic {
@@ -275,9 +276,10 @@ void check_file(const std::string& name) {
   std::printf("  %-34s %7ld faces %5zu charts %4d splits utilization %.3f stretch %.4f  %.2f s\n", name.c_str(),
               static_cast<long>(m.F.rows()), r.charts.size(), r.splits, r.utilization, r.stretch_l2_mean, s);
   expect_valid_atlas(m, r);
-  // The distortion bound holds for the whole atlas, measured independently.
+  // The distortion bound holds for the whole atlas, measured independently:
+  // 95% of the surface within max_stretch (docs/maths.md §9.7).
+  EXPECT_LE(test::quantile(test::face_stretch(m, r), 0.95), AtlasOptions().max_stretch + 1e-9);
   const double l2 = sander_l2(m, r);
-  EXPECT_LT(l2, AtlasOptions().max_stretch + 1e-9);
   EXPECT_NEAR(l2, r.stretch_l2_mean, 1e-6 * l2);
 }
 
@@ -728,9 +730,9 @@ TEST(Atlas, MaxChartsMergesFurther) {
 }
 
 // The atlas-wide stretch budget: a small closed part next to a large one
-// merges past max_stretch into fewer charts, while the whole atlas's
-// area-weighted L2 stretch (recomputed here from the output UVs and the
-// input positions) stays within max_stretch.
+// merges past max_stretch into fewer charts, while the whole atlas's 95th
+// percentile of per-face stretch (recomputed here from the output UVs and
+// the input positions) stays within max_stretch.
 TEST(Atlas, AtlasStretchBudgetMergesSmallParts) {
   GenerateOptions g;
   g.rings = 24;
@@ -756,7 +758,8 @@ TEST(Atlas, AtlasStretchBudgetMergesSmallParts) {
               small_part_charts(bounded), small_part_charts(budget), sander_l2(m, bounded), sander_l2(m, budget));
   EXPECT_LT(small_part_charts(budget), small_part_charts(bounded));
   EXPECT_LE(budget.charts.size(), bounded.charts.size());
-  EXPECT_LE(sander_l2(m, budget), AtlasOptions().max_stretch + 1e-9);
+  // The bound is on the whole atlas's 95th percentile of per-face stretch.
+  EXPECT_LE(test::quantile(test::face_stretch(m, budget), 0.95), AtlasOptions().max_stretch + 1e-9);
 }
 
 TEST(AtlasCli, KeepsVerticesWritesCornersDeterministic) {
@@ -839,6 +842,7 @@ TEST(Atlas, EveryParamMapPerChart) {
   AtlasOptions o;
   o.segmentation = Segmentation::Components;
   o.max_stretch = 100;
+  o.max_face_stretch = 1e6;  // a circle boundary on a cap stretches its rim faces more than 2x
   o.padding = 0;
   struct Case {
     ChartMapOptions map;
