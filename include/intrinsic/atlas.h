@@ -16,6 +16,7 @@
 
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/mesh_data.h"
+#include "intrinsic/metrics.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
 
@@ -64,8 +65,9 @@ struct AtlasOptions {
   Segmentation segmentation = Segmentation::NormalCones;
   double max_normal_deviation_deg = 60;  // NormalCones: face normal vs the chart's mean normal
   double sharp_angle_deg = 70;           // dihedral angle above which an edge is always a seam
-  // The distortion bound: a chart whose area-weighted mean L2 stretch
-  // (Sander) exceeds it is split, and neighbouring charts are merged while
+  // The distortion bound: a chart whose area-weighted mean of the
+  // per-triangle L2 stretch (Sander's per-triangle measure; the mean, not
+  // his root mean square) exceeds it is split, and neighbouring charts are merged while
   // the union is valid and stays within it. Then, with
   // atlas_stretch_budget, valid unions under 1% of the surface are merged
   // past it, smallest chart first, while the whole atlas's area-weighted
@@ -165,10 +167,14 @@ struct AtlasResult {
   int splits = 0;          // charts split: not disks, flipped, boundary crossing, or too sparse for packing
   AtlasSplits split_reasons;
   double utilization = 0;  // UV area of the charts / area of [0,1]^2
-  // Area-weighted mean over all charts of the per-triangle L2 stretch
-  // (Sander; docs/maths.md §9): every chart has UV area = 3D area before
-  // packing, so this is the whole atlas's figure at one texel density.
+  // Area-weighted mean of the per-chart L2 stretch (each chart's own
+  // area-weighted mean of the per-triangle L2 of docs/maths.md §9.3, every
+  // chart at UV area = 3D area before packing): what max_stretch bounds.
+  // Not Sander's L2, which is the root mean square: see `stretch`.
   double stretch_l2_mean = 1;
+  // What a person sees of the packed atlas (docs/maths.md §9.8):
+  // summarize_stretch of the output's per-corner UVs.
+  StretchSummary stretch;
   // 3D length of the seams in the output: per edge of the input's faces (a
   // vertex pair), the number of distinct per-corner UV pairs on it minus one,
   // times its length. The mesh's own boundary is no seam; a manifold edge cut

@@ -224,6 +224,7 @@ AtlasResult atlas(const MeshData& given, const AtlasOptions& options) {
     stretch += c.summary.area_3d * c.summary.stretch_l2_mean;
   }
   if (area > 0) r.stretch_l2_mean = stretch / area;
+  r.stretch = summarize_stretch(given.V, r.F, r.UV, r.FUV);
   r.timings.pack_ms = ms_since(t);
   r.timings.total_ms = ms_since(t0);
   return r;
