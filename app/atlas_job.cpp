@@ -6,6 +6,7 @@
 #include <charconv>
 
 #include "mesh_paths.h"
+#include "report.h"
 #include "intrinsic/error.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/io.h"
@@ -109,9 +110,8 @@ nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const Atla
   j["split_reasons"] = {{"not_disk", sr.not_disk}, {"refused", sr.refused}, {"solve_failed", sr.solve_failed},
                         {"flipped", sr.flipped}, {"boundary_crossing", sr.boundary_crossing}, {"sparse", sr.sparse}, {"stretch", sr.stretch}};
   j["utilization"] = r.utilization;
-  j["stretch_l2_mean"] = r.stretch_l2_mean;
-  j["stretch_l2_rms"] = r.stretch_l2_rms;
-  j["face_stretch_max"] = r.face_stretch_max;
+  j["stretch_l2_mean"] = r.stretch_l2_mean;  // area-weighted mean of per-chart mean L2, not Sander's RMS
+  j["stretch"] = stretch_json(r.stretch);
   j["seam_length"] = r.seam_length;
   j["flipped"] = r.flipped;
   j["overlapping"] = r.overlapping;

@@ -16,6 +16,7 @@
 
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/mesh_data.h"
+#include "intrinsic/metrics.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
 
@@ -187,13 +188,14 @@ struct AtlasResult {
   int splits = 0;          // charts split: not disks, flipped, boundary crossing, or too sparse for packing
   AtlasSplits split_reasons;
   double utilization = 0;  // UV area of the charts / area of [0,1]^2
-  // Area-weighted mean over all charts of the per-triangle L2 stretch
-  // (Sander; docs/maths.md §9): every chart has UV area = 3D area before
-  // packing, so this is the whole atlas's figure at one texel density.
+  // Area-weighted mean of the per-chart L2 stretch (each chart's own
+  // area-weighted mean of the per-triangle L2 of docs/maths.md §9.3, every
+  // chart at UV area = 3D area before packing). Not Sander's L2, which is
+  // the root mean square, nor what max_stretch bounds: see `stretch`.
   double stretch_l2_mean = 1;
-  // Sander's L2 of the whole atlas (root mean square of per-face L2 at its
-  // one texel density) and the largest per-face max(s1, 1/s2).
-  double stretch_l2_rms = 1, face_stretch_max = 1;
+  // What a person sees of the packed atlas (docs/maths.md §9.8):
+  // summarize_stretch of the output's per-corner UVs.
+  StretchSummary stretch;
   // 3D length of the seams in the output: per edge of the input's faces (a
   // vertex pair), the number of distinct per-corner UV pairs on it minus one,
   // times its length. The mesh's own boundary is no seam; a manifold edge cut

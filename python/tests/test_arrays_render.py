@@ -46,7 +46,7 @@ def test_metrics_like_cli(tmp_path):
     cli = json.loads(proc.stdout)
     m = intrinsic.metrics(V, F, uv)
     for k in ("flipped_triangles", "angle_distortion", "area_distortion", "stretch_l2", "edge_length_energy",
-              "area_energy", "faces", "boundary_loops"):
+              "area_energy", "faces", "boundary_loops", "stretch"):
         assert m[k] == pytest.approx(cli[k], rel=1e-12), k
 
 

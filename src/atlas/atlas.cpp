@@ -219,7 +219,7 @@ AtlasResult atlas(const MeshData& given, const AtlasOptions& options) {
   t = std::chrono::steady_clock::now();
   r.utilization = detail::pack_charts(charts, options, r.overlapping);
   assemble(given, clean.reversed, charts, r);
-  double area = 0, stretch = 0, square = 0;
+  double area = 0, stretch = 0;
   r.seam_length = seam_length(given.V, r.F, r.FUV);
   for (const detail::FlatChart& c : charts) {
     r.charts.push_back(c.summary);
@@ -227,10 +227,9 @@ AtlasResult atlas(const MeshData& given, const AtlasOptions& options) {
     r.flipped += c.summary.flipped;
     area += c.summary.area_3d;
     stretch += c.summary.area_3d * c.summary.stretch_l2_mean;
-    square += c.summary.area_3d * c.summary.stretch_l2_rms * c.summary.stretch_l2_rms;
-    r.face_stretch_max = std::max(r.face_stretch_max, c.summary.face_stretch_max);
   }
-  if (area > 0) r.stretch_l2_mean = stretch / area, r.stretch_l2_rms = std::sqrt(square / area);
+  if (area > 0) r.stretch_l2_mean = stretch / area;
+  r.stretch = summarize_stretch(given.V, r.F, r.UV, r.FUV);
   r.timings.pack_ms = ms_since(t);
   r.timings.total_ms = ms_since(t0);
   return r;
