@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -90,18 +91,34 @@ class ServerProcess {
 };
 
 struct RawReply {
-  int status = -1;  // -1: no answer (connection failed or closed first)
-  std::string text;  // everything the server sent
+  int status = -1;   // -1: no answer (connection failed, or closed without one)
+  std::string text;  // what the server sent
   std::string body() const {
     const size_t at = text.find("\r\n\r\n");
     return at == std::string::npos ? "" : text.substr(at + 4);
   }
+  // Headers and the whole Content-Length body received.
+  bool complete() const {
+    const size_t at = text.find("\r\n\r\n");
+    if (at == std::string::npos) return false;
+    const std::string head = text.substr(0, at);
+    size_t length = 0;
+    const size_t cl = head.find("\r\nContent-Length: ");
+    if (cl != std::string::npos) length = std::strtoull(head.c_str() + cl + 18, nullptr, 10);
+    return text.size() >= at + 4 + length;
+  }
 };
 
-// Sends `bytes` to 127.0.0.1:port as they are, closes the sending side (the
-// server sees the end of the request stream) and reads the answer until the
-// server closes; the status is that of the first answer.
-inline RawReply raw_exchange(int port, const std::string& bytes, int timeout_s = 60) {
+// How a raw request ends: the client closes its sending side (the server
+// sees the end of the stream: cpp-httplib then answers nothing, the peer
+// being gone), or it stays open (a stalled client: the server answers when
+// its read timeout expires).
+enum class RequestEnd { Close, Stall };
+
+// Sends `bytes` to 127.0.0.1:port as they are and reads the first answer
+// (until it is complete or the server closes).
+inline RawReply raw_exchange(int port, const std::string& bytes, RequestEnd end = RequestEnd::Stall,
+                             int timeout_s = 60) {
   RawReply r;
   const int fd = socket(AF_INET, SOCK_STREAM, 0);
   if (fd < 0) return r;
@@ -116,13 +133,13 @@ inline RawReply raw_exchange(int port, const std::string& bytes, int timeout_s =
     size_t sent = 0;
     while (sent < bytes.size()) {
       const ssize_t n = send(fd, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
-      if (n <= 0) break;
+      if (n <= 0) break;  // the server may answer and close before reading a refused body
       sent += static_cast<size_t>(n);
     }
-    shutdown(fd, SHUT_WR);
+    if (end == RequestEnd::Close) shutdown(fd, SHUT_WR);
     char buf[65536];
     ssize_t n;
-    while ((n = recv(fd, buf, sizeof buf, 0)) > 0) r.text.append(buf, static_cast<size_t>(n));
+    while (!r.complete() && (n = recv(fd, buf, sizeof buf, 0)) > 0) r.text.append(buf, static_cast<size_t>(n));
     if (r.text.rfind("HTTP/1.1 ", 0) == 0) r.status = std::atoi(r.text.c_str() + 9);
   }
   close(fd);

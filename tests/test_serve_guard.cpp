@@ -219,8 +219,12 @@ TEST_F(ServeGuard, WildcardBindWarnsAndAcceptsTheMachinesAddresses) {
 // with the status it must get.
 enum class Kind {
   Mesh, Solve, SolveBinary, Progress,  // valid
-  BadJson, BadHost, NoToken, WrongToken, ForeignOrigin, Oversized, TruncatedBody, TruncatedHeaders
+  BadJson, BadHost, NoToken, WrongToken, ForeignOrigin, Oversized, TruncatedBody, TruncatedHeaders,
+  StalledBody
 };
+// A stalled request holds a server thread until its read timeout (5 s):
+// one per client thread every 125 requests (once per half of the run).
+constexpr int kStallEvery = 125;
 // Half valid, half malformed, every malformed kind once per 16 requests.
 const Kind kMix[16] = {Kind::Mesh,    Kind::Solve,   Kind::Solve,      Kind::SolveBinary,   Kind::Solve,
                        Kind::Progress, Kind::Solve,  Kind::Mesh,       Kind::BadJson,       Kind::BadHost,
@@ -252,11 +256,14 @@ class LoadClient {
 
   // Request number i of client thread t: "" when the answer is right, else what was wrong.
   std::string run(int t, int i) const {
-    const Kind kind = kMix[(i + 3 * t) % 16];
+    const Kind kind = i % kStallEvery == kStallEvery / 2 ? Kind::StalledBody : kMix[(i + 3 * t) % 16];
     const Variant& v = variants_[(i / 16 + t) % variants_.size()];
     const std::string session = "X-Session: load-" + std::to_string(t);
     const std::string host = host_of(s_), token = with_token(s_);
     const auto send = [&](const std::string& bytes) { return test::raw_exchange(s_.port(), bytes); };
+    const auto closed = [&](const std::string& bytes) {
+      return test::raw_exchange(s_.port(), bytes, test::RequestEnd::Close);
+    };
     switch (kind) {
       case Kind::Mesh: return check_mesh(send(http("GET", "/api/mesh", {host, token})));
       case Kind::Solve: return check_uv(send(http("POST", "/api/solve", {host, token, session}, v.body)), v, false);
@@ -275,14 +282,24 @@ class LoadClient {
       case Kind::Oversized:
         return expect(send(http("POST", "/api/solve", {host, token, session}, "{\"moves\": [" + std::string(max_body_, ' ') + "]}")),
                       413);
-      case Kind::TruncatedBody:
-        return expect(send("POST /api/solve HTTP/1.1\r\n" + host + "\r\n" + token + "\r\nContent-Length: 100\r\n\r\n{\"method\""), 400);
-      case Kind::TruncatedHeaders: return expect(send("GET /api/mesh HTTP/1.1\r\n" + host + "\r\nX-Intrinsic-To"), 400);
+      // Cut short, then the client closes: no one is left to answer (cpp-httplib
+      // writes nothing to a closed peer), but never a success.
+      case Kind::TruncatedBody: return refused(closed(truncated_body(host, token)));
+      case Kind::TruncatedHeaders:
+        return refused(closed("GET /api/mesh HTTP/1.1\r\n" + host + "\r\nX-Intrinsic-To"));
+      // Cut short and left open: 400 when the server's read timeout expires.
+      case Kind::StalledBody: return expect(send(truncated_body(host, token)), 400);
     }
     return "unknown kind";
   }
 
  private:
+  static std::string truncated_body(const std::string& host, const std::string& token) {
+    return "POST /api/solve HTTP/1.1\r\n" + host + "\r\n" + token + "\r\nContent-Length: 100\r\n\r\n{\"method\"";
+  }
+  static std::string refused(const RawReply& r) {
+    return r.status == -1 || (r.status >= 400 && r.status < 500) ? "" : "expected no answer or a 4xx, got " + r.text.substr(0, 300);
+  }
   static std::string expect(const RawReply& r, int status) {
     return r.status == status ? "" : "expected " + std::to_string(status) + ", got " + r.text.substr(0, 300);
   }
