@@ -224,6 +224,7 @@ RequestFacts facts_of(const httplib::Request& req) {
   f.host = req.get_header_value("Host");
   f.host_count = req.get_header_value_count("Host");
   f.origin = req.get_header_value("Origin");
+  f.fetch_site = req.get_header_value("Sec-Fetch-Site");
   f.cookie = req.get_header_value("Cookie");
   f.token_header = req.get_header_value(kTokenHeader);
   if (req.has_param("token")) f.token_query = req.get_param_value("token");

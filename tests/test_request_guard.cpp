@@ -67,6 +67,19 @@ TEST(RequestGuard, OriginMustBeTheRequestsOwn) {
     EXPECT_FALSE(origin_allowed(bad, "127.0.0.1:8123")) << bad;
 }
 
+TEST(RequestGuard, BrowsersMustSaySameOrigin) {
+  for (const char* good : {"", "same-origin", "none"}) EXPECT_TRUE(fetch_site_allowed(good)) << good;
+  for (const char* bad : {"same-site", "cross-site", "other"}) EXPECT_FALSE(fetch_site_allowed(bad)) << bad;
+  const HostPolicy p = host_policy("127.0.0.1", 8123, {});
+  const std::string token = random_token();
+  RequestFacts r{"GET", "/api/mesh", "127.0.0.1:8123"};
+  r.token_header = token;
+  r.fetch_site = "same-site";  // another server's page on 127.0.0.1: the cookie would go along
+  EXPECT_EQ(check_request(p, token, r).refusal, Refusal::ForeignOrigin);
+  r.fetch_site = "same-origin";
+  EXPECT_EQ(check_request(p, token, r).refusal, Refusal::None);
+}
+
 TEST(RequestGuard, TokensAre128RandomBitsInHex) {
   std::set<std::string> seen;
   for (int k = 0; k < 200; ++k) {

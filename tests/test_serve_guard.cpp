@@ -171,6 +171,13 @@ TEST_F(ServeGuard, ForeignOriginsAreRefusedAndNoCorsHeaderIsSent) {
               403)
         << foreign;
   }
+  // A plain GET from another page on this host (an <img> or <script> tag: no Origin, and 127.0.0.1's cookies go to
+  // every port): the browser's Sec-Fetch-Site tells.
+  const std::string cookie = "Cookie: " + app::token_cookie_name(s().port()) + "=" + s().token();
+  EXPECT_EQ(get(s(), "/api/mesh", {host_of(s()), cookie, "Sec-Fetch-Site: same-site"}).status, 403);
+  EXPECT_EQ(get(s(), "/api/mesh", {host_of(s()), cookie, "Sec-Fetch-Site: cross-site"}).status, 403);
+  EXPECT_EQ(get(s(), "/api/mesh", {host_of(s()), cookie, "Sec-Fetch-Site: same-origin"}).status, 200);
+  EXPECT_EQ(get(s(), s().page(), {host_of(s()), "Sec-Fetch-Site: none"}).status, 200);
   // A CORS preflight from another site gets no permission.
   const RawReply preflight = get(s(), "/api/solve",
                                  {host_of(s()), "Origin: http://evil.example", "Access-Control-Request-Method: POST",

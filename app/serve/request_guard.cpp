@@ -125,6 +125,10 @@ bool origin_allowed(const std::string& origin_header, const std::string& host_he
   return origin && host && origin->name == host->name && origin->port == host->port;
 }
 
+bool fetch_site_allowed(const std::string& sec_fetch_site) {
+  return sec_fetch_site.empty() || sec_fetch_site == "same-origin" || sec_fetch_site == "none";
+}
+
 std::string random_token() {
   std::random_device device;
   std::string token;
@@ -170,7 +174,7 @@ std::string token_cookie(const std::string& token, int port) {
 
 Verdict check_request(const HostPolicy& policy, const std::string& token, const RequestFacts& r) {
   if (!host_allowed(policy, r.host, r.host_count)) return {Refusal::BadHost};
-  if (!origin_allowed(r.origin, r.host)) return {Refusal::ForeignOrigin};
+  if (!origin_allowed(r.origin, r.host) || !fetch_site_allowed(r.fetch_site)) return {Refusal::ForeignOrigin};
   // The API takes the token from the cookie or the header only: a token in
   // an API URL would end up in logs and histories for nothing.
   const bool api = r.path == "/api" || r.path.rfind("/api/", 0) == 0;
@@ -199,7 +203,7 @@ std::string refusal_message(Refusal r) {
     case Refusal::None: return "";
     case Refusal::BadHost:
       return "bad Host header: this server answers to localhost, 127.0.0.1, [::1] or its bound address, with its port";
-    case Refusal::ForeignOrigin: return "cross-origin request refused: the Origin is not this server";
+    case Refusal::ForeignOrigin: return "cross-origin request refused: it comes from another site's page";
     case Refusal::MissingToken:
       return "missing token: open the URL `intrinsic serve` printed (with ?token=), or send the X-Intrinsic-Token header";
     case Refusal::WrongToken: return "wrong token: open the URL `intrinsic serve` printed at its latest start";

@@ -47,6 +47,12 @@ bool host_allowed(const HostPolicy& policy, const std::string& host_header, size
 // written or not). "null" and other schemes are foreign.
 bool origin_allowed(const std::string& origin_header, const std::string& host_header);
 
+// Sec-Fetch-Site absent (not a browser), "same-origin" or "none" (the user
+// opened the URL). Browsers send no Origin with a plain GET from an <img>
+// or <script> tag, and cookies are shared by every port of 127.0.0.1
+// (another local server's page is "same-site"): this header still tells.
+bool fetch_site_allowed(const std::string& sec_fetch_site);
+
 // 128 bits from std::random_device as 32 lower-case hex digits.
 std::string random_token();
 
@@ -73,6 +79,7 @@ struct RequestFacts {
   std::string host;
   size_t host_count = 1;
   std::string origin, cookie, token_header, token_query;
+  std::string fetch_site;  // Sec-Fetch-Site (browsers send it), "" when absent
   bool has_content_length = false;
   bool has_transfer_encoding = false;
 };
@@ -84,7 +91,8 @@ struct Verdict {
   bool set_cookie = false;  // a page load with the right ?token=: give the browser the cookie
 };
 
-// In this order: Host (DNS rebinding), Origin (other sites' pages), token
+// In this order: Host (DNS rebinding), Origin and Sec-Fetch-Site (other
+// sites' pages), token
 // (/api/*: cookie or header; other paths also ?token=), then a request that
 // carries a body must give its Content-Length and no Transfer-Encoding
 // (cpp-httplib reads such bodies whole without the --max-body limit).
