@@ -4,9 +4,10 @@
 // and POST /api/optimize_boundary the optimizations of paper section 5
 // (README "intrinsic serve"). No file is read after the mesh. Every request
 // is answered: errors become HTTP 400/409/413/422/500 with {"error": message}.
-// Before any route, the guard (serve/request_guard.h) refuses foreign Host
-// headers (400), foreign Origins and requests without this launch's token
-// (403), in plain text.
+// Before any route, the guard (serve/request_guard.h) refuses, in plain
+// text, foreign Host headers (400), requests from other pages (Origin,
+// Sec-Fetch-Site) or without this launch's token (403), and bodies without
+// a Content-Length (411).
 #include <iostream>
 #include <new>
 #include <stdexcept>

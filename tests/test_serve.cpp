@@ -6,7 +6,8 @@
 // factorization (path and factorization count checked); the optimization
 // endpoints equal the library's optimal_lambda and optimize_boundary; bad
 // requests get 400/413 and the server keeps answering; two sessions stay
-// independent.
+// independent. Every request carries the server's token (X-Intrinsic-Token;
+// test_serve_guard.cpp tests the guard itself).
 #include <array>
 #include <cstdio>
 #include <cstring>

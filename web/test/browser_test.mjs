@@ -1,6 +1,8 @@
 // Browser test of `intrinsic serve` (registered in CTest when node, Debian's
 // /usr/bin/chromium and this folder's node_modules exist): opens the editor in
-// headless Chromium, drags a boundary handle of the 2D layout with real mouse
+// headless Chromium at the printed URL (with its token; the page then works
+// through the cookie, and the server refuses requests without the token or
+// from another origin), drags a boundary handle of the 2D layout with real mouse
 // events, waits for the update, reads the UVs back through the API (same
 // session) and compares them with `intrinsic param --boundary FILE` for the
 // dragged position (1e-9); then, with the "click on surface" tool, clicks the
