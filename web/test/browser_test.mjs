@@ -1,6 +1,8 @@
 // Browser test of `intrinsic serve` (registered in CTest when node, Debian's
 // /usr/bin/chromium and this folder's node_modules exist): opens the editor in
-// headless Chromium, drags a boundary handle of the 2D layout with real mouse
+// headless Chromium at the printed URL (with its token; the page then works
+// through the cookie, and the server refuses requests without the token or
+// from another origin), drags a boundary handle of the 2D layout with real mouse
 // events, waits for the update, reads the UVs back through the API (same
 // session) and compares them with `intrinsic param --boundary FILE` for the
 // dragged position (1e-9); then, with the "click on surface" tool, clicks the
@@ -23,14 +25,15 @@ if (!binary || !mesh) {
   process.exit(2);
 }
 
-// Starts the server on a free port; resolves with its URL.
+// Starts the server on a free port; resolves with the URL it prints
+// (http://127.0.0.1:PORT/?token=HEX: the page's first load needs the token).
 function startServer() {
   const child = spawn(binary, ['serve', mesh, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
   const url = new Promise((resolve, reject) => {
     let out = '';
     child.stdout.on('data', (d) => {
       out += d;
-      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
+      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\/\?token=[0-9a-f]+/);
       if (m) resolve(m[0]);
     });
     child.on('exit', (code) => reject(new Error('intrinsic serve exited with ' + code)));
@@ -39,9 +42,11 @@ function startServer() {
   return { child, url };
 }
 
+// The API from node: no cookie here, so the token goes in the header.
 async function api(url, route, body, session) {
-  const res = await fetch(url.replace(/\/$/, '') + route, body === undefined ? {} : {
-    method: 'POST', headers: { 'Content-Type': 'application/json', 'X-Session': session }, body: JSON.stringify(body),
+  const u = new URL(url), token = { 'X-Intrinsic-Token': u.searchParams.get('token') };
+  const res = await fetch(u.origin + route, body === undefined ? { headers: token } : {
+    method: 'POST', headers: { ...token, 'Content-Type': 'application/json', 'X-Session': session }, body: JSON.stringify(body),
   });
   if (!res.ok) throw new Error(`${route}: HTTP ${res.status} ${await res.text()}`);
   return res.json();
@@ -244,6 +249,22 @@ async function compareWithParam(page, url, base, meshInfo, dir, what) {
   return request;
 }
 
+// The page works through the cookie its first load got (HttpOnly: no
+// script sees it); without the token, and from another origin, the server refuses.
+async function checkGuard(page, url) {
+  const origin = new URL(url).origin;
+  const seen = await page.evaluate(async () => ({
+    cookie: document.cookie, mesh: (await fetch('/api/mesh')).status, page: (await fetch('/')).status,
+  }));
+  if (seen.cookie !== '' || seen.mesh !== 200 || seen.page !== 200) throw new Error('the page with its cookie: ' + JSON.stringify(seen));
+  const bare = await fetch(origin + '/api/mesh'), noPage = await fetch(origin + '/');
+  const foreign = await fetch(url, { headers: { Origin: 'http://evil.example' } });
+  if (bare.status !== 403 || noPage.status !== 403 || foreign.status !== 403) {
+    throw new Error(`without token / foreign origin: ${bare.status} ${noPage.status} ${foreign.status}`);
+  }
+  console.log('guard: the page reads the API through its HttpOnly cookie; no token or a foreign Origin: 403');
+}
+
 async function main() {
   const { child, url: urlPromise } = startServer();
   let browser = null;
@@ -259,6 +280,7 @@ async function main() {
     await page.goto(url);
     await page.waitForFunction(() => window.__intrinsic && window.__intrinsic.state.updates >= 1 &&
       window.__intrinsic.state.frames >= 1, null, { timeout: 60000 });
+    await checkGuard(page, url);
     const vertex = await dragHandle(page);
     const meshInfo = await api(url, '/api/mesh');
     const base = await api(url, '/api/solve', {}, 'browser-test-base');
