@@ -72,7 +72,7 @@ FaceDistortion face_distortion(const FaceFrames& frames, const MatrixX3i& F, con
 int count_flipped(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV);
 DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV);
 
-// ---- Atlases and other tools' outputs (issue 13 item 7) -------------------
+// ---- Atlases and other tools' outputs -------------------------------------
 // Per-corner UVs: FT (#F x 3) indexes rows of UV, PT (#UV x 3) is the 3D
 // position of each texture coordinate's corners (app/uv_mesh.h builds it from
 // OBJ `f v/vt`, triangle soups with split vertices included). Texture

@@ -1,5 +1,5 @@
-// Merging neighbouring charts (issue 13: "curved assets do not explode into
-// hundreds of charts"; fewer, larger charts, shorter seams). Region growing
+// Merging neighbouring charts (so that curved assets do not explode into
+// hundreds of charts: fewer, larger charts, shorter seams). Region growing
 // and the validity splits leave more charts than the distortion bound needs.
 // In passes, every chart proposes the neighbour it shares most glued edges
 // with; the unions are flattened (in parallel, the same natural map and
