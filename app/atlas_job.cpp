@@ -1,6 +1,6 @@
 // The atlas job the CLI (`intrinsic atlas`) and the Python module share:
 // the OBJ with per-corner texture coordinates and the JSON report, so both
-// write the same bytes (issue 13).
+// write the same bytes.
 #include "atlas_job.h"
 
 #include <charconv>

@@ -1,4 +1,4 @@
-// `intrinsic atlas` (issue 13): read any triangle mesh (closed, higher genus,
+// `intrinsic atlas`: read any triangle mesh (closed, higher genus,
 // several components, non-manifold bits, zero-area faces), build its atlas
 // (atlas.h), write the input's vertices in input order with one `vt` per atlas
 // UV and faces `f v/vt` (seams only through the per-corner texture

@@ -18,13 +18,14 @@ generateAtlas inside Node (no Node start-up, no wasm compilation). xatlasjs
 takes 16-bit indices: meshes with 65,536 vertices or more are skipped for it.
 
 Usage: bench/atlas_compare.py [--cli build/intrinsic] [--runs 3] [--markdown]
-                              [--node node] [--check] [MESH ...]
+                              [--node node] [--check] [--skip-without DIR] [MESH ...]
 
 --check (the ctest atlas_vs_xatlasjs): one run per mesh; exits non-zero
 unless on every mesh our utilization is at least xatlasjs's, our charts are
 at most half of its, and ours has no flipped, mirrored or overlapping
 triangle, all measured by `intrinsic metrics`. A missing node or xatlasjs
-(bench/node_modules) is a failure, not a skip.
+(bench/node_modules) is a failure, not a skip; --skip-without DIR exits 77
+(ctest's Skipped) when DIR, the shared meshes beside a clone, is absent.
 """
 import argparse
 import gzip
@@ -222,7 +223,12 @@ def main():
     ap.add_argument("--node", default="node", help="the Node.js executable that runs xatlasjs")
     ap.add_argument("--check", action="store_true",
                     help="exit non-zero unless ours has at least xatlasjs's utilization and at most half its charts")
+    ap.add_argument("--skip-without", metavar="DIR",
+                    help="exit 77 (Skipped, for ctest) when DIR is absent: the shared meshes beside a clone")
     args = ap.parse_args()
+    if args.skip_without and not os.path.isdir(args.skip_without):
+        print(f"SKIPPED: {args.skip_without} is absent (the shared meshes are not beside this clone)", flush=True)
+        return 77
     meshes = args.meshes
     if not meshes:
         d = os.environ.get("INTRINSIC_SHARED_MESHES", os.path.join(ROOT, "..", "shared", "meshes"))

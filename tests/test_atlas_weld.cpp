@@ -69,7 +69,8 @@ TEST(AtlasWeld, UnweldedPairBecomesOneChart) {
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Usage, "weld");
 }
 
-TEST(AtlasWeld, TeapotSeams) {
+TEST(AtlasWeldCorpus, TeapotSeams) {
+  REQUIRE_SHARED_MESHES();
   const std::string path = test::shared_mesh("assets/teapot.obj");
   const MeshData m = read_mesh(path);
   std::set<std::array<double, 3>> distinct;

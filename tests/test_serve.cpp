@@ -2,12 +2,13 @@
 // child process (killed at the end of every test, also on failure) and is
 // driven over HTTP; its maps must equal `intrinsic param` with the same
 // settings (moved boundary written to a boundary file, moved pins as --pin)
-// to 1e-9 on shared meshes, also when constraints change on the kept
-// factorization (path and factorization count checked); the optimization
-// endpoints equal the library's optimal_lambda and optimize_boundary; bad
-// requests get 400/413 and the server keeps answering; two sessions stay
-// independent. Every request carries the server's token (X-Intrinsic-Token;
-// test_serve_guard.cpp tests the guard itself).
+// to 1e-9 on generated surfaces (and on shared meshes: ServeCorpus), also
+// when constraints change on the kept factorization (path and factorization
+// count checked); the optimization endpoints equal the library's
+// optimal_lambda and optimize_boundary; bad requests get 400/413 and the
+// server keeps answering; two sessions stay independent. Every request
+// carries the server's token (X-Intrinsic-Token; test_serve_guard.cpp tests
+// the guard itself).
 #include <array>
 #include <cstdio>
 #include <cstring>
@@ -123,8 +124,17 @@ double max_diff(const MatrixX2d& a, const MatrixX2d& b) {
 
 class ServeTest : public ::testing::Test {
  protected:
-  void start(const std::string& name) {
-    path_ = test::shared_mesh(name);
+  // Serves a generated wavy patch written to the test's folder: rings 8
+  // (about 190 vertices, near cat_head.obj's 131) or more.
+  void start(int rings = 8) {
+    GenerateOptions g;
+    g.rings = rings;
+    const MeshData d = generate_wavy_patch(g);
+    write_mesh(dir_ / "wave.obj", d.V, d.F, MatrixX2d());
+    serve(dir_ / "wave.obj");
+  }
+  void serve(const std::string& path) {
+    path_ = path;
     mesh_ = make_mesh(read_mesh(path_));
     server_ = std::make_unique<ServerProcess>(path_);
     ASSERT_GT(server_->port(), 0) << "intrinsic serve did not print its URL";
@@ -156,7 +166,7 @@ class ServeTest : public ::testing::Test {
 };
 
 TEST_F(ServeTest, MeshCountsEqualTheMesh) {
-  start("cat_head.obj");
+  start();
   httplib::Client client("127.0.0.1", port());
   auto res = client.Get("/api/mesh", api_headers(server()));
   ASSERT_TRUE(res);
@@ -173,7 +183,7 @@ TEST_F(ServeTest, MeshCountsEqualTheMesh) {
 }
 
 TEST_F(ServeTest, FixedCircleWithMovesEqualsParam) {
-  start("cat_head.obj");
+  start();
   const int v = mesh_.topology.boundary_loops[0][3], w = mesh_.topology.boundary_loops[0][10];
   expect_fixed_equals_param(json::object(), "", json::array({json::array({v, 0.55, 0.02})}));
   // The next drag from the same base: v goes back, w moves.
@@ -187,14 +197,14 @@ TEST_F(ServeTest, FixedCircleWithMovesEqualsParam) {
 }
 
 TEST_F(ServeTest, MixedSquareEqualsParam) {
-  start("camel_b.obj");
+  start(24);
   const int v = mesh_.topology.boundary_loops[0][5];
   expect_fixed_equals_param({{"method", "mixed"}, {"lambda", 0.3}, {"mu", 0.7}, {"boundary", "square"}},
                             "--method mixed --lambda 0.3 --mu 0.7", json::array({json::array({v, 0.1, -0.05})}));
 }
 
 TEST_F(ServeTest, ConstraintsEqualParam) {
-  start("cat_head.obj");
+  start();
   std::vector<char> on_boundary(mesh_.V.rows(), 0);
   for (const auto& loop : mesh_.topology.boundary_loops)
     for (const int i : loop) on_boundary[i] = 1;
@@ -207,7 +217,7 @@ TEST_F(ServeTest, ConstraintsEqualParam) {
 }
 
 TEST_F(ServeTest, NaturalWithMovedPinsEqualsParam) {
-  start("cat_head.obj");
+  start();
   const Reply first = post(server(), R"({"boundary": "natural"})");
   ASSERT_EQ(first.status, 200) << first.body.dump();
   json pins = first.body.at("pins");
@@ -243,7 +253,7 @@ TEST_F(ServeTest, NaturalWithMovedPinsEqualsParam) {
 // Circle <-> square keeps the factorization (same fixed vertices, new
 // positions: one solve), with and without moves, against `intrinsic param`.
 TEST_F(ServeTest, CircleSquareSwitchKeepsTheFactorization) {
-  start("camel_b.obj");
+  start(24);
   const Reply circle = post(server(), R"({"method": "authalic"})");
   ASSERT_EQ(circle.status, 200);
   EXPECT_EQ(circle.body["path"], "factor");
@@ -272,7 +282,7 @@ TEST_F(ServeTest, CircleSquareSwitchKeepsTheFactorization) {
 // factorization throughout, each answer equal to `intrinsic param` with the
 // constraint file and the moved boundary.
 TEST_F(ServeTest, ConstraintChangesReuseTheFactorization) {
-  start("cat_head.obj");
+  start();
   const std::array<int, 2> faces = interior_face_pair(mesh_);
   ASSERT_GE(faces[0], 0);
   const Reply base = post(server(), "{}");
@@ -317,7 +327,7 @@ TEST_F(ServeTest, ConstraintChangesReuseTheFactorization) {
 // Natural map: a constraint added and retargeted on the kept factorization,
 // then moved pins, against `intrinsic param --pin ... --constraints`.
 TEST_F(ServeTest, NaturalConstraintsAndPinsReuseTheFactorization) {
-  start("cat_head.obj");
+  start();
   const std::array<int, 2> faces = interior_face_pair(mesh_);
   const Reply first = post(server(), R"({"boundary": "natural"})");
   ASSERT_EQ(first.status, 200);
@@ -341,7 +351,7 @@ TEST_F(ServeTest, NaturalConstraintsAndPinsReuseTheFactorization) {
 }
 
 TEST_F(ServeTest, OptimalLambdaEqualsTheLibrary) {
-  start("camel_b.obj");
+  start(24);
   for (const char* energy : {"edge", "area"}) {
     const Reply r = post(server(), json{{"energy", energy}, {"boundary", "square"}}.dump(), "s1", "/api/optimal_lambda");
     ASSERT_EQ(r.status, 200) << r.body.dump();
@@ -370,7 +380,7 @@ TEST_F(ServeTest, OptimalLambdaEqualsTheLibrary) {
 }
 
 TEST_F(ServeTest, BoundaryOptimizationEqualsTheLibraryAndReportsProgress) {
-  start("cat_head.obj");
+  start();
   const Reply r = post(server(), R"({"energy": "area", "max_iterations": 5})", "s1", "/api/optimize_boundary");
   ASSERT_EQ(r.status, 200) << r.body.dump();
   BoundaryOptimizationOptions o;
@@ -391,7 +401,7 @@ TEST_F(ServeTest, BoundaryOptimizationEqualsTheLibraryAndReportsProgress) {
 }
 
 TEST_F(ServeTest, BadOptimizationRequestsGet400) {
-  start("cat_head.obj");
+  start();
   const char* const bad_lambda[] = {"{", R"({"energy": "fancy"})", R"({"energy": 3})", R"({"boundary": "natural"})",
                                     R"({"constraints": {"points": [{"vertex": 0, "uv": [0, 0]}]}})",
                                     R"({"max_iterations": 3})", R"({"moves": [[-1, 0, 0]]})"};
@@ -412,7 +422,7 @@ TEST_F(ServeTest, BadOptimizationRequestsGet400) {
 }
 
 TEST_F(ServeTest, BadRequestsGet400AndTheServerKeepsServing) {
-  start("cat_head.obj");
+  start();
   const std::string n = std::to_string(mesh_.V.rows());
   const char* const bad[] = {
       "{", "[]", "nonsense", R"({"method": "fancy"})", R"({"unknown": 1})", R"({"boundary": 3})",
@@ -441,7 +451,7 @@ TEST_F(ServeTest, BadRequestsGet400AndTheServerKeepsServing) {
 // ?uv=binary (what the page uses): the same UVs bit for bit as raw
 // little-endian float64, the rest of the answer in the X-Answer header.
 TEST_F(ServeTest, BinaryAnswerEqualsTheJsonAnswer) {
-  start("cat_head.obj");
+  start();
   const int v = mesh_.topology.boundary_loops[0][2];
   const std::string body = "{\"moves\": [[" + std::to_string(v) + ", 0.4, 0.1]]}";
   const Reply text = post(server(), body);
@@ -486,8 +496,22 @@ TEST_F(ServeTest, BinaryAnswerEqualsTheJsonAnswer) {
   EXPECT_TRUE(header.contains("angle_distortion_mean"));
 }
 
+// The same server on shared real meshes (skipped where ../shared is absent).
+class ServeCorpus : public ServeTest {};
+
+TEST_F(ServeCorpus, SharedMeshesEqualParam) {
+  REQUIRE_SHARED_MESHES();
+  serve(test::shared_mesh("cat_head.obj"));
+  const int v = mesh_.topology.boundary_loops[0][3];
+  expect_fixed_equals_param(json::object(), "", json::array({json::array({v, 0.55, 0.02})}));
+  serve(test::shared_mesh("camel_b.obj"));
+  const int w = mesh_.topology.boundary_loops[0][5];
+  expect_fixed_equals_param({{"method", "mixed"}, {"lambda", 0.3}, {"mu", 0.7}, {"boundary", "square"}},
+                            "--method mixed --lambda 0.3 --mu 0.7", json::array({json::array({w, 0.1, -0.05})}));
+}
+
 TEST_F(ServeTest, TwoSessionsAreIndependent) {
-  start("cat_head.obj");
+  start();
   const Reply base_a = post(server(), "{}", "tab-a");
   const Reply base_b = post(server(), R"({"boundary": "square"})", "tab-b");
   ASSERT_EQ(base_a.status, 200);

@@ -1,4 +1,4 @@
-// Whole assets (issue 13): a packed, overlap-free UV atlas of any triangle
+// Whole assets: a packed, overlap-free UV atlas of any triangle
 // mesh, closed, higher-genus or messy. The input is cleaned for the
 // computation only (zero-area faces set aside, non-manifold edges and vertices
 // split, inconsistently oriented edges cut, so every chart keeps its faces'
@@ -39,7 +39,7 @@ enum class ChartMethod {
 // "natural", "triangle", "fixed-boundary", "optimal-lambda", "optimized-boundary"
 const char* chart_method_name(ChartMethod m);
 
-// The map of every chart (issue 13 item 3): any map of `intrinsic param`.
+// The map of every chart: any map of `intrinsic param`.
 // The default is the natural conformal map. With a circle or square
 // boundary the chart's boundary is fixed (arc-length spacing) and `weights`
 // chooses the interior map; `optimizer` then optionally picks lambda or

@@ -108,7 +108,7 @@ StretchSummary summarize_stretch(const MatrixX3d& V, const MatrixX3i& F, const M
 // UV.row(FUV(f, c)) (an atlas's output, AtlasResult::F / FUV).
 StretchSummary summarize_stretch(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, const MatrixX3i& FUV);
 
-// ---- Atlases and other tools' outputs (issue 13 item 7) -------------------
+// ---- Atlases and other tools' outputs -------------------------------------
 // Per-corner UVs: FT (#F x 3) indexes rows of UV, PT (#UV x 3) is the 3D
 // position of each texture coordinate's corners (app/uv_mesh.h builds it from
 // OBJ `f v/vt`, triangle soups with split vertices included). Texture

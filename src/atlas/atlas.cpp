@@ -1,4 +1,4 @@
-// intrinsic::atlas (atlas.h; issue 13): clean -> segment -> flatten and check
+// intrinsic::atlas (atlas.h): clean -> segment -> flatten and check
 // every chart, splitting the invalid ones until each is valid (a single
 // non-degenerate triangle always is) -> pack -> per-corner UVs. Every chart is
 // flattened by the paper's natural conformal map (section 4.2) through the

@@ -1,4 +1,4 @@
-// Packing (issue 13, "packing"): every chart already has UV area = 3D area
+// Packing: every chart already has UV area = 3D area
 // (one texel density for all); each is turned to its smallest bounding box
 // (whose side lies on a convex hull edge). The charts are then packed by
 // rasterization, as xatlas does: each chart's texel mask (every texel its

@@ -4,7 +4,7 @@
 // chooses (a fixed circle or square boundary with any weights, optionally
 // optimal lambda or boundary optimization, paper section 5), scaled so its
 // UV area is its 3D area (docs/maths.md §2.4). Then the checks that make the chart safe to
-// ship (issue 13, "guaranteed valid"): a disk (one boundary loop, Euler
+// ship (every chart of an atlas must be valid): a disk (one boundary loop, Euler
 // characteristic 1), every triangle positively oriented in the input's corner
 // order, every interior vertex wound once (angle sum below 3 pi), and a
 // boundary that does not cross itself. A locally injective map of a disk

@@ -1,4 +1,4 @@
-// The user's seams (issue 13, `--seams FILE`; docs/maths.md §9.6): the one
+// The user's seams (`--seams FILE`; docs/maths.md §9.6): the one
 // check that each listed pair is an edge of a face (find_seam_problem, used
 // by atlas() and, for file and line, by the seams file reader) and the cut
 // itself (no face is glued across a seam for the computation); and the

@@ -1,4 +1,4 @@
-// Segmentation into charts (issue 13, "segmentation into disk charts"): region
+// Segmentation into disk charts (each one can then be flattened): region
 // growing from seeds over glued edges, a face joining a chart while its normal
 // stays within a cone around the chart's mean normal and never across a sharp
 // edge (the charts are then close to height fields, where the natural map of

@@ -12,18 +12,28 @@
 // shift-click-selected boundary range with falloff and compares again; then checks a
 // screenshot (angle distortion colouring on) is not blank; then switches to
 // the natural map, drags a pin and compares with `intrinsic param --pin`.
-// Usage: node browser_test.mjs PATH/TO/intrinsic MESH
+// Usage: node browser_test.mjs PATH/TO/intrinsic MESH|generated
+// "generated": a wavy patch written by `intrinsic generate` (nothing needed
+// beside the repository). A MESH whose folder is absent (../shared beside a
+// clone alone) exits 77, which ctest reports as Skipped.
 import { spawn, execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 
-const [binary, mesh] = process.argv.slice(2);
-if (!binary || !mesh) {
-  console.error('usage: node browser_test.mjs INTRINSIC MESH');
+const [binary, meshArg] = process.argv.slice(2);
+if (!binary || !meshArg) {
+  console.error('usage: node browser_test.mjs INTRINSIC MESH|generated');
   process.exit(2);
 }
+if (meshArg !== 'generated' && !fs.existsSync(path.dirname(meshArg))) {
+  console.log(`SKIPPED: ${path.dirname(meshArg)} is absent (the shared meshes are not beside this clone)`);
+  process.exit(77);
+}
+const meshDir = meshArg === 'generated' ? fs.mkdtempSync(path.join(os.tmpdir(), 'intrinsic-browser-mesh-')) : null;
+const mesh = meshDir ? path.join(meshDir, 'wave.obj') : meshArg;
+if (meshDir) execFileSync(binary, ['generate', 'wave', '--rings', '8', '-o', mesh]);
 
 // Starts the server on a free port; resolves with the URL it prints
 // (http://127.0.0.1:PORT/?token=HEX: the page's first load needs the token).
@@ -306,6 +316,7 @@ async function main() {
     if (browser) await browser.close();
     child.kill('SIGKILL');
     fs.rmSync(dir, { recursive: true, force: true });
+    if (meshDir) fs.rmSync(meshDir, { recursive: true, force: true });
   }
 }
 
