@@ -171,77 +171,78 @@ def read_uv_obj(path):
             np.array(F, int).reshape(-1, 3), np.array(FT, int).reshape(-1, 3))
 
 
-def seam_length(V, F, FT):
-    """3D length of the edges where the UVs are cut: for each input edge, every
-    distinct UV edge beyond the first (a manifold seam edge counts once)."""
+def seam_length(V, VT, F, FT):
+    """3D length of the edges where the UVs are cut: each edge, named by its two
+    3D positions (vertices split in the input meet), counts once for every
+    distinct pair of UVs along it beyond the first (a manifold seam once)."""
+    P, T = [tuple(p) for p in V.tolist()], [tuple(t) for t in VT.tolist()]
     uv_edges = {}
     for face, tface in zip(F.tolist(), FT.tolist()):
         for k in range(3):
-            a, b, ta, tb = face[k], face[(k + 1) % 3], tface[k], tface[(k + 1) % 3]
+            a, b, ta, tb = P[face[k]], P[face[(k + 1) % 3]], T[tface[k]], T[tface[(k + 1) % 3]]
             if a == b:
                 continue
-            key = (a, b) if a < b else (b, a)
-            uv_edges.setdefault(key, set()).add((ta, tb) if a < b else (tb, ta))
-    total = 0.0
-    for (a, b), s in uv_edges.items():
-        if len(s) > 1:
-            total += (len(s) - 1) * float(np.linalg.norm(V[a] - V[b]))
-    return total
+            key, uv = ((a, b), (ta, tb)) if a < b else ((b, a), (tb, ta))
+            uv_edges.setdefault(key, set()).add(uv)
+    return sum((len(s) - 1) * math.dist(a, b) for (a, b), s in uv_edges.items() if len(s) > 1)
 
 
 def weighted_percentile(values, weights, p):
-    """The smallest value whose area-weighted cumulative share reaches p (0..1)."""
+    """The smallest value whose area-weighted cumulative share reaches p (0..1),
+    to 1e-12 of the total (so a share met exactly is met despite rounding)."""
     order = np.argsort(values, kind="stable")
     cum = np.cumsum(weights[order])
-    i = int(np.searchsorted(cum, p * cum[-1], side="left"))
+    i = int(np.searchsorted(cum, (p - 1e-12) * cum[-1], side="left"))
     return float(values[order][min(i, len(values) - 1)])
 
 
 def singular_values(V, VT, F, FT):
-    """Per face: 3D area and the singular values s1 >= s2 of the Jacobian from
-    the triangle's own 2D frame (x along edge 01, y in its plane) to UV, with
-    the UVs scaled so the total UV area is the total 3D area."""
-    p0, e1, e2 = V[F[:, 0]], V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]
+    """Per face not degenerate in 3D: its 3D area and the singular values
+    s1 >= s2 of the Jacobian from the triangle's own 2D frame (x along edge 01,
+    y in its plane) to UV, with the UVs scaled so the total UV area is the
+    total 3D area. A face is degenerate when twice its area is at most 1e-12
+    of its longest edge squared (make_mesh's test); a collapsed UV face
+    (zero area) gets s2 = 0."""
+    e1, e2 = V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]
+    twice = np.linalg.norm(np.cross(e1, e2), axis=1)
+    longest = np.max([np.einsum("ij,ij->i", e, e) for e in (e1, e2, e2 - e1)], axis=0)
+    ok = twice > 1e-12 * longest
+    e1, e2, twice = e1[ok], e2[ok], twice[ok]
     a = np.linalg.norm(e1, axis=1)  # frame: q1 = (a, 0), q2 = (b, c)
-    n = np.cross(e1, e2)
-    c = np.linalg.norm(n, axis=1) / np.where(a > 0, a, 1)
-    b = np.einsum("ij,ij->i", e1, e2) / np.where(a > 0, a, 1)
-    area3 = 0.5 * a * c
-    u0, d1, d2 = VT[FT[:, 0]], VT[FT[:, 1]] - VT[FT[:, 0]], VT[FT[:, 2]] - VT[FT[:, 0]]
+    b, c = np.einsum("ij,ij->i", e1, e2) / a, twice / a
+    d1, d2 = VT[FT[ok, 1]] - VT[FT[ok, 0]], VT[FT[ok, 2]] - VT[FT[ok, 0]]
     area_uv = 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
-    scale = math.sqrt(area3.sum() / area_uv.sum())
-    ok = area3 > 0
-    a, b, c, d1, d2 = a[ok], b[ok], c[ok], d1[ok] * scale, d2[ok] * scale
-    # J = [d1 d2] [[a b] [0 c]]^-1: columns d1/a and (d2 - d1 b/a)/c.
-    j1 = d1 / a[:, None]
-    j2 = (d2 - j1 * b[:, None]) / c[:, None]
+    scale = math.sqrt(0.5 * twice.sum() / area_uv.sum())
+    # J = scale [d1 d2] [[a b] [0 c]]^-1: columns d1/a and (d2 - d1 b/a)/c.
+    j1 = scale * d1 / a[:, None]
+    j2 = (scale * d2 - j1 * b[:, None]) / c[:, None]
     # Closed-form 2x2 singular values: s1 = |E,H| + |F,G|, s2 = |det| / s1.
     E, Fh = (j1[:, 0] + j2[:, 1]) / 2, (j1[:, 0] - j2[:, 1]) / 2
     G, H = (j1[:, 1] + j2[:, 0]) / 2, (j1[:, 1] - j2[:, 0]) / 2
     s1 = np.hypot(E, H) + np.hypot(Fh, G)
     det = np.abs(j1[:, 0] * j2[:, 1] - j1[:, 1] * j2[:, 0])
     s2 = np.where(s1 > 0, det / np.where(s1 > 0, s1, 1), 0.0)
-    return area3[ok], s1, s2
+    return 0.5 * twice, s1, s2
 
 
 def uv_measures(obj):
     """The stretch and seam measures of an atlas OBJ, by the names `metrics`
-    gives them; a UV-degenerate face has infinite stretch."""
+    gives them. A collapsed UV face has infinite stretch: it counts in the
+    percentiles and maxima and is left out of the means (as `metrics` does)."""
     V, VT, F, FT = read_uv_obj(obj)
     with np.errstate(divide="ignore", invalid="ignore"):
         A, s1, s2 = singular_values(V, VT, F, FT)
-        inv1, inv2 = 1 / s1, 1 / s2
+        inv1, inv2 = 1 / s1, np.where(s2 > 0, 1 / s2, np.inf)
         face = np.maximum(s1, inv2)
-        aniso = s1 / s2
-    W = A.sum()
-    r = {"sander_l2": math.sqrt(float((A * (inv1 ** 2 + inv2 ** 2) / 2).sum() / W)),
-         "sander_linf": float(inv2.max()),
-         "face_stretch_max": float(face.max()),
-         "anisotropy_mean": float((A * aniso).sum() / W)}
+        fin = np.isfinite(face)
+        l2 = (A[fin] * (inv1[fin] ** 2 + inv2[fin] ** 2) / 2).sum() / A[fin].sum()
+        aniso = (A[fin] * s1[fin] / s2[fin]).sum() / A[fin].sum()
+    r = {"sander_l2": math.sqrt(float(l2)), "sander_linf": float(inv2.max()), "face_stretch_max": float(face.max()),
+         "anisotropy_mean": float(aniso)}
     for p in (50, 95, 99):
         r[f"face_stretch_p{p}"] = weighted_percentile(face, A, p / 100)
-    r["seam_length"] = seam_length(V, F, FT)
-    r["area_3d"] = float(W)
+    r["seam_length"] = seam_length(V, VT, F, FT)
+    r["area_3d"] = float(A.sum())
     return r
 
 
@@ -250,7 +251,8 @@ def cross_check(name, ours, theirs, keys):
     for k in keys:
         if k not in theirs:
             continue
-        a, b = float(ours[k]), float(theirs[k])
+        a = float(ours[k])
+        b = math.inf if theirs[k] is None else float(theirs[k])  # metrics writes an infinite figure as null
         if a == b or (math.isfinite(a) and math.isfinite(b) and abs(a - b) <= CROSS_CHECK_TOLERANCE * max(abs(a), abs(b))):
             continue
         print(f"warning: {name}: {k} is {b!r} by `intrinsic metrics`, {a!r} by atlas_compare.py", file=sys.stderr,
