@@ -20,9 +20,11 @@ way, twice where the two overlap:
   L2 = sqrt(sum A (1/s1^2 + 1/s2^2)/2 / sum A) and L-inf = max 1/s2 (the
   stretch of the UV -> surface map, Sander et al. 2001); per-face stretch
   max(s1, 1/s2) with area-weighted percentiles; anisotropy s1/s2,
-  area-weighted mean; seam length (3D length of the cut edges). When
-  `metrics` reports the same keys, the two must agree to 1e-6 relative or a
-  warning is printed.
+  area-weighted mean; seam length (3D length of the cut edges). Conventions
+  as `metrics` (docs/maths.md 9.8): faces degenerate in 3D are left out; a
+  face collapsed in UV is infinitely stretched, counts in the percentiles
+  and maxima, not in the means. When `metrics` reports the same keys, the
+  two must agree to 1e-6 relative or a warning is printed.
 
 Table columns per tool: charts, utilization, seam length / sqrt(3D area),
 Sander L2, p95 and max face stretch, mean anisotropy, flipped (folded or

@@ -15,7 +15,7 @@ stretched, sheared or varying square sizes are distortion, cuts through the
 pattern are seams.
 
 Usage: bench/atlas_pictures.py [--cli build/intrinsic] [--out docs/images]
-          [--blender blender] [--node node] [--size 560] [--squares 32] [MESH ...]
+          [--blender blender] [--node node] [--size 480] [--squares 32] [MESH ...]
 Without meshes: truck, spot, screwdriver (shared assets) and a generated
 torus (`intrinsic generate torus`). Writes OUT/atlas-compare-NAME.png.
 """
@@ -31,9 +31,12 @@ from PIL import Image, ImageDraw, ImageFont
 import atlas_compare as ac
 
 TOOL_TITLES = {"intrinsic": "intrinsic atlas", "xatlas": "xatlas (xatlasjs)", "blender": "Blender 3.4 Smart UV Project"}
-# A view per default mesh that shows its features (azimuth, elevation about
-# world z); anything else gets the renderer's automatic view.
-VIEWS = {"truck": "auto", "spot": "auto", "screwdriver": "auto", "torus": "auto"}
+# A view per default mesh (azimuth, elevation about world z; at elevation 90
+# world y is up, for truck's y-up model). Never "auto" for a comparison: the
+# automatic view follows the mean normal of each tool's OBJ, and an atlas
+# that re-orients faces (ours on truck) would be seen from elsewhere.
+# Anything else gets the renderer's fallback three-quarter view.
+VIEWS = {"truck": "0,90", "spot": "-30,25", "screwdriver": "-30,25", "torus": "-30,25"}
 FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
 
 
@@ -80,7 +83,8 @@ def compose(name, columns, size, path):
             d.line([(x, 0), (x, H)], fill=(180, 180, 180), width=1)
     d.text((10, H - 24), f"{name}: checker on the surface (top), UV layout, a colour per chart, overlaps red (bottom)",
            fill=(80, 80, 80), font=text_f)
-    page.save(path, optimize=True)
+    # 256 colours keep a picture of the repository's docs under ~0.5 MB.
+    page.quantize(256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE).save(path, optimize=True)
 
 
 def picture(args, mesh, name, tools, tmp):
@@ -92,7 +96,7 @@ def picture(args, mesh, name, tools, tmp):
         ims = [None, None]
         if obj is not None:
             ims = [render(args.cli, obj, os.path.join(tmp, f"{tool}-{m}.png"), m, args.size, args.squares,
-                          VIEWS.get(name, "auto")) for m in ("checker", "layout")]
+                          VIEWS.get(name, "-30,25")) for m in ("checker", "layout")]
         columns.append((TOOL_TITLES[tool], caption(r, why), *ims))
     out = os.path.join(args.out, f"atlas-compare-{name}.png")
     compose(name, columns, args.size, out)
@@ -116,7 +120,7 @@ def main():
     ap.add_argument("--blender", default=shutil.which("blender") or "")
     ap.add_argument("--padding", type=float, default=2)
     ap.add_argument("--resolution", type=int, default=1024)
-    ap.add_argument("--size", type=int, default=560, help="panel side in pixels")
+    ap.add_argument("--size", type=int, default=480, help="panel side in pixels")
     ap.add_argument("--squares", type=int, default=32, help="checker squares across each atlas's UV square")
     args = ap.parse_args()
     tools = ["xatlas"] + (["blender"] if args.blender else [])
