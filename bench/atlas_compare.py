@@ -32,7 +32,7 @@ collapsed triangles), overlapping triangles, seconds. On our row,
 "dominates" says whether ours is at least as good as xatlas on every count
 of DOMINANCE (below), or which counts it loses. A summary line follows:
 medians of the ratios ours / xatlas (charts, seam, utilization) and on how
-many meshes ours dominates.
+many meshes ours dominates; another for Blender, by the same rule.
 
 Times: computation only, median of --runs runs. Ours: the report's
 clean+segment+flatten+merge+pack (no read or write); xatlas: addMesh and
@@ -401,7 +401,7 @@ def check(args, meshes):
                   f"{ours['utilization']:.4f} vs {x['utilization']:.4f}, Sander L2 {ours['sander_l2']:.4f}",
                   flush=True)
             for d, k in failed(CHECK_CRITERIA, ours, x):
-                failures.append(f"{name}: not {d} (ours {ours[k]:.6g}, xatlasjs {x[k]:.6g})")
+                failures.append(f"{name}: fails \"{d}\" (ours {ours[k]:.6g}, xatlasjs {x[k]:.6g})")
     for f in failures:
         print("FAIL " + f, flush=True)
     return 1 if failures else 0
@@ -429,15 +429,17 @@ def print_row(cells, markdown):
         print(f"{cells[0]:>16} {cells[1]:>9} " + " ".join(f"{c:>10}" for c in cells[2:]), flush=True)
 
 
-def print_summary(results, markdown):
-    """Medians of ours / xatlas and the dominance count over the meshes both ran."""
-    both = [(r["intrinsic"][0], r["xatlas"][0]) for r in results.values() if r.get("xatlas", (None,))[0]]
+def print_summary(results, markdown, peer="xatlas"):
+    """Medians of ours / peer and the dominance count over the meshes both ran."""
+    both = [(r["intrinsic"][0], r[peer][0]) for r in results.values() if r.get(peer, (None,))[0]]
     if not both:
         return
+
     def med(k):
         return statistics.median(o[k] / x[k] for o, x in both if x[k] > 0)
+
     wins = sum(1 for o, x in both if not failed(DOMINANCE, o, x))
-    line = (f"ours / xatlas, medians over {len(both)} meshes: charts {med('charts'):.2f}, "
+    line = (f"ours / {peer}, medians over {len(both)} meshes: charts {med('charts'):.2f}, "
             f"seam {med('seam_length'):.2f}, utilization {med('utilization'):.2f}; "
             f"ours dominates on {wins} of {len(both)}")
     print(("\n" if markdown else "") + line, flush=True)
@@ -478,7 +480,8 @@ def main():
             for tool, (r, why) in rows.items():
                 cells = [name, tool] + ([f.format(r[c]) for c, f in COLUMNS] if r else [why] + [""] * (len(COLUMNS) - 1))
                 print_row(cells + [dom if tool == "intrinsic" else ""], args.markdown)
-    print_summary(results, args.markdown)
+    for peer in tools:
+        print_summary(results, args.markdown, peer)
     if args.json:
         with open(args.json, "w") as f:
             json.dump({m: {t: (r if r else {"skipped": why}) for t, (r, why) in rows.items()}
