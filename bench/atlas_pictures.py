@@ -80,8 +80,8 @@ def compose(name, columns, size, path):
             if im is not None:
                 page.paste(im.resize((size, size)) if im.size != (size, size) else im, (x, head + j * size))
         if i:
-            d.line([(x, 0), (x, H)], fill=(180, 180, 180), width=1)
-    d.text((10, H - 24), f"{name}: checker on the surface (top), UV layout, a colour per chart, overlaps red (bottom)",
+            d.line([(x, 0), (x, H - 30)], fill=(180, 180, 180), width=1)
+    d.text((10, H - 24), f"{name}: checker on the surface (top), UV layout, a colour per chart, folded or overlapping triangles red (bottom)",
            fill=(80, 80, 80), font=text_f)
     # 256 colours keep a picture of the repository's docs under ~0.5 MB.
     page.quantize(256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE).save(path, optimize=True)
