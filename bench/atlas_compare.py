@@ -321,9 +321,12 @@ def run_peer(command, obj, runs, parse_seconds):
         except OSError as e:
             return None, f"{command[0]} could not be run: {e}"
         if p.returncode != 0 or not os.path.exists(obj):
-            lines = (p.stderr.strip() or p.stdout.strip()).splitlines() or ["?"]
+            lines = (p.stderr.strip() or p.stdout.strip()).splitlines() or [f"exit code {p.returncode}, no OBJ"]
             return None, "failed: " + next((l for l in lines if "Error" in l), lines[-1]).strip()
-        times.append(parse_seconds(p.stdout))
+        try:
+            times.append(parse_seconds(p.stdout))
+        except (StopIteration, ValueError, KeyError, IndexError):
+            return None, "failed: no timing in its output"
     return statistics.median(times), ""
 
 
