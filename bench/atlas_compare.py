@@ -23,8 +23,9 @@ way, twice where the two overlap:
   area-weighted mean; seam length (3D length of the cut edges). Conventions
   as `metrics` (docs/maths.md 9.8): faces degenerate in 3D are left out; a
   face collapsed in UV is infinitely stretched, counts in the percentiles
-  and maxima, not in the means. When `metrics` reports the same keys, the
-  two must agree to 1e-6 relative or a warning is printed.
+  and maxima, not in the UV scale nor the means. When `metrics` reports
+  the same keys, the two must agree to 1e-6 relative or a warning is
+  printed.
 
 Table columns per tool: charts, utilization, seam length / sqrt(3D area),
 Sander L2, p95 and max face stretch, mean anisotropy, flipped (folded or
@@ -202,9 +203,10 @@ def singular_values(V, VT, F, FT):
     """Per face not degenerate in 3D: its 3D area and the singular values
     s1 >= s2 of the Jacobian from the triangle's own 2D frame (x along edge 01,
     y in its plane) to UV, with the UVs scaled so the total UV area is the
-    total 3D area. A face is degenerate when twice its area is at most 1e-12
-    of its longest edge squared (make_mesh's test); a collapsed UV face
-    (zero area) gets s2 = 0."""
+    total 3D area over the faces not collapsed. A face is degenerate when
+    twice its area is at most 1e-12 of its longest edge squared (make_mesh's
+    test); a collapsed UV face (zero area or a non-finite UV) gets s2 = 0.
+    As docs/maths.md 9.8 defines them for `metrics`."""
     e1, e2 = V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]
     twice = np.linalg.norm(np.cross(e1, e2), axis=1)
     longest = np.max([np.einsum("ij,ij->i", e, e) for e in (e1, e2, e2 - e1)], axis=0)
@@ -214,7 +216,8 @@ def singular_values(V, VT, F, FT):
     b, c = np.einsum("ij,ij->i", e1, e2) / a, twice / a
     d1, d2 = VT[FT[ok, 1]] - VT[FT[ok, 0]], VT[FT[ok, 2]] - VT[FT[ok, 0]]
     area_uv = 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
-    scale = math.sqrt(0.5 * twice.sum() / area_uv.sum())
+    counted = np.isfinite(area_uv) & (area_uv > 0)  # collapsed faces are left out of the scale
+    scale = math.sqrt(0.5 * twice[counted].sum() / area_uv[counted].sum()) if counted.any() else math.inf
     # J = scale [d1 d2] [[a b] [0 c]]^-1: columns d1/a and (d2 - d1 b/a)/c.
     j1 = scale * d1 / a[:, None]
     j2 = (scale * d2 - j1 * b[:, None]) / c[:, None]
@@ -223,8 +226,8 @@ def singular_values(V, VT, F, FT):
     G, H = (j1[:, 1] + j2[:, 0]) / 2, (j1[:, 1] - j2[:, 0]) / 2
     s1 = np.hypot(E, H) + np.hypot(Fh, G)
     det = np.abs(j1[:, 0] * j2[:, 1] - j1[:, 1] * j2[:, 0])
-    s2 = np.where(s1 > 0, det / np.where(s1 > 0, s1, 1), 0.0)
-    return 0.5 * twice, s1, s2
+    s2 = np.where(counted & (s1 > 0), det / np.where(s1 > 0, s1, 1), 0.0)
+    return 0.5 * twice, s1, np.nan_to_num(s2, nan=0.0)
 
 
 def uv_measures(obj):
@@ -232,6 +235,8 @@ def uv_measures(obj):
     gives them. A collapsed UV face has infinite stretch: it counts in the
     percentiles and maxima and is left out of the means (as `metrics` does)."""
     V, VT, F, FT = read_uv_obj(obj)
+    if len(F) == 0:
+        return {k: 1.0 for k in STRETCH_KEYS} | {"seam_length": 0.0, "area_3d": 0.0}
     with np.errstate(divide="ignore", invalid="ignore"):
         A, s1, s2 = singular_values(V, VT, F, FT)
         inv1, inv2 = 1 / s1, np.where(s2 > 0, 1 / s2, np.inf)
