@@ -2,7 +2,7 @@
 // local web server. GET / serves the page (web/, embedded at build time),
 // GET /api/mesh the mesh, POST /api/solve a map, POST /api/optimal_lambda
 // and POST /api/optimize_boundary the optimizations of paper section 5
-// (README "intrinsic serve"). No file is read after the mesh. Every request
+// (docs/cli.md "intrinsic serve"). No file is read after the mesh. Every request
 // is answered: errors become HTTP 400/409/413/422/500 with {"error": message}.
 // Before any route, the guard (serve/request_guard.h) refuses, in plain
 // text, foreign Host headers (400), requests from other pages (Origin,

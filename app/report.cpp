@@ -1,4 +1,4 @@
-// JSON report construction and writing (README "Report").
+// JSON report construction and writing (docs/formats.md "Report").
 #include "report.h"
 
 #include "intrinsic/io.h"

@@ -1,5 +1,5 @@
-// The JSON reports of `param` and `metrics` (keys listed in README
-// "Report"), built from the library's result structs only: what was solved
+// The JSON reports of `param` and `metrics` (keys listed in
+// docs/formats.md "Report"), built from the library's result structs only: what was solved
 // is read from the result, never rebuilt from the command line. The only
 // other inputs are names the results cannot know (file paths).
 #pragma once

@@ -1,4 +1,4 @@
-// Requests to the server's API (README "intrinsic serve"): the solve queue
+// Requests to the server's API (docs/cli.md "intrinsic serve"): the solve queue
 // with at most one /api/solve in flight (the newest waiting body is sent
 // next), and plain JSON posts for the other endpoints.
 import { $, natural, session, state } from './state.js';
@@ -26,7 +26,7 @@ export function requestBody(method = $('method').value) {
 
 // The API's refusals are {"error": message}; the server's guard answers in
 // plain text (a wrong or missing token: the server was restarted, so its URL
-// changed; see README "intrinsic serve"). The same-origin fetches carry the
+// changed; see docs/cli.md "intrinsic serve"). The same-origin fetches carry the
 // token in the cookie the page's first load got.
 export async function failure(res) {
   const text = await res.text();

@@ -1,4 +1,4 @@
-// Who may talk to `intrinsic serve` (README "intrinsic serve"): the checks
+// Who may talk to `intrinsic serve` (docs/cli.md "intrinsic serve"): the checks
 // every request passes before any route runs, as trusted local servers
 // (Jupyter, Vite) do. A web page the user visits can reach a loopback server:
 // through DNS rebinding (its own name resolving to 127.0.0.1, so the Host

@@ -86,7 +86,7 @@ void register_render(py::module_& m) {
         "boundary_loops, loops, components, ...), flipped_triangles, collapsed_triangles, min/mean/max of\n"
         "angle_distortion, area_distortion, stretch_l2, stretch_linf, edge_length_distortion, and\n"
         "edge_length_energy, area_energy, distortion_normalisation, stretch (Sander's L2 and per-face\n"
-        "stretch percentiles, docs/maths.md 9.8; README 'Report'). Faces are taken as\n"
+        "stretch percentiles, docs/maths.md 9.8; docs/formats.md 'Report'). Faces are taken as\n"
         "listed (not reoriented) so flipped triangles are counted.");
   m.def("render", &render, py::arg("V"), py::arg("F"), py::arg("uv"), py::arg("mode") = "checker",
         py::arg("size") = py::make_tuple(1024, 1024), py::arg("view") = "auto", py::arg("path") = py::none(),
