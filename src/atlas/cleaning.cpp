@@ -200,26 +200,30 @@ MeshData weld_vertices(const MeshData& input, double relative_distance, int& wel
   const int nv = static_cast<int>(input.V.rows());
   std::vector<int> rep(nv), next(nv, -1);
   std::unordered_map<std::uint64_t, int> head;  // cell -> first kept vertex in it (a list through `next`)
-  auto cell_of = [&](int v) {
-    std::array<std::int64_t, 3> c;
-    for (int k = 0; k < 3; ++k) c[k] = static_cast<std::int64_t>(std::floor((input.V(v, k) - lo[k]) / d));
-    return c;
-  };
+  head.reserve(static_cast<size_t>(nv));  // no rehashing: most vertices open a cell of their own
+  // Cells of side 2d: the ball of radius d around a point meets its own
+  // cell and, per axis, the neighbour on the side of the nearer face, so 8
+  // cells hold every candidate (27 with cells of side d).
+  const double side = 2 * d;
   auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
     // Colliding cells only add candidates: distances decide.
     return static_cast<std::uint64_t>(x) * 73856093u ^ static_cast<std::uint64_t>(y) * 19349663u ^
            static_cast<std::uint64_t>(z) * 83492791u;
   };
+  std::array<std::int64_t, 3> c, step;
   for (int v = 0; v < nv; ++v) {
-    const auto c = cell_of(v);
+    for (int k = 0; k < 3; ++k) {
+      const double x = (input.V(v, k) - lo[k]) / side;
+      c[k] = static_cast<std::int64_t>(std::floor(x));
+      step[k] = x - c[k] < 0.5 ? -1 : 1;
+    }
     int best = v;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const auto it = head.find(key(c[0] + dx, c[1] + dy, c[2] + dz));
-          for (int u = it == head.end() ? -1 : it->second; u >= 0; u = next[u])
-            if (u < best && (input.V.row(u) - input.V.row(v)).norm() <= d) best = u;
-        }
+    for (int corner = 0; corner < 8; ++corner) {
+      const auto it = head.find(key(c[0] + (corner & 1 ? step[0] : 0), c[1] + (corner & 2 ? step[1] : 0),
+                                    c[2] + (corner & 4 ? step[2] : 0)));
+      for (int u = it == head.end() ? -1 : it->second; u >= 0; u = next[u])
+        if (u < best && (input.V.row(u) - input.V.row(v)).norm() <= d) best = u;
+    }
     rep[v] = best;
     if (best != v) {
       ++welded;
