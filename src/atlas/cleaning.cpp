@@ -37,14 +37,16 @@ void check_input(const MeshData& in) {
     if (!in.V.row(v).allFinite()) throw_input(where + "vertex " + std::to_string(v) + " has a non-finite coordinate");
 }
 
-// Normals, areas and the degenerate test (make_mesh's: twice the area against the longest edge squared).
+// Normals, areas, centroids and the degenerate test (make_mesh's: twice the area against the longest edge squared).
 void face_geometry(const MeshData& in, double ratio, CleanMesh& m) {
   const int nf = static_cast<int>(in.F.rows());
   m.good.assign(nf, 0);
   m.normal.assign(nf, Eigen::Vector3d::Zero());
   m.area.assign(nf, 0);
+  m.centroid.resize(nf);
   for (int f = 0; f < nf; ++f) {
     const Eigen::Vector3d x0 = in.V.row(in.F(f, 0)), x1 = in.V.row(in.F(f, 1)), x2 = in.V.row(in.F(f, 2));
+    m.centroid[f] = (x0 + x1 + x2) / 3;
     const Eigen::Vector3d n = (x1 - x0).cross(x2 - x0);
     const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
     const bool repeated = in.F(f, 0) == in.F(f, 1) || in.F(f, 1) == in.F(f, 2) || in.F(f, 0) == in.F(f, 2);
