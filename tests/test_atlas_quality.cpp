@@ -14,6 +14,7 @@
 
 #include "intrinsic/atlas.h"
 #include "intrinsic/generate.h"
+#include "intrinsic/metrics.h"
 #include "independent_stretch.h"
 
 namespace intrinsic {
@@ -164,6 +165,46 @@ TEST(AtlasQuality, WeldedAndUnweldedExportsGiveTheSameCharts) {
   off.weld = 0;
   off.min_chart_faces = 0;
   EXPECT_EQ(atlas(soup, off).charts.size(), static_cast<size_t>(welded.F.rows()));
+}
+
+// A flat square of n x n cells, each cut into two triangles, with a slit of
+// one edge from the middle of the bottom side inward: the bottom middle
+// vertex is duplicated (weld off), the right cell taking the copy. The slit's
+// two sides lie on each other, so the natural map of the whole square (the
+// identity) touches itself along the slit: its tip's faces cover a full turn.
+MeshData slit_square(int n) {
+  MeshData m;
+  m.V.resize((n + 1) * (n + 1) + 1, 3);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.V.row(j * (n + 1) + i) << double(i) / n, double(j) / n, 0;
+  const int b = n / 2, copy = (n + 1) * (n + 1);
+  m.V.row(copy) = m.V.row(b);
+  m.F.resize(2 * n * n, 3);
+  int f = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      int a = j * (n + 1) + i, c = a + 1, d = a + n + 1, e = d + 1;
+      if (j == 0 && i == n / 2 && a == b) a = copy;  // the right cell of the slit
+      m.F.row(f++) << a, c, e;
+      m.F.row(f++) << a, e, d;
+    }
+  return m;
+}
+
+TEST(AtlasQuality, ChartsNeverTouchThemselvesAtASlit) {
+  const MeshData m = slit_square(8);
+  AtlasOptions o;
+  o.weld = 0;
+  const AtlasResult r = atlas(m, o);
+  MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
+  for (int f = 0; f < r.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(r.F(f, c));
+  const UvAtlasMetrics um = uv_atlas_metrics(PT, r.FUV, r.UV);  // exact overlap test
+  EXPECT_EQ(um.overlapping_triangles, 0);
+  EXPECT_EQ(um.flipped_triangles, 0);
+  EXPECT_GE(r.charts.size(), 2u);
+  // Welded, the slit closes and the square is one flat chart.
+  EXPECT_EQ(atlas(m).charts.size(), 1u);
 }
 
 }  // namespace

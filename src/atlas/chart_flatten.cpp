@@ -75,7 +75,8 @@ bool boundary_crosses(const std::vector<int>& loop, const MatrixX2d& UV) {
   return false;
 }
 
-// Flipped or collapsed triangles (input corner order), and interior vertices wound more than once.
+// Flipped or collapsed triangles (input corner order), interior vertices
+// wound more than once, boundary vertices wound a full turn.
 bool folds(const Mesh& mesh, const MatrixX2d& UV, double degenerate_ratio, int& flipped) {
   std::vector<double> angle_sum(mesh.V.rows(), 0.0);
   flipped = 0;
@@ -91,8 +92,14 @@ bool folds(const Mesh& mesh, const MatrixX2d& UV, double degenerate_ratio, int& 
     }
   }
   if (flipped > 0) return true;
-  for (int v = 0; v < mesh.V.rows(); ++v)
+  // An interior vertex wound twice; a boundary vertex whose faces cover a
+  // full turn or more (its two boundary edges fold onto each other: the
+  // chart touches itself there, which the crossing test of non-adjacent
+  // boundary segments does not see).
+  for (int v = 0; v < mesh.V.rows(); ++v) {
     if (!mesh.topology.is_boundary[v] && angle_sum[v] > 3 * M_PI) return true;
+    if (mesh.topology.is_boundary[v] && angle_sum[v] > 2 * M_PI * (1 - 1e-9)) return true;
+  }
   return false;
 }
 
