@@ -62,7 +62,7 @@ void register_atlas(CLI::App& app, Runner& run) {
   CLI::App* cmd = app.add_subcommand(
       "atlas", "UV atlas of any mesh (closed, higher genus, several components, non-manifold): disk charts, "
                "each flattened by the natural conformal map, packed into [0,1]^2 without flips or overlaps");
-  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
+  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, .stl, optionally .gz)")->required();
   cmd->add_option("-o,--output", a->output,
                   "Output mesh (.obj: input vertices, one vt per atlas UV, f v/vt; "
                   ".glb: glTF 2.0 binary, vertices split at seams)")

@@ -144,7 +144,7 @@ int run_compare(const CompareArgs& a) {
 void register_compare(CLI::App& app, Runner& run) {
   auto a = std::make_shared<CompareArgs>();
   CLI::App* cmd = app.add_subcommand("compare", "One picture comparing methods: checker render and figures per method");
-  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
+  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, .stl, optionally .gz)")->required();
   cmd->add_option("-o,--output", a->output, "Output picture (.png)")->required();
   cmd->add_option("--methods", a->methods, "Comma-separated: tutte, floater, conformal, authalic, natural")
       ->capture_default_str();

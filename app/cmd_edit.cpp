@@ -181,7 +181,7 @@ void register_edit(CLI::App& app, Runner& run) {
   auto a = std::make_shared<EditArgs>();
   CLI::App* cmd = app.add_subcommand(
       "edit", "Move boundary vertices of a fixed-boundary map through precomputed impulse responses");
-  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
+  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, .stl, optionally .gz)")->required();
   cmd->add_option("--boundary", a->boundary, "Base boundary FILE with lines 'vertex u v'")->required();
   cmd->add_option("-o,--output", a->output, "Output mesh (.obj or .ply); numbered _1, _2, ... for several moves")
       ->required();

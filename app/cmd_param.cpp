@@ -96,7 +96,7 @@ int run_param(const ParamArgs& a) {
 }
 
 void add_solve_options(CLI::App& cmd, const std::shared_ptr<ParamArgs>& a) {
-  cmd.add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
+  cmd.add_option("input", a->input, "Input mesh (.obj, .off, .ply, .stl, optionally .gz)")->required();
   cmd.add_option("-o,--output", a->output, "Output mesh with UVs (.obj or .ply)")->required();
   add_weight_options(cmd, a->weights);
   cmd.add_option("--boundary", a->boundary,

@@ -336,7 +336,7 @@ int run_serve(const ServeArgs& a) {
 void register_serve(CLI::App& app, Runner& run) {
   auto a = std::make_shared<ServeArgs>();
   CLI::App* cmd = app.add_subcommand("serve", "Interactive editor in the browser: a local web server");
-  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
+  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, .stl, optionally .gz)")->required();
   cmd->add_option("--port", a->port, "Port (0: any free port)")->capture_default_str();
   cmd->add_option("--host", a->host, "Address to bind (127.0.0.1: this machine only; 0.0.0.0: the network, with a warning)")
       ->capture_default_str();

@@ -67,6 +67,41 @@ def ply_binary(V, F, big=False, uv=False):
     return b
 
 
+def stl_ascii(V, F, name="seed", eol="\n"):
+    s = "solid %s%s" % (name, eol)
+    for f in F:
+        s += "facet normal 0 0 1%souter loop%s" % (eol, eol)
+        s += "".join("vertex %g %g %g%s" % (V[i] + (eol,)) for i in f)
+        s += "endloop%sendfacet%s" % (eol, eol)
+    return s + "endsolid %s%s" % (name, eol)
+
+
+def stl_binary(V, F, header=b"seed"):
+    b = header.ljust(80, b"\0") + struct.pack("<I", len(F))
+    for f in F:
+        b += struct.pack("<3f", 0, 0, 1)
+        for i in f:
+            b += struct.pack("<3f", *V[i])
+        b += b"\0\0"
+    return b
+
+
+def stl_seeds():
+    return {
+        "square_ascii.stl": stl_ascii(SQUARE_V, SQUARE_F),
+        "grid_crlf.stl": stl_ascii(GRID_V, GRID_F, eol="\r\n"),
+        "two_solids.stl": stl_ascii(SQUARE_V, SQUARE_F[:2], "a") + stl_ascii(SQUARE_V, SQUARE_F[2:], "b"),
+        "ring_binary.stl": stl_binary(RING_V, RING_F),
+        "square_binary_solid_header.stl": stl_binary(SQUARE_V, SQUARE_F, b"solid square"),
+        "truncated_binary.stl": stl_binary(GRID_V, GRID_F)[:-17],
+        "huge_count.stl": stl_binary(SQUARE_V, SQUARE_F)[:80] + struct.pack("<I", 4000000000) + b"\0" * 60,
+        "nan_binary.stl": stl_binary([(float("nan"), 0, 0)] + SQUARE_V[1:], SQUARE_F),
+        "truncated_ascii.stl": stl_ascii(GRID_V, GRID_F)[:-40],
+        "inf_ascii.stl": stl_ascii(SQUARE_V, SQUARE_F).replace("vertex 1 0 0", "vertex 1 inf 0"),
+        "four_vertices.stl": stl_ascii(SQUARE_V, SQUARE_F).replace("endloop", "vertex 0 0 0\nendloop", 1),
+    }
+
+
 def write(target, name, data):
     d = os.path.join(HERE, "corpus", target)
     os.makedirs(d, exist_ok=True)
@@ -119,6 +154,8 @@ def main():
         write("off", k, v)
     for k, v in p.items():
         write("ply", k, v)
+    for k, v in stl_seeds().items():
+        write("stl", k, v)
     write("gzip", "square.obj.gz", gz(o["square.obj"]))
     write("gzip", "ring.off.gz", gz(f["ring.off"]))
     write("gzip", "square_le.ply.gz", gz(p["square_le.ply"]))

@@ -754,8 +754,8 @@ TEST(IoRead, MissingFileAndUnknownFormat) {
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Input) << e.what();
   }
-  intrinsic::test::expect_error([] { intrinsic::read_mesh_from_memory("solid x\n", "m.stl"); }, ErrorKind::Usage,
-                                "unknown input format '.stl' for m.stl");
+  intrinsic::test::expect_error([] { intrinsic::read_mesh_from_memory("3DS garbage", "m.3ds"); }, ErrorKind::Usage,
+                                "unknown input format '.3ds' for m.3ds");
 }
 
 // Random damage to valid files of every format must give an Error, never a

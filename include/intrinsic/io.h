@@ -1,7 +1,7 @@
 // Reading and writing meshes: OBJ, OFF, PLY (ASCII and binary, either
-// endianness), each optionally gzip-compressed (detected from the bytes, not
-// the name). Writers never leave a partial file: they write a temporary file in
-// the target directory and rename it into place on success.
+// endianness) and STL (read only, ASCII and binary, equal corners welded), each
+// optionally gzip-compressed (detected from the bytes, not the name). Writers
+// never leave a partial file: temporary file in the target directory, renamed.
 #pragma once
 
 #include <cstdint>
@@ -24,8 +24,8 @@ struct ReadOptions {
 // binary files) on anything malformed.
 MeshData read_mesh(const std::string& path, const ReadOptions& options = {});
 // Same, from bytes already in memory (used by fuzz targets and tests); the
-// format is taken from `name`'s extension (".obj", ".off", ".ply", with an
-// optional ".gz") and gzip is also recognised from the magic bytes.
+// format is taken from `name`'s extension (".obj", ".off", ".ply", ".stl",
+// optionally ".gz") and gzip is also recognised from the magic bytes.
 MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name,
                                const ReadOptions& options = {});
 

@@ -30,6 +30,7 @@ struct MeshBuilder {
 MeshData read_obj(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt);
 MeshData read_off(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt);
 MeshData read_ply(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt);
+MeshData read_stl(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt);
 
 // Limits shared by readers: the options' caps, and the int range of MatrixX3i.
 std::int64_t vertex_limit(const ReadOptions& opt);

@@ -342,6 +342,12 @@ void read_property_line(TextScanner& s, std::vector<Element>& elements) {
 }
 
 // Reads the header lines after "ply" up to and including "end_header".
+// Lines that start with no keyword of the format are skipped, as the common
+// readers do: old exporters wrote free text there (Blender 2.47: "Created by
+// Blender3D 247 - www.blender3d.com"), and nothing after it depends on such a
+// line. ReadOptions has no channel for warnings, so they are skipped
+// silently. A malformed 'format', 'element' or 'property' line is still
+// refused, since the body cannot be read without it.
 Header read_header(TextScanner& s) {
   Header h;
   while (true) {
@@ -358,7 +364,6 @@ Header read_header(TextScanner& s) {
     if (kw == "format") read_format_line(s, h);
     else if (kw == "element") read_element_line(s, h.elements);
     else if (kw == "property") read_property_line(s, h.elements);
-    else s.fail("unexpected header line starting with " + quote_token(kw));
     s.next_line();
   }
   return h;

@@ -29,44 +29,50 @@ std::string extension_of(const std::string& name) {
   return lower(name.substr(dot));
 }
 
+// The format named by a file name ("a.stl.gz" -> ".stl").
+std::string format_of(const std::string& name) {
+  const std::string ext = extension_of(name);
+  return ext == ".gz" ? extension_of(name.substr(0, name.size() - 3)) : ext;
+}
+
 // Large enough for any mesh the options admit (a text vertex or face line
-// rarely exceeds ~100 bytes), small enough that a bomb cannot take the machine.
-std::uint64_t inflate_cap(const ReadOptions& opt) {
+// rarely exceeds ~100 bytes; an ASCII STL facet, which spells out its three
+// corners on seven lines, ~300), small enough that a bomb cannot take the
+// machine.
+std::uint64_t inflate_cap(const ReadOptions& opt, const std::string& format) {
   const std::uint64_t cap = 8ull << 30;
-  const std::uint64_t derived = static_cast<std::uint64_t>(std::max<std::int64_t>(opt.max_vertices, 0)) * 128 +
-                                static_cast<std::uint64_t>(std::max<std::int64_t>(opt.max_faces, 0)) * 128 +
-                                (1ull << 20);
+  const std::uint64_t nv = static_cast<std::uint64_t>(std::max<std::int64_t>(opt.max_vertices, 0));
+  const std::uint64_t nf = static_cast<std::uint64_t>(std::max<std::int64_t>(opt.max_faces, 0));
+  const std::uint64_t derived = format == ".stl" ? nf * 400 + (1ull << 20) : nv * 128 + nf * 128 + (1ull << 20);
   return std::min(cap, derived);
 }
 
 }  // namespace
 
 MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
-  std::string ext = extension_of(name);
-  std::string inner = name;
-  if (ext == ".gz") {
-    inner = name.substr(0, name.size() - 3);
-    ext = extension_of(inner);
-  }
-  if (ext != ".obj" && ext != ".off" && ext != ".ply") {
-    throw_usage("unknown input format '" + ext + "' for " + name + " (use .obj, .off or .ply, optionally .gz)");
+  const std::string ext = format_of(name);
+  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl") {
+    throw_usage("unknown input format '" + ext + "' for " + name +
+                " (use .obj, .off, .ply or .stl, optionally .gz)");
   }
   std::string inflated;
   const std::string* data = &bytes;
   if (io::is_gzip(bytes)) {
-    inflated = io::gunzip(bytes, name, inflate_cap(options));
+    inflated = io::gunzip(bytes, name, inflate_cap(options, ext));
     data = &inflated;
   }
   const char* begin = data->data();
   std::size_t size = data->size();
   // Editors on Windows may prepend a UTF-8 byte order mark; left in place it
-  // would hide the first statement of the file.
-  if (ext != ".ply" && size >= 3 && std::memcmp(begin, "\xEF\xBB\xBF", 3) == 0) {
+  // would hide the first statement of the file. (PLY and STL may be binary:
+  // those bytes could be data; the STL reader looks for it itself.)
+  if (ext != ".ply" && ext != ".stl" && size >= 3 && std::memcmp(begin, "\xEF\xBB\xBF", 3) == 0) {
     begin += 3;
     size -= 3;
   }
   if (ext == ".obj") return io::read_obj(begin, size, name, options);
   if (ext == ".off") return io::read_off(begin, size, name, options);
+  if (ext == ".stl") return io::read_stl(begin, size, name, options);
   return io::read_ply(data->data(), data->size(), name, options);
 }
 
@@ -80,7 +86,7 @@ MeshData read_mesh(const std::string& path, const ReadOptions& options) {
     if (S_ISDIR(st.st_mode)) throw_input("cannot read " + path + ": it is a directory");
     // A file larger than any mesh within the limits could be (the same bound
     // as for inflated gzip data) is refused before it is read into memory.
-    const std::uint64_t max_bytes = inflate_cap(options);
+    const std::uint64_t max_bytes = inflate_cap(options, format_of(path));
     auto too_big = [&] {
       char mib[32];
       std::snprintf(mib, sizeof mib, "%.1f MiB", static_cast<double>(max_bytes) / (1 << 20));
