@@ -151,7 +151,32 @@ def load(path):
         return parse_obj(read_mesh_text(path))
     if base.endswith(".off"):
         return parse_off(read_mesh_text(path))
+    if base.lower().endswith(".stl"):
+        return parse_stl(path)
     return None  # PLY (igea): over xatlasjs's 16-bit limit anyway
+
+
+def parse_stl(path):
+    """STL, ASCII or binary, corners welded when their float32 coordinates are equal (as our reader)."""
+    import struct
+    opener = gzip.open if path.endswith(".gz") else open
+    with opener(path, "rb") as f:
+        data = f.read()
+    corners = []
+    if len(data) >= 84 and len(data) == 84 + 50 * struct.unpack_from("<I", data, 80)[0]:
+        for k in range(struct.unpack_from("<I", data, 80)[0]):
+            c = struct.unpack_from("<12f", data, 84 + 50 * k)
+            corners.extend([tuple(c[3:6]), tuple(c[6:9]), tuple(c[9:12])])
+    else:
+        for line in data.decode("ascii", "replace").splitlines():
+            t = line.split()
+            if t and t[0].lower() == "vertex":
+                corners.append(tuple(struct.unpack("<3f", struct.pack("<3f", *map(float, t[1:4])))))
+    index, V = {}, []
+    ids = [index.setdefault(c, len(index)) for c in corners]
+    V = [list(c) for c in index]
+    F = [ids[i:i + 3] for i in range(0, len(ids) - len(ids) % 3, 3)]
+    return V, F
 
 
 def read_uv_obj(path):

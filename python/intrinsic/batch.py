@@ -39,7 +39,7 @@ import time
 from pathlib import Path
 from typing import Any, Dict, List, Optional
 
-MESH_SUFFIXES = (".obj", ".off", ".ply")
+MESH_SUFFIXES = (".obj", ".off", ".ply", ".stl")
 KINDS = {"UsageError": "usage", "InputError": "input", "NumericalError": "numerical", "OutputError": "output"}
 INTERNAL_EXIT_CODE = 5  # the command line's code for an internal error
 MANIFEST = "manifest.json"
