@@ -1,0 +1,60 @@
+// Packing, step 3 (bitmap.h): occupancy bits and the first-fit scan.
+#include "atlas/packing/bitmap.h"
+
+#include <algorithm>
+
+namespace intrinsic::detail::packing {
+
+Bitmap::Bitmap(int side) : side_(side), words_((side + 63) / 64), bits_(static_cast<size_t>(words_) * side, 0) {}
+
+int Bitmap::last_taken(int y, int a, int b) const {
+  const std::uint64_t* r = row(y);
+  for (int x = b - 1; x >= a;) {
+    const int w = x >> 6;
+    std::uint64_t word = r[w];
+    const int hi = x & 63;
+    if (hi < 63) word &= (std::uint64_t{2} << hi) - 1;
+    const int lo_bit = std::max(a, w << 6) - (w << 6);
+    word &= ~((std::uint64_t{1} << lo_bit) - 1);
+    if (word) return (w << 6) + 63 - __builtin_clzll(word);
+    x = (w << 6) - 1;
+  }
+  return -1;
+}
+
+void Bitmap::take(const Mask& m, int x, int y) {
+  for (int r = 0; r < m.h; ++r) {
+    std::uint64_t* bits = &bits_[static_cast<size_t>(y + r) * words_];
+    for (const auto& s : m.own[r])
+      for (int t = x + s.first; t < x + s.second; ++t) bits[t >> 6] |= std::uint64_t{1} << (t & 63);
+  }
+}
+
+bool Bitmap::fits(const Mask& m, int x, int y) const {
+  for (int r = 0; r < m.h; ++r)
+    for (const auto& s : m.rows[r])
+      if (last_taken(y + r, x + s.first, x + s.second) >= 0) return false;
+  return true;
+}
+
+int Bitmap::first_fit(const Mask& m, int y, int x0, int limit) const {
+  int hot = 0;  // the row that last met a taken texel: tried first, it usually does again
+  for (int x = x0; x + m.w <= limit;) {
+    int next = -1;
+    for (int i = 0; i < m.h && next < 0; ++i) {
+      const int r = (hot + i) % m.h;
+      for (const auto& s : m.rows[r]) {
+        const int t = last_taken(y + r, x + s.first, x + s.second);
+        if (t >= 0) {
+          next = t - s.first + 1, hot = r;
+          break;
+        }
+      }
+    }
+    if (next < 0) return x;
+    x = next;
+  }
+  return -1;
+}
+
+}  // namespace intrinsic::detail::packing
