@@ -20,6 +20,10 @@
 #include "atlas/packing/scale_search.h"
 
 namespace intrinsic::detail {
+namespace packing {
+extern double kBoxFill;
+extern int kBoxSide;
+}
 namespace {
 
 // `area` over the square on the longer side of the smallest box of the points UV.
@@ -65,6 +69,8 @@ double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, 
   if (const char* e = std::getenv("PACK_ANGLES")) poses.extra_angles = std::atoi(e);  // TEMP experiment knob
   if (const char* e = std::getenv("PACK_SHARE")) poses.min_share = std::atof(e);  // TEMP
   if (const char* e = std::getenv("PACK_FILL")) poses.max_fill = std::atof(e);  // TEMP
+  if (const char* e = std::getenv("PACK_BOXFILL")) packing::kBoxFill = std::atof(e);  // TEMP
+  if (const char* e = std::getenv("PACK_BOXSIDE")) packing::kBoxSide = std::atoi(e);  // TEMP
   for (size_t c = 0; c < charts.size(); ++c) {
     pack[c].F = &charts[c].mesh.data.F;
     for (double angle : packing::pose_angles(charts[c], area, poses))

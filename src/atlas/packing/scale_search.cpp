@@ -8,13 +8,34 @@
 
 namespace intrinsic::detail::packing {
 
+double kBoxFill = 0.9;  // TEMP experiment knobs
+int kBoxSide = 6;
+
+namespace {
+
+// Masks placed as their whole frame (BoxCursors in placement.cpp): small
+// frames and frames their dilated texels nearly fill.
+bool as_box(const Mask& m, int pad) {
+  if (m.box) return false;
+  long dilated = 0;
+  for (const Spans& r : m.rows)
+    for (const auto& s : r) dilated += s.second - s.first;
+  const double fill = static_cast<double>(dilated) / (static_cast<double>(m.w) * m.h);
+  return fill >= kBoxFill || std::max(m.w, m.h) <= 2 * pad + kBoxSide;
+}
+
+}  // namespace
+
 std::vector<std::vector<Mask>> all_masks(const std::vector<PackChart>& charts, double scale, int pad) {
   std::vector<std::vector<Mask>> masks(charts.size());
   parallel_for(static_cast<std::int64_t>(charts.size()), [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t c = b; c < e; ++c)
       for (const MatrixX2d& UV : charts[c].poses) {
         std::vector<Mask> turns = quarter_turn_masks(*charts[c].F, UV, scale, pad);
-        for (Mask& m : turns) masks[c].push_back(std::move(m));
+        for (Mask& m : turns) {
+          if (as_box(m, pad)) fill_frame(m);
+          masks[c].push_back(std::move(m));
+        }
       }
   }, 8);
   return masks;
@@ -30,29 +51,48 @@ bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int
 
 namespace {
 
-// The largest scale at which every chart fits: shrink until one fits, then
-// bisect between the fitting and the failing scale.
-Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side, int pad) {
-  Layout fit;
-  while (true) {
-    double hi = side / std::sqrt(area), lo = 0;
-    for (double s = hi * 0.85; s > hi * 1e-4; s *= 0.8) {
-      if (try_scale(charts, s, side, pad, fit)) {
-        lo = s;
-        break;
-      }
-      hi = s;
+// The layouts tried so far: the one with the largest scale / extent (the
+// utilization is the charts' area times its square), the largest scale that
+// fitted and the smallest that did not.
+struct Search {
+  const std::vector<PackChart>& charts;
+  int side, pad;
+  Layout best;
+  double lo = 0, hi = INFINITY;
+  int packings = 0;
+  bool fits(double scale) {
+    Layout l;
+    ++packings;
+    if (!try_scale(charts, scale, side, pad, l)) {
+      hi = std::min(hi, scale);
+      return false;
     }
-    if (lo > 0) {
-      for (int i = 0; i < 7 && hi > lo * 1.01; ++i) {
-        const double mid = std::sqrt(lo * hi);
-        Layout l;
-        if (try_scale(charts, mid, side, pad, l))
-          lo = mid, fit = std::move(l);
-        else
-          hi = mid;
-      }
-      return fit;
+    lo = std::max(lo, scale);
+    if (best.extent == 0 || l.scale / l.extent > best.scale / best.extent) best = std::move(l);
+    return true;
+  }
+  // From `start` down by `step` until a scale fits (false: none down to 1e-4 of it).
+  bool bracket(double start, double step) {
+    for (double s = start; s > start * 1e-4; s *= step)
+      if (fits(s)) return true;
+    return false;
+  }
+  // Bisects [lo, hi] (geometric mean) until hi / lo is within `ratio`.
+  void bisect(double ratio, int steps) {
+    for (int i = 0; i < steps && hi > lo * ratio; ++i) fits(std::sqrt(lo * hi));
+  }
+};
+
+// Brackets from the largest scale the area allows, then bisects to
+// `ratio`; the side doubles when even tiny scales fail (more charts than
+// the bitmap holds with their padding).
+Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side, int pad, double ratio) {
+  while (true) {
+    Search s{charts, side, pad, {}};
+    if (s.bracket(0.85 * side / std::sqrt(area), 0.8)) {
+      if (s.hi == INFINITY) s.hi = 0.85 * side / std::sqrt(area) / 0.8;
+      s.bisect(ratio, 12);
+      return std::move(s.best);
     }
     side *= 2;
   }
@@ -60,21 +100,25 @@ Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side
 
 }  // namespace
 
-// The bisection on a bitmap of half the size first (a quarter of the
-// texels to place), then the full bitmap from just above that scale down in
-// small steps: a few full-size packings instead of a dozen.
+// The bisection on a bitmap of half the size first (a quarter of the texels
+// to place, twice the tolerance), then on the full bitmap around twice that
+// scale: a few full-size packings instead of a dozen.
 Layout search_layout(const std::vector<PackChart>& charts, double area, int& side, int pad) {
-  if (side < 256) return bisect_scale(charts, area, side, pad);
+  if (side < 256) return bisect_scale(charts, area, side, pad, 1.005);
   int half = side / 2;
-  const Layout coarse = bisect_scale(charts, area, half, (pad + 1) / 2);
+  const Layout coarse = bisect_scale(charts, area, half, (pad + 1) / 2, 1.02);
   if (half == side / 2) {  // the half bitmap held them: its scale, doubled, is close
-    double s = coarse.scale * 2 * 1.03;
-    for (int i = 0; i < 6; ++i, s *= 0.985) {
-      Layout l;
-      if (try_scale(charts, s, side, pad, l)) return l;
+    Search s{charts, side, pad, {}};
+    const double guess = 2 * coarse.scale;
+    if (s.fits(guess * 1.02)) {
+      s.hi = guess * 1.06;
+    } else if (!s.bracket(guess * 0.99, 0.97)) {
+      return bisect_scale(charts, area, side, pad, 1.005);
     }
+    s.bisect(1.005, 4);
+    return std::move(s.best);
   }
-  return bisect_scale(charts, area, side, pad);
+  return bisect_scale(charts, area, side, pad, 1.005);
 }
 
 }  // namespace intrinsic::detail::packing

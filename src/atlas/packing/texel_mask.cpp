@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace intrinsic::detail::packing {
 
@@ -59,6 +60,46 @@ Spans merged(Spans window) {
   return out;
 }
 
+// The largest rectangle of dilated texels: per row, the column heights of
+// dilated texels ending there, and the largest rectangle under that
+// histogram (a stack of rising heights).
+std::array<int, 4> largest_rectangle(const Mask& m) {
+  std::array<int, 4> best{0, 0, 0, 0};
+  std::vector<int> height(m.w + 1, 0), stack;
+  for (int y = 0; y < m.h; ++y) {
+    std::vector<int> row(m.w, 0);
+    for (const auto& s : m.rows[y]) std::fill(row.begin() + s.first, row.begin() + s.second, 1);
+    for (int x = 0; x < m.w; ++x) height[x] = row[x] ? height[x] + 1 : 0;
+    stack.clear();
+    for (int x = 0; x <= m.w; ++x) {
+      while (!stack.empty() && height[stack.back()] >= height[x]) {
+        const int hgt = height[stack.back()];
+        stack.pop_back();
+        const int left = stack.empty() ? 0 : stack.back() + 1;
+        if (static_cast<long>(hgt) * (x - left) > static_cast<long>(best[2]) * best[3])
+          best = {left, y - hgt + 1, x - left, hgt};
+      }
+      stack.push_back(x);
+    }
+  }
+  return best;
+}
+
+// The widest span per row, the rows by decreasing width, whether the
+// dilated texels fill the frame, and the largest box inside them.
+void index_rows(Mask& m) {
+  m.widest.assign(m.h, 0);
+  m.box = true;
+  for (int y = 0; y < m.h; ++y) {
+    for (const auto& s : m.rows[y]) m.widest[y] = std::max(m.widest[y], s.second - s.first);
+    m.box = m.box && m.widest[y] == m.w;
+  }
+  m.by_width.resize(m.h);
+  std::iota(m.by_width.begin(), m.by_width.end(), 0);
+  std::stable_sort(m.by_width.begin(), m.by_width.end(), [&](int a, int b) { return m.widest[a] > m.widest[b]; });
+  m.inner = m.box ? std::array<int, 4>{0, 0, m.w, m.h} : largest_rectangle(m);
+}
+
 }  // namespace
 
 std::vector<char> rasterize(const MatrixX3i& F, const MatrixX2d& UV, double scale) {
@@ -108,7 +149,13 @@ Mask mask_of(const std::vector<char>& grid, int w, int h, int pad) {
       for (const auto& s : m.own[k]) window.emplace_back(std::max(0, s.first - pad), std::min(m.w, s.second + pad));
     m.rows[y] = merged(window);
   }
+  index_rows(m);
   return m;
+}
+
+void fill_frame(Mask& m) {
+  for (Spans& r : m.rows) r.assign(1, {0, m.w});
+  index_rows(m);
 }
 
 std::vector<Mask> quarter_turn_masks(const MatrixX3i& F, const MatrixX2d& UV, double scale, int pad) {

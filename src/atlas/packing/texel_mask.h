@@ -8,6 +8,7 @@
 // (spans), so a test against the bitmap skips whole runs at once.
 #pragma once
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -26,6 +27,12 @@ struct Mask {
   std::vector<Spans> rows;  // dilated, per row of the frame
   std::vector<Spans> own;   // undilated, per row of the frame
   long texels = 0;          // undilated
+  std::vector<int> widest;  // per row of the frame: its widest dilated span
+  std::vector<int> by_width;  // the frame's rows, widest span first
+  bool box = false;         // the dilated texels fill the frame
+  // The largest rectangle of dilated texels (corner x, y in the frame; w, h):
+  // wherever the mask fits, this box fits too (placement.cpp's cursors).
+  std::array<int, 4> inner{0, 0, 0, 0};
 };
 
 // The chart's size in whole texels at `scale` (UV with its corner at the origin).
@@ -42,6 +49,12 @@ std::vector<char> quarter_turn(const std::vector<char>& grid, int w, int h);
 // The mask of a covered-texel grid (w x h, row-major): the frame, the spans,
 // and the dilation by `pad`.
 Mask mask_of(const std::vector<char>& grid, int w, int h, int pad);
+
+// The mask with its dilated texels grown to the whole frame. Small charts
+// are placed as such boxes: the few corner texels given up cost little, and
+// a box that does not fit somewhere tells that no larger box does
+// (placement.cpp's search cursors).
+void fill_frame(Mask& m);
 
 // The chart (UV, corner at the origin) at `scale` in its four quarter turns,
 // counter-clockwise: masks[k] is the first turned k times. The grid turns
