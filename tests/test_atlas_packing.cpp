@@ -147,10 +147,11 @@ TEST(AtlasPackingLayout, NoTwoPaddedMasksMeetByBruteForce) {
     for (double angle : pose_angles(charts[c], 1.0, PoseOptions{})) pack[c].poses.push_back(turned_to(charts[c].UV, angle));
   }
   const int pad = 2, side = 160;
-  const std::vector<std::vector<Mask>> masks = all_masks(pack, 6.0, pad);
+  std::vector<std::vector<Mask>> masks;
+  add_masks(pack, 6.0, pad, 0, 16, masks);
   std::vector<Placement> at;
   int extent = 0;
-  ASSERT_TRUE(place_all(masks, side, at, extent));
+  ASSERT_TRUE(place_all(masks, side, 16, at, extent));
   std::vector<Texels> own(charts.size()), padded(charts.size());
   for (size_t c = 0; c < charts.size(); ++c) {
     const Mask& m = masks[c][at[c].pose];

@@ -13,17 +13,12 @@
 // masks let small charts sit in the concave parts of large ones.
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "atlas/atlas_internal.h"
 #include "atlas/packing/chart_pose.h"
 #include "atlas/packing/scale_search.h"
 
 namespace intrinsic::detail {
-namespace packing {
-extern double kBoxFill;
-extern int kBoxSide;
-}
 namespace {
 
 // `area` over the square on the longer side of the smallest box of the points UV.
@@ -65,12 +60,7 @@ double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, 
     area += chart.summary.area_3d;
   }
   std::vector<packing::PackChart> pack(charts.size());
-  packing::PoseOptions poses;
-  if (const char* e = std::getenv("PACK_ANGLES")) poses.extra_angles = std::atoi(e);  // TEMP experiment knob
-  if (const char* e = std::getenv("PACK_SHARE")) poses.min_share = std::atof(e);  // TEMP
-  if (const char* e = std::getenv("PACK_FILL")) poses.max_fill = std::atof(e);  // TEMP
-  if (const char* e = std::getenv("PACK_BOXFILL")) packing::kBoxFill = std::atof(e);  // TEMP
-  if (const char* e = std::getenv("PACK_BOXSIDE")) packing::kBoxSide = std::atoi(e);  // TEMP
+  const packing::PoseOptions poses;
   for (size_t c = 0; c < charts.size(); ++c) {
     pack[c].F = &charts[c].mesh.data.F;
     for (double angle : packing::pose_angles(charts[c], area, poses))

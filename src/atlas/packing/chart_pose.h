@@ -33,7 +33,7 @@ void orient_chart(FlatChart& chart);
 // fills at most `max_fill` of their box get more than 0: tiny charts gain
 // nothing from finer angles, and each angle costs a rasterization.
 struct PoseOptions {
-  double min_share = 0.002;
+  double min_share = 0.005;
   double max_fill = 0.75;
   int extra_angles = 3;  // evenly between 0 and 90 degrees (3: 22.5, 45, 67.5)
 };

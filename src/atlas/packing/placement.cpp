@@ -4,9 +4,6 @@
 #include <algorithm>
 #include <climits>
 #include <numeric>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 
 namespace intrinsic::detail::packing {
 
@@ -43,14 +40,14 @@ long first_inside(const Bitmap& bm, const Mask& m, long from, int extent) {
 // extent every position was refused, so the search looks only at positions
 // reaching past it: a strip along its right side and the rows above it. No
 // position can give less than `floor`: the search stops at it.
-Placement best_placement(const Bitmap& bm, const std::vector<Mask>& poses, int extent, int& best_extent) {
+Placement best_placement(const Bitmap& bm, const std::vector<Mask>& poses, size_t n, int extent, int& best_extent) {
   Placement best;
   best_extent = INT_MAX;
   int smallest = INT_MAX;
-  for (const Mask& m : poses) smallest = std::min(smallest, std::max(m.w, m.h));
+  for (size_t p = 0; p < n; ++p) smallest = std::min(smallest, std::max(poses[p].w, poses[p].h));
   const int floor = std::max(extent, smallest);
   const int side = bm.side();
-  for (size_t p = 0; p < poses.size() && best_extent > floor; ++p) {
+  for (size_t p = 0; p < n && best_extent > floor; ++p) {
     const Mask& m = poses[p];
     for (int y = 0; y + m.h <= side && std::max(extent, y + m.h) < best_extent && best_extent > floor; ++y) {
       if (!bm.may_fit(m, y)) continue;
@@ -115,8 +112,8 @@ class BoxCursors {
 
 // A chart inside the current extent: the first pose that fits, at its first
 // position, each searched from where its inner box first fits.
-Placement first_inside_all(const Bitmap& bm, const std::vector<Mask>& poses, int extent, BoxCursors& cursors) {
-  for (size_t p = 0; p < poses.size(); ++p) {
+Placement first_inside_all(const Bitmap& bm, const std::vector<Mask>& poses, size_t n, int extent, BoxCursors& cursors) {
+  for (size_t p = 0; p < n; ++p) {
     const long from = cursors.start(bm, poses[p], extent);
     if (from < 0) continue;
     const long pos = first_inside(bm, poses[p], from, extent);
@@ -127,38 +124,27 @@ Placement first_inside_all(const Bitmap& bm, const std::vector<Mask>& poses, int
 
 }  // namespace
 
-bool place_all(const std::vector<std::vector<Mask>>& masks, int side, std::vector<Placement>& at, int& extent) {
+bool place_all(const std::vector<std::vector<Mask>>& masks, int side, int poses, std::vector<Placement>& at,
+               int& extent) {
+  // More covered texels than the bitmap has: no need to try.
+  long texels = 0;
+  for (const std::vector<Mask>& m : masks) texels += m[0].texels;
+  if (texels > static_cast<long>(side) * side) return false;
   Bitmap bm(side);
   at.assign(masks.size(), {});
-  static const bool fixed = std::getenv("PACK_FIXED");  // TEMP
-  static const int step = std::getenv("PACK_STEP") ? std::atoi(std::getenv("PACK_STEP")) : 0;  // TEMP
-  extent = fixed ? side : 0;
+  extent = 0;
   BoxCursors cursors;
-  static const bool dbg = std::getenv("PACK_DEBUG");  // TEMP
-  double tb = 0, tf = 0; int nb = 0, nf = 0, ng = 0;
   for (int c : placement_order(masks)) {
-    auto t0 = std::chrono::steady_clock::now();
-    Placement p = first_inside_all(bm, masks[c], extent, cursors);
-    auto t1 = std::chrono::steady_clock::now();
-    tb += std::chrono::duration<double>(t1 - t0).count(); nb += p.x >= 0;
+    const size_t n = std::min<size_t>(poses, masks[c].size());
+    Placement p = first_inside_all(bm, masks[c], n, extent, cursors);
     int e = extent;
-    if (p.x < 0) { p = best_placement(bm, masks[c], extent, e); nf++; ng += e != extent;
-    tf += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(); }
-    if (p.x < 0) { if (dbg) fprintf(stderr, "side %d FAIL box %d %.3f full %d %.3f grow %d\n", side, nb, tb, nf, tf, ng); return false; }
+    if (p.x < 0) p = best_placement(bm, masks[c], n, extent, e);
+    if (p.x < 0) return false;
     bm.take(masks[c][p.pose], p.x, p.y);
     at[c] = p;
-    if (e != extent) {
-      cursors.reset();  // positions past the old extent are open now
-      if (step > 0) e = std::min(side, std::max(e, extent + side / step));
-    }
+    if (e != extent) cursors.reset();  // positions past the old extent are open now
     extent = e;
   }
-  if (fixed || step > 0) {
-    extent = 0;
-    for (size_t c = 0; c < masks.size(); ++c)
-      extent = std::max({extent, at[c].x + masks[c][at[c].pose].w, at[c].y + masks[c][at[c].pose].h});
-  }
-  if (dbg) fprintf(stderr, "side %d ok box %d %.3f full %d %.3f grow %d\n", side, nb, tb, nf, tf, ng);
   return true;
 }
 

@@ -22,8 +22,10 @@ struct Placement {
 // then the chart index, so the order is total and the layout deterministic).
 std::vector<int> placement_order(const std::vector<std::vector<Mask>>& masks);
 
-// Places every chart (masks[c]: its poses) on a `side`-texel bitmap; false
-// when one does not fit. `extent`: the side of the square the layout needs.
-bool place_all(const std::vector<std::vector<Mask>>& masks, int side, std::vector<Placement>& at, int& extent);
+// Places every chart (masks[c]: its poses, of which the first `poses` are
+// tried) on a `side`-texel bitmap; false when one does not fit. `extent`:
+// the side of the square the layout needs.
+bool place_all(const std::vector<std::vector<Mask>>& masks, int side, int poses, std::vector<Placement>& at,
+               int& extent);
 
 }  // namespace intrinsic::detail::packing

@@ -1,20 +1,22 @@
 // Packing, step 5 (scale_search.h): the search for the scale.
 #include "atlas/packing/scale_search.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
 #include "util/parallel_for.h"
 
 namespace intrinsic::detail::packing {
-
-double kBoxFill = 0.9;  // TEMP experiment knobs
-int kBoxSide = 6;
-
 namespace {
 
-// Masks placed as their whole frame (BoxCursors in placement.cpp): small
-// frames and frames their dilated texels nearly fill.
+// Masks placed as their whole frame (BoxCursors in placement.cpp): frames
+// their dilated texels fill to at least kBoxFill, and small frames (at most
+// kBoxSide texels more than the padding on both sides), where the corners
+// given up are a few texels.
+constexpr double kBoxFill = 0.9;
+constexpr int kBoxSide = 6;
+
 bool as_box(const Mask& m, int pad) {
   if (m.box) return false;
   long dilated = 0;
@@ -26,25 +28,33 @@ bool as_box(const Mask& m, int pad) {
 
 }  // namespace
 
-std::vector<std::vector<Mask>> all_masks(const std::vector<PackChart>& charts, double scale, int pad) {
-  std::vector<std::vector<Mask>> masks(charts.size());
+void add_masks(const std::vector<PackChart>& charts, double scale, int pad, size_t first, size_t last,
+               std::vector<std::vector<Mask>>& masks) {
+  masks.resize(charts.size());
   parallel_for(static_cast<std::int64_t>(charts.size()), [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t c = b; c < e; ++c)
-      for (const MatrixX2d& UV : charts[c].poses) {
-        std::vector<Mask> turns = quarter_turn_masks(*charts[c].F, UV, scale, pad);
+      for (size_t a = first; a < std::min(last, charts[c].poses.size()); ++a) {
+        std::vector<Mask> turns = quarter_turn_masks(*charts[c].F, charts[c].poses[a], scale, pad);
         for (Mask& m : turns) {
           if (as_box(m, pad)) fill_frame(m);
           masks[c].push_back(std::move(m));
         }
       }
   }, 8);
-  return masks;
 }
 
-bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, Layout& out) {
+bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, bool angles, Layout& out) {
+  std::vector<std::vector<Mask>> masks;
+  add_masks(charts, scale, pad, 0, 1, masks);
   Layout l;
   l.scale = scale;
-  if (!place_all(all_masks(charts, scale, pad), side, l.at, l.extent)) return false;
+  if (!place_all(masks, side, 4, l.at, l.extent)) {
+    size_t n = 1;
+    for (const PackChart& c : charts) n = std::max(n, angles ? c.poses.size() : 1);
+    if (n == 1) return false;
+    add_masks(charts, scale, pad, 1, n, masks);  // rasterized only now: most scales never need them
+    if (!place_all(masks, side, static_cast<int>(4 * n), l.at, l.extent)) return false;
+  }
   out = std::move(l);
   return true;
 }
@@ -57,13 +67,14 @@ namespace {
 struct Search {
   const std::vector<PackChart>& charts;
   int side, pad;
+  bool angles;  // try_scale's second attempt with every pose angle
   Layout best;
   double lo = 0, hi = INFINITY;
   int packings = 0;
   bool fits(double scale) {
     Layout l;
     ++packings;
-    if (!try_scale(charts, scale, side, pad, l)) {
+    if (!try_scale(charts, scale, side, pad, angles, l)) {
       hi = std::min(hi, scale);
       return false;
     }
@@ -86,9 +97,9 @@ struct Search {
 // Brackets from the largest scale the area allows, then bisects to
 // `ratio`; the side doubles when even tiny scales fail (more charts than
 // the bitmap holds with their padding).
-Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side, int pad, double ratio) {
+Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side, int pad, double ratio, bool angles) {
   while (true) {
-    Search s{charts, side, pad, {}};
+    Search s{charts, side, pad, angles, {}};
     if (s.bracket(0.85 * side / std::sqrt(area), 0.8)) {
       if (s.hi == INFINITY) s.hi = 0.85 * side / std::sqrt(area) / 0.8;
       s.bisect(ratio, 12);
@@ -104,21 +115,21 @@ Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side
 // to place, twice the tolerance), then on the full bitmap around twice that
 // scale: a few full-size packings instead of a dozen.
 Layout search_layout(const std::vector<PackChart>& charts, double area, int& side, int pad) {
-  if (side < 256) return bisect_scale(charts, area, side, pad, 1.005);
+  if (side < 256) return bisect_scale(charts, area, side, pad, 1.005, true);
   int half = side / 2;
-  const Layout coarse = bisect_scale(charts, area, half, (pad + 1) / 2, 1.02);
+  const Layout coarse = bisect_scale(charts, area, half, (pad + 1) / 2, 1.02, false);
   if (half == side / 2) {  // the half bitmap held them: its scale, doubled, is close
-    Search s{charts, side, pad, {}};
+    Search s{charts, side, pad, true, {}};
     const double guess = 2 * coarse.scale;
     if (s.fits(guess * 1.02)) {
       s.hi = guess * 1.06;
     } else if (!s.bracket(guess * 0.99, 0.97)) {
-      return bisect_scale(charts, area, side, pad, 1.005);
+      return bisect_scale(charts, area, side, pad, 1.005, true);
     }
-    s.bisect(1.005, 4);
+    s.bisect(1.0075, 4);
     return std::move(s.best);
   }
-  return bisect_scale(charts, area, side, pad, 1.005);
+  return bisect_scale(charts, area, side, pad, 1.005, true);
 }
 
 }  // namespace intrinsic::detail::packing

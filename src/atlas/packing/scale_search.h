@@ -25,11 +25,17 @@ struct Layout {
   std::vector<Placement> at;  // per chart; pose = 4 * angle index + quarter turns
 };
 
-// Every chart's masks at `scale`: 4 quarter turns per pose angle.
-std::vector<std::vector<Mask>> all_masks(const std::vector<PackChart>& charts, double scale, int pad);
+// Every chart's masks at `scale`: 4 quarter turns per pose angle, for the
+// pose angles [first, last) (clamped to the chart's), appended to masks[c].
+void add_masks(const std::vector<PackChart>& charts, double scale, int pad, size_t first, size_t last,
+               std::vector<std::vector<Mask>>& masks);
 
-// Packs at `scale` on a `side`-texel bitmap; false when a chart does not fit.
-bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, Layout& out);
+// Packs at `scale` on a `side`-texel bitmap: first with each chart's
+// quarter turns of its smallest-box pose only, then, when that fails and
+// some chart has more pose angles, with all of them (more poses can also
+// pack worse: greedy placement is short-sighted; `angles` false: only the
+// first). False when neither fits.
+bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, bool angles, Layout& out);
 
 // The layout with the largest scale / extent found on a `side`-texel bitmap
 // (`side` doubles when even tiny scales do not fit: more charts than the

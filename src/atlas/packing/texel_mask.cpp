@@ -16,6 +16,9 @@ Eigen::Vector2i cells_of(const MatrixX2d& UV, double scale) {
 
 namespace {
 
+// Masks with more frame texels than this get no inner box (Mask::inner).
+constexpr long kInnerBoxArea = 96 * 96;
+
 // The x range of the triangle within the horizontal band [y0, y1]: the
 // extremes over its vertices inside the band and its edges' crossings of the
 // band's two lines (the part of a convex shape in a band is convex). False
@@ -66,8 +69,9 @@ Spans merged(Spans window) {
 std::array<int, 4> largest_rectangle(const Mask& m) {
   std::array<int, 4> best{0, 0, 0, 0};
   std::vector<int> height(m.w + 1, 0), stack;
+  std::vector<char> row(m.w);
   for (int y = 0; y < m.h; ++y) {
-    std::vector<int> row(m.w, 0);
+    std::fill(row.begin(), row.end(), 0);
     for (const auto& s : m.rows[y]) std::fill(row.begin() + s.first, row.begin() + s.second, 1);
     for (int x = 0; x < m.w; ++x) height[x] = row[x] ? height[x] + 1 : 0;
     stack.clear();
@@ -97,7 +101,9 @@ void index_rows(Mask& m) {
   m.by_width.resize(m.h);
   std::iota(m.by_width.begin(), m.by_width.end(), 0);
   std::stable_sort(m.by_width.begin(), m.by_width.end(), [&](int a, int b) { return m.widest[a] > m.widest[b]; });
-  m.inner = m.box ? std::array<int, 4>{0, 0, m.w, m.h} : largest_rectangle(m);
+  // Large masks are few and their boxes say little: no search for theirs.
+  const bool small = static_cast<long>(m.w) * m.h <= kInnerBoxArea;
+  m.inner = m.box ? std::array<int, 4>{0, 0, m.w, m.h} : small ? largest_rectangle(m) : std::array<int, 4>{0, 0, 0, 0};
 }
 
 }  // namespace
