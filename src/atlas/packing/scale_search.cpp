@@ -44,17 +44,13 @@ void add_masks(const std::vector<PackChart>& charts, double scale, int pad, size
 }
 
 bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, bool angles, Layout& out) {
+  size_t n = 1;
+  for (const PackChart& c : charts) n = std::max(n, angles ? c.poses.size() : 1);
   std::vector<std::vector<Mask>> masks;
-  add_masks(charts, scale, pad, 0, 1, masks);
+  add_masks(charts, scale, pad, 0, n, masks);
   Layout l;
   l.scale = scale;
-  if (!place_all(masks, side, 4, l.at, l.extent)) {
-    size_t n = 1;
-    for (const PackChart& c : charts) n = std::max(n, angles ? c.poses.size() : 1);
-    if (n == 1) return false;
-    add_masks(charts, scale, pad, 1, n, masks);  // rasterized only now: most scales never need them
-    if (!place_all(masks, side, static_cast<int>(4 * n), l.at, l.extent)) return false;
-  }
+  if (!place_all(masks, side, static_cast<int>(4 * n), l.at, l.extent)) return false;
   out = std::move(l);
   return true;
 }
@@ -67,7 +63,7 @@ namespace {
 struct Search {
   const std::vector<PackChart>& charts;
   int side, pad;
-  bool angles;  // try_scale's second attempt with every pose angle
+  bool angles;  // try_scale with every pose angle
   Layout best;
   double lo = 0, hi = INFINITY;
   int packings = 0;
@@ -92,6 +88,22 @@ struct Search {
   void bisect(double ratio, int steps) {
     for (int i = 0; i < steps && hi > lo * ratio; ++i) fits(std::sqrt(lo * hi));
   }
+  // Above the largest scale the smallest-box poses reached, with every pose
+  // angle: two steps of a bisection up to 8% higher (the angles are tried
+  // only here, each costing a rasterization per angle: a layout the greedy
+  // placement finds with more poses can also be worse, so they never
+  // replace a better one).
+  void with_angles() {
+    bool more = false;
+    for (const PackChart& c : charts) more = more || c.poses.size() > 1;
+    if (!more || lo == 0) return;
+    angles = true;
+    double a = lo, b = lo * 1.08;
+    for (int i = 0; i < 2; ++i) {
+      const double mid = std::sqrt(a * b);
+      (fits(mid) ? a : b) = mid;
+    }
+  }
 };
 
 // Brackets from the largest scale the area allows, then bisects to
@@ -99,10 +111,11 @@ struct Search {
 // the bitmap holds with their padding).
 Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side, int pad, double ratio, bool angles) {
   while (true) {
-    Search s{charts, side, pad, angles, {}};
+    Search s{charts, side, pad, false, {}};
     if (s.bracket(0.85 * side / std::sqrt(area), 0.8)) {
       if (s.hi == INFINITY) s.hi = 0.85 * side / std::sqrt(area) / 0.8;
       s.bisect(ratio, 12);
+      if (angles) s.with_angles();
       return std::move(s.best);
     }
     side *= 2;
@@ -119,7 +132,7 @@ Layout search_layout(const std::vector<PackChart>& charts, double area, int& sid
   int half = side / 2;
   const Layout coarse = bisect_scale(charts, area, half, (pad + 1) / 2, 1.02, false);
   if (half == side / 2) {  // the half bitmap held them: its scale, doubled, is close
-    Search s{charts, side, pad, true, {}};
+    Search s{charts, side, pad, false, {}};
     const double guess = 2 * coarse.scale;
     if (s.fits(guess * 1.02)) {
       s.hi = guess * 1.06;
@@ -127,6 +140,7 @@ Layout search_layout(const std::vector<PackChart>& charts, double area, int& sid
       return bisect_scale(charts, area, side, pad, 1.005, true);
     }
     s.bisect(1.0075, 4);
+    s.with_angles();
     return std::move(s.best);
   }
   return bisect_scale(charts, area, side, pad, 1.005, true);

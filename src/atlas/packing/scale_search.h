@@ -30,11 +30,9 @@ struct Layout {
 void add_masks(const std::vector<PackChart>& charts, double scale, int pad, size_t first, size_t last,
                std::vector<std::vector<Mask>>& masks);
 
-// Packs at `scale` on a `side`-texel bitmap: first with each chart's
-// quarter turns of its smallest-box pose only, then, when that fails and
-// some chart has more pose angles, with all of them (more poses can also
-// pack worse: greedy placement is short-sighted; `angles` false: only the
-// first). False when neither fits.
+// Packs at `scale` on a `side`-texel bitmap, each chart in the quarter
+// turns of its smallest-box pose, or with `angles` of every pose angle it
+// has. False when a chart does not fit.
 bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, bool angles, Layout& out);
 
 // The layout with the largest scale / extent found on a `side`-texel bitmap
