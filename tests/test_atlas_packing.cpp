@@ -6,6 +6,7 @@
 // similarity per chart with one scale for all.
 #include <gtest/gtest.h>
 
+#include <climits>
 #include <cmath>
 #include <random>
 #include <set>
@@ -168,6 +169,88 @@ TEST(AtlasPackingLayout, NoTwoPaddedMasksMeetByBruteForce) {
       if (a == b) continue;
       for (const auto& t : own[b]) ASSERT_FALSE(padded[a].count(t)) << a << " " << b;
     }
+}
+
+// The placement rule written plainly, position by position over a texel
+// set: the first pose (in order) that fits inside the current extent at its
+// first position (rows bottom up, then x); else the position of any pose
+// that grows the square least (the first such in the same order).
+bool place_by_brute_force(const std::vector<std::vector<Mask>>& masks, int side, std::vector<Placement>& at,
+                          int& extent) {
+  std::set<std::pair<int, int>> taken;
+  auto fits = [&](const Mask& m, int x, int y) {
+    for (const auto& [tx, ty] : texels_of(m.rows, x, y))
+      if (taken.count({tx, ty})) return false;
+    return true;
+  };
+  at.assign(masks.size(), {});
+  extent = 0;
+  for (int c : placement_order(masks)) {
+    Placement best;
+    for (size_t p = 0; p < masks[c].size() && best.x < 0; ++p)
+      for (int y = 0; y + masks[c][p].h <= extent && best.x < 0; ++y)
+        for (int x = 0; x + masks[c][p].w <= extent && best.x < 0; ++x)
+          if (fits(masks[c][p], x, y)) best = {x, y, static_cast<int>(p)};
+    int e = extent;
+    if (best.x < 0) {
+      e = INT_MAX;
+      for (size_t p = 0; p < masks[c].size(); ++p)
+        for (int y = 0; y + masks[c][p].h <= side; ++y)
+          for (int x = 0; x + masks[c][p].w <= side; ++x) {
+            const int grown = std::max({extent, x + masks[c][p].w, y + masks[c][p].h});
+            if (grown < e && fits(masks[c][p], x, y)) e = grown, best = {x, y, static_cast<int>(p)};
+          }
+    }
+    if (best.x < 0) return false;
+    for (const auto& t : texels_of(masks[c][best.pose].own, best.x, best.y)) taken.insert(t);
+    at[c] = best;
+    extent = e;
+  }
+  return true;
+}
+
+// The packer's shortcuts (the rows' widest free runs, the growth search
+// past the extent only, the box cursors) change no placement: the same
+// layout as the plain rule's, for charts of every size and at several scales.
+TEST(AtlasPackingLayout, SameLayoutAsThePlainRule) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<FlatChart> charts;
+  for (int i = 0; i < 30; ++i) {
+    const double r = 0.2 + 1.5 * u(rng) * u(rng);
+    std::vector<Eigen::Vector2d> p{{0, 0}};
+    for (int k = 0; k < 5; ++k) {
+      const double a = 2 * M_PI * k / 5, rr = r * (0.3 + 0.7 * u(rng));
+      p.emplace_back(rr * std::cos(a), rr * std::sin(a));
+    }
+    p.push_back(p[1]);
+    charts.push_back(polygon_chart(p));
+    orient_chart(charts.back());
+  }
+  std::vector<PackChart> pack(charts.size());
+  for (size_t c = 0; c < charts.size(); ++c) {
+    pack[c].F = &charts[c].mesh.data.F;
+    for (double angle : pose_angles(charts[c], 4.0, PoseOptions{})) pack[c].poses.push_back(turned_to(charts[c].UV, angle));
+  }
+  int layouts = 0;
+  for (double scale : {3.0, 4.0, 5.0, 6.0}) {
+    SCOPED_TRACE(scale);
+    std::vector<std::vector<Mask>> masks;
+    add_masks(pack, scale, 1, 0, 16, masks);
+    std::vector<Placement> at, expect;
+    int extent = 0, expect_extent = 0;
+    const bool fitted = place_all(masks, 64, 16, at, extent);
+    ASSERT_EQ(fitted, place_by_brute_force(masks, 64, expect, expect_extent));
+    if (!fitted) continue;
+    ++layouts;
+    EXPECT_EQ(extent, expect_extent);
+    for (size_t c = 0; c < charts.size(); ++c) {
+      EXPECT_EQ(at[c].x, expect[c].x) << c;
+      EXPECT_EQ(at[c].y, expect[c].y) << c;
+      EXPECT_EQ(at[c].pose, expect[c].pose) << c;
+    }
+  }
+  EXPECT_GE(layouts, 2);
 }
 
 // 16 equal squares, padding 2 of 1024, half of it at the border: the best
