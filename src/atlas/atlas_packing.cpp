@@ -60,11 +60,10 @@ double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, 
     area += chart.summary.area_3d;
   }
   std::vector<packing::PackChart> pack(charts.size());
-  const packing::PoseOptions poses;
+  const std::vector<std::vector<double>> angles = packing::all_pose_angles(charts, area, packing::PoseOptions{});
   for (size_t c = 0; c < charts.size(); ++c) {
     pack[c].F = &charts[c].mesh.data.F;
-    for (double angle : packing::pose_angles(charts[c], area, poses))
-      pack[c].poses.push_back(packing::turned_to(charts[c].UV, angle));
+    for (double angle : angles[c]) pack[c].poses.push_back(packing::turned_to(charts[c].UV, angle));
   }
   // The bitmap is at most 1024 texels wide: larger textures pack on a coarser
   // grid (padding rounded up to whole cells of it).

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace intrinsic::detail::packing {
 
@@ -71,6 +72,21 @@ std::vector<double> pose_angles(const FlatChart& chart, double atlas_area, const
   const double fill = box > 0 ? chart.summary.area_3d / box : 1;
   if (fill > options.max_fill) return angles;
   for (int k = 1; k <= options.extra_angles; ++k) angles.push_back(M_PI / 2 * k / (options.extra_angles + 1));
+  return angles;
+}
+
+std::vector<std::vector<double>> all_pose_angles(const std::vector<FlatChart>& charts, double atlas_area,
+                                                 const PoseOptions& options) {
+  std::vector<std::vector<double>> angles(charts.size());
+  std::vector<int> more;
+  for (size_t c = 0; c < charts.size(); ++c) {
+    angles[c] = pose_angles(charts[c], atlas_area, options);
+    if (angles[c].size() > 1) more.push_back(static_cast<int>(c));
+  }
+  // The largest first (then the lower index: a total order, the same every run).
+  std::stable_sort(more.begin(), more.end(),
+                   [&](int a, int b) { return charts[a].summary.area_3d > charts[b].summary.area_3d; });
+  for (size_t k = std::max(0, options.max_charts); k < more.size(); ++k) angles[more[k]].resize(1);
   return angles;
 }
 

@@ -36,7 +36,13 @@ struct PoseOptions {
   double min_share = 0.005;
   double max_fill = 0.75;
   int extra_angles = 3;  // evenly between 0 and 90 degrees (3: 22.5, 45, 67.5)
+  // At most this many charts get them, the largest: they decide the
+  // layout's square, and each pose costs a search per placement.
+  int max_charts = 12;
 };
 std::vector<double> pose_angles(const FlatChart& chart, double atlas_area, const PoseOptions& options);
+// pose_angles for every chart, extra angles only for the max_charts largest that qualify.
+std::vector<std::vector<double>> all_pose_angles(const std::vector<FlatChart>& charts, double atlas_area,
+                                                 const PoseOptions& options);
 
 }  // namespace intrinsic::detail::packing
