@@ -32,7 +32,7 @@ struct ChartMapArgs {
 ChartMapOptions chart_map_options(const ChartMapArgs& a);
 
 // vertices, faces, components, charts, splits, split_reasons, utilization,
-// flipped, overlapping, resolution, padding, cleaning, chart_list (README
+// flipped, overlapping, resolution, padding, cleaning, chart_list (docs/cli.md
 // "intrinsic atlas"). The caller adds input, output and timings_ms.
 nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& options, const AtlasResult& r);
 

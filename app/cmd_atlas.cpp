@@ -1,4 +1,4 @@
-// `intrinsic atlas` (issue 13): read any triangle mesh (closed, higher genus,
+// `intrinsic atlas`: read any triangle mesh (closed, higher genus,
 // several components, non-manifold bits, zero-area faces), build its atlas
 // (atlas.h), write the input's vertices in input order with one `vt` per atlas
 // UV and faces `f v/vt` (seams only through the per-corner texture
@@ -25,7 +25,9 @@ struct AtlasArgs {
 
 int run_atlas(AtlasArgs a) {
   const auto t0 = std::chrono::steady_clock::now();
+  const int isometric_iterations = a.options.chart_map.isometric_iterations;
   a.options.chart_map = chart_map_options(a.chart_map);
+  a.options.chart_map.isometric_iterations = isometric_iterations;
   check_atlas_output(a.output);
   ReadOptions ro;
   ro.max_vertices = a.max_vertices;
@@ -84,6 +86,10 @@ void register_atlas(CLI::App& app, Runner& run) {
                   "Degrees between a face normal and its chart's mean normal")
       ->check(CLI::Range(1.0, 180.0))
       ->capture_default_str();
+  cmd->add_option("--hard-angle", a->options.hard_angle_deg,
+                  "Always cut edges whose faces' normals turn by more than this many degrees (0: none)")
+      ->check(CLI::Range(0.0, 179.999))
+      ->capture_default_str();
   cmd->add_option("--min-chart-faces", a->options.min_chart_faces,
                   "Charts with fewer faces may merge into a neighbour up to its own stretch (0: no merging)")
       ->check(CLI::NonNegativeNumber)
@@ -92,20 +98,29 @@ void register_atlas(CLI::App& app, Runner& run) {
                   "Cut exactly these edges (one 'i j' per line, 0-based vertex indices); charts are the pieces "
                   "between them, split only where validity needs");
   cmd->add_option("--max-stretch", a->options.max_stretch,
-                  "Merge neighbouring charts while the union's area-weighted L2 stretch (Sander) stays below this")
+                  "Split charts above, and merge neighbouring charts while the union stays within, this stretch: "
+                  "95% of each chart's surface stretched or shrunk by at most this factor (max(s1, 1/s2))")
       ->check(CLI::Range(1.0, 100.0))
+      ->capture_default_str();
+  cmd->add_option("--max-face-stretch", a->options.max_face_stretch,
+                  "No face of a chart stretched or shrunk more than this (max(s1, 1/s2) at the atlas's texel density)")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
+  cmd->add_option("--isometric-iterations", a->options.chart_map.isometric_iterations,
+                  "Local/global steps refining each chart's natural conformal map toward an isometry (0: none)")
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   cmd->add_flag_callback(
       "--per-chart-stretch", [a] { a->options.atlas_stretch_budget = false; },
-      "Keep every merged chart within --max-stretch (default: only the whole atlas's mean, "
-      "small parts merging past it)");
+      "Keep every merged chart within --max-stretch (default: unions under 1% of the surface may merge "
+      "past it while the whole atlas's 95th percentile stays within it)");
   cmd->add_option("--max-charts", a->options.max_charts,
                   "Merge further (past --max-stretch, never past validity) down to this many charts (0: no limit)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--weld", a->options.weld,
                   "Weld vertices closer than EPS times the bounding box diagonal, for the computation only "
-                  "(unwelded seams); the output keeps the input's vertices")
+                  "(coincident corners of unwelded exports; 0: off); the output keeps the input's vertices")
       ->check(CLI::Range(0.0, 0.999999))
       ->capture_default_str();
   cmd->add_flag("!--keep-winding", a->options.reorient,

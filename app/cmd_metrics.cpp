@@ -12,6 +12,9 @@ namespace intrinsic::app {
 
 namespace {
 
+// A chart covering fewer texels than this shows at most a blur of its texture.
+constexpr int kSmallChartTexels = 16;
+
 // The mesh's topology (boundary loops, components) when the UV-indexed mesh
 // is a valid manifold mesh; otherwise (a triangle soup, a non-manifold or
 // degenerate face) the reason, and the atlas figures still follow.
@@ -42,6 +45,7 @@ void register_metrics(CLI::App& app, Runner& run) {
   struct Args {
     std::string input, report;
     std::int64_t max_vertices = ReadOptions().max_vertices;
+    int resolution = 1024;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("metrics",
@@ -51,6 +55,10 @@ void register_metrics(CLI::App& app, Runner& run) {
   cmd->add_option("--report", args->report, "Write the report as JSON to this file (default: print it)");
   cmd->add_option("--max-vertices", args->max_vertices, "Refuse inputs with more vertices")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--resolution", args->resolution,
+                  "Texture size for small_charts: charts covering fewer than 16 texels of it")
+      ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   cmd->callback([&run, args] {
     run = [args] {
@@ -66,8 +74,13 @@ void register_metrics(CLI::App& app, Runner& run) {
       // soups and non-manifold meshes included.
       const UvAtlasMetrics atlas = uv_atlas_metrics(uv.V, uv.F, uv.UV);
       report["atlas"] = atlas_metrics_json(atlas);
-      const DistortionSummary d = summarize_distortion(uv.V, uv.F, unmirrored_uv(uv, atlas));
-      add_distortion(report, d);
+      report["atlas"]["seam_length"] = seam_length(uv);
+      report["atlas"]["small_charts"] = small_charts(uv, atlas, args->resolution, kSmallChartTexels);
+      report["atlas"]["small_chart_texels"] = kSmallChartTexels;
+      report["atlas"]["resolution"] = args->resolution;
+      const MatrixX2d unmirrored = unmirrored_uv(uv, atlas);
+      add_distortion(report, summarize_distortion(uv.V, uv.F, unmirrored));
+      report["stretch"] = stretch_json(summarize_stretch(uv.V, uv.F, unmirrored));
       report["timings_ms"] = {{"total", elapsed_ms(t0)}};
       if (args->report.empty()) std::cout << report.dump(2) << "\n";
       else write_report(args->report, report);

@@ -126,7 +126,7 @@ void add_solve_options(CLI::App& cmd, const std::shared_ptr<ParamArgs>& a) {
   cmd.add_option("--max-residual", a->max_residual, "Fail (exit 3) if the relative residual exceeds this")
       ->capture_default_str();
   cmd.add_option("--constraints", a->constraints,
-                 "JSON file of point and line constraints; targets are in output coordinates (see README)");
+                 "JSON file of point and line constraints; targets are in output coordinates (see docs/formats.md)");
   cmd.add_flag("--largest-component", a->largest_component,
                "Keep only the component with the most faces (vertex numbering unchanged); "
                "otherwise every component becomes its own chart");

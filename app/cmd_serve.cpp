@@ -2,8 +2,12 @@
 // local web server. GET / serves the page (web/, embedded at build time),
 // GET /api/mesh the mesh, POST /api/solve a map, POST /api/optimal_lambda
 // and POST /api/optimize_boundary the optimizations of paper section 5
-// (README "intrinsic serve"). No file is read after the mesh. Every request
+// (docs/cli.md "intrinsic serve"). No file is read after the mesh. Every request
 // is answered: errors become HTTP 400/409/413/422/500 with {"error": message}.
+// Before any route, the guard (serve/request_guard.h) refuses, in plain
+// text, foreign Host headers (400), requests from other pages (Origin,
+// Sec-Fetch-Site) or without this launch's token (403), and bodies without
+// a Content-Length (411).
 #include <iostream>
 #include <new>
 #include <stdexcept>
@@ -16,6 +20,7 @@
 #include "intrinsic/optimal_lambda.h"
 #include "serve/api_json.h"
 #include "serve/optimize_request.h"
+#include "serve/request_guard.h"
 #include "serve/session_store.h"
 #include "web_assets.h"
 
@@ -40,6 +45,8 @@ struct ServeState {
   std::string mesh_json;
   FaceFrames frames;  // the 3D side of every answer's distortion figures
   std::unique_ptr<SessionStore> sessions;
+  HostPolicy hosts;   // known once the port is bound
+  std::string token;  // this launch's (request_guard.h)
 };
 
 // Not plain "application/json": httplib compresses that exact type (gzip or
@@ -211,6 +218,40 @@ Body handle_progress(ServeState& s, const httplib::Request& req) {
   return {nlohmann::json{{"running", session->progress.running}, {"energies", session->progress.energies}}.dump()};
 }
 
+RequestFacts facts_of(const httplib::Request& req) {
+  RequestFacts f;
+  f.method = req.method;
+  f.path = req.path;
+  f.host = req.get_header_value("Host");
+  f.host_count = req.get_header_value_count("Host");
+  f.origin = req.get_header_value("Origin");
+  f.fetch_site = req.get_header_value("Sec-Fetch-Site");
+  f.cookie = req.get_header_value("Cookie");
+  f.token_header = req.get_header_value(kTokenHeader);
+  if (req.has_param("token")) f.token_query = req.get_param_value("token");
+  f.has_content_length = req.has_header("Content-Length");
+  f.has_transfer_encoding = req.has_header("Transfer-Encoding");
+  return f;
+}
+
+// Runs before routing, so before a body is read. A refused request's body
+// stays unread: "Connection: close" makes the client drop the connection
+// rather than send its next request after those bytes. No CORS header is
+// ever sent, so browsers keep other sites' pages from reading any answer.
+void add_guard(httplib::Server& server, const ServeState& s) {
+  server.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {
+    const Verdict v = check_request(s.hosts, s.token, facts_of(req));
+    if (v.refusal == Refusal::None) {
+      if (v.set_cookie) res.set_header("Set-Cookie", token_cookie(s.token, s.hosts.port));
+      return httplib::Server::HandlerResponse::Unhandled;
+    }
+    res.status = refusal_status(v.refusal);
+    res.set_content(refusal_message(v.refusal) + "\n", "text/plain; charset=utf-8");
+    res.set_header("Connection", "close");
+    return httplib::Server::HandlerResponse::Handled;
+  });
+}
+
 void add_routes(httplib::Server& server, ServeState& s) {
   server.Get("/", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(web::index_html, "text/html; charset=utf-8");
@@ -274,8 +315,18 @@ int run_serve(const ServeArgs& a) {
   add_routes(server, s);
   const int port = a.port == 0 ? server.bind_to_any_port(a.host) : (server.bind_to_port(a.host, a.port) ? a.port : -1);
   if (port < 0) throw_usage("cannot listen on " + a.host + ":" + std::to_string(a.port));
-  std::cout << "intrinsic serve: " << a.input << " (" << s.mesh.V.rows() << " vertices) at http://" << a.host << ":"
-            << port << "/" << std::endl;
+  const bool wildcard = is_wildcard_address(a.host);
+  s.hosts = host_policy(a.host, port, wildcard ? machine_addresses() : std::vector<std::string>());
+  s.token = random_token();
+  add_guard(server, s);
+  if (wildcard)
+    std::cerr << "intrinsic serve: warning: listening on " << a.host
+              << ": the editor is reachable from the network (by this machine's addresses and name, with the token)"
+              << std::endl;
+  // A wildcard address is no place to browse to: the URL names this machine.
+  const std::string url_host = wildcard ? "127.0.0.1" : (a.host.find(':') != std::string::npos ? "[" + a.host + "]" : a.host);
+  std::cout << "intrinsic serve: " << a.input << " (" << s.mesh.V.rows() << " vertices) at http://" << url_host << ":"
+            << port << "/?token=" << s.token << std::endl;
   if (!server.listen_after_bind()) throw_usage("server stopped listening");
   return 0;
 }
@@ -287,7 +338,8 @@ void register_serve(CLI::App& app, Runner& run) {
   CLI::App* cmd = app.add_subcommand("serve", "Interactive editor in the browser: a local web server");
   cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, optionally .gz)")->required();
   cmd->add_option("--port", a->port, "Port (0: any free port)")->capture_default_str();
-  cmd->add_option("--host", a->host, "Address to bind (127.0.0.1: this machine only)")->capture_default_str();
+  cmd->add_option("--host", a->host, "Address to bind (127.0.0.1: this machine only; 0.0.0.0: the network, with a warning)")
+      ->capture_default_str();
   cmd->add_option("--max-sessions", a->max_sessions, "Sessions kept (least recently used dropped)")
       ->capture_default_str();
   cmd->add_option("--max-body", a->max_body_mib, "Largest request body in MiB (larger: HTTP 413)")

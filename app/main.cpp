@@ -1,6 +1,6 @@
 // The `intrinsic` command-line tool: subcommands, and the one place where
 // errors become messages and exit codes (0 ok, 1 usage, 2 input, 3 numerical,
-// 4 output; see README).
+// 4 output; see docs/formats.md).
 #include <algorithm>
 #include <cctype>
 #include <iostream>

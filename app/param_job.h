@@ -61,7 +61,7 @@ struct Solved {
 // The constraints of `a` (file or given), face points in mesh.F's corner order.
 Constraints load_constraints(const ParamArgs& a, const MeshData& data, const Mesh& mesh);
 Solved solve(const ParamArgs& a, const Mesh& mesh, const MeshData& data, const ParamOptions& options);
-// The report without timings_ms (README "Report").
+// The report without timings_ms (docs/formats.md "Report").
 nlohmann::json build_report(const ParamArgs& a, const Mesh& mesh, const Solved& s, const DistortionSummary& d);
 
 }  // namespace intrinsic::app

@@ -1,4 +1,4 @@
-// JSON report construction and writing (README "Report").
+// JSON report construction and writing (docs/formats.md "Report").
 #include "report.h"
 
 #include "intrinsic/io.h"
@@ -66,6 +66,16 @@ void add_distortion(nlohmann::json& r, const DistortionSummary& d) {
   r["distortion_normalisation"] = {
       {"uv_scale_factor", d.scale_factor},
       {"note", "UVs scaled so that total parameter area equals total 3D area before computing distortion"}};
+}
+
+nlohmann::json stretch_json(const StretchSummary& s) {
+  return {{"sander_l2", s.sander_l2},
+          {"sander_linf", s.sander_linf},
+          {"face_stretch_p50", s.face_stretch_p50},
+          {"face_stretch_p95", s.face_stretch_p95},
+          {"face_stretch_p99", s.face_stretch_p99},
+          {"face_stretch_max", s.face_stretch_max},
+          {"anisotropy_mean", s.anisotropy_mean}};
 }
 
 nlohmann::json constraints_json(const std::vector<ConstraintResidual>& residuals) {

@@ -1,5 +1,5 @@
-// The JSON reports of `param` and `metrics` (keys listed in README
-// "Report"), built from the library's result structs only: what was solved
+// The JSON reports of `param` and `metrics` (keys listed in
+// docs/formats.md "Report"), built from the library's result structs only: what was solved
 // is read from the result, never rebuilt from the command line. The only
 // other inputs are names the results cannot know (file paths).
 #pragma once
@@ -19,6 +19,10 @@ nlohmann::json stat_json(const Stat& s);
 nlohmann::json mesh_json(const Mesh& mesh);
 // Adds the distortion summary's keys to `report`.
 void add_distortion(nlohmann::json& report, const DistortionSummary& d);
+// The "stretch" object (docs/maths.md §9.8): exactly sander_l2, sander_linf,
+// face_stretch_p50, face_stretch_p95, face_stretch_p99, face_stretch_max,
+// anisotropy_mean (an infinite figure, from a collapsed face, prints as null).
+nlohmann::json stretch_json(const StretchSummary& s);
 // One entry per constraint row: label, target, uv reached, residual.
 nlohmann::json constraints_json(const std::vector<ConstraintResidual>& residuals);
 // Writes the report atomically (pretty-printed).

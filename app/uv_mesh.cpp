@@ -1,7 +1,11 @@
 // Re-indexing a mesh by texture coordinate.
 #include "uv_mesh.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <map>
+#include <tuple>
 #include <vector>
 
 #include "intrinsic/error.h"
@@ -56,6 +60,52 @@ MatrixX2d unmirrored_uv(const UvMesh& m, const UvAtlasMetrics& atlas) {
       if (atlas.charts[atlas.face_chart[f]].mirrored) UV(t, 0) = -UV(t, 0);
     }
   return UV;
+}
+
+double seam_length(const UvMesh& m) {
+  // (position a, position b, UV at a, UV at b) with a < b, sorted: the entries
+  // of one edge are adjacent, and each distinct UV pair after its first is a seam.
+  using Entry = std::array<double, 10>;
+  std::vector<Entry> edges;
+  edges.reserve(3 * static_cast<size_t>(m.F.rows()));
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      int a = m.F(f, c), b = m.F(f, (c + 1) % 3);
+      if (!m.V.row(a).allFinite() || !m.V.row(b).allFinite() || !m.UV.row(a).allFinite() ||
+          !m.UV.row(b).allFinite())
+        continue;
+      const auto pa = std::make_tuple(m.V(a, 0), m.V(a, 1), m.V(a, 2));
+      const auto pb = std::make_tuple(m.V(b, 0), m.V(b, 1), m.V(b, 2));
+      if (pa == pb) continue;
+      if (pb < pa) std::swap(a, b);
+      edges.push_back({m.V(a, 0), m.V(a, 1), m.V(a, 2), m.V(b, 0), m.V(b, 1), m.V(b, 2), m.UV(a, 0), m.UV(a, 1),
+                       m.UV(b, 0), m.UV(b, 1)});
+    }
+  std::sort(edges.begin(), edges.end());
+  double length = 0;
+  for (size_t i = 1; i < edges.size(); ++i) {
+    const Entry &e = edges[i], &p = edges[i - 1];
+    if (std::equal(e.begin(), e.begin() + 6, p.begin()) && e != p)
+      length += std::sqrt((e[0] - e[3]) * (e[0] - e[3]) + (e[1] - e[4]) * (e[1] - e[4]) + (e[2] - e[5]) * (e[2] - e[5]));
+  }
+  return length;
+}
+
+int small_charts(const UvMesh& m, const UvAtlasMetrics& atlas, int resolution, double min_texels) {
+  double side = 1;
+  if (!atlas.utilization_in_unit_square) {
+    Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = -lo;
+    for (Eigen::Index f = 0; f < m.F.rows(); ++f)
+      for (int c = 0; c < 3; ++c) {
+        const Eigen::Vector2d u = m.UV.row(m.F(f, c));
+        if (u.allFinite()) lo = lo.cwiseMin(u), hi = hi.cwiseMax(u);
+      }
+    side = (hi - lo).maxCoeff();
+  }
+  const double texels_per_area = side > 0 ? static_cast<double>(resolution) * resolution / (side * side) : 0;
+  int n = 0;
+  for (const UvChart& c : atlas.charts) n += !c.degenerate && c.uv_area * texels_per_area < min_texels;
+  return n;
 }
 
 nlohmann::json atlas_metrics_json(const UvAtlasMetrics& a) {

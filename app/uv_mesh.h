@@ -31,6 +31,17 @@ UvMesh split_by_texcoord(const MeshData& data);
 // flipped. A texture coordinate takes the chart of the first face using it.
 MatrixX2d unmirrored_uv(const UvMesh& m, const UvAtlasMetrics& atlas);
 
+// 3D length of the seams (docs/maths.md §9.8): per edge of the faces, named
+// by its two 3D positions (so vertices split at seams, as in soups, meet
+// again), the number of distinct UV pairs on it minus one, times its length.
+// The mesh's own boundary (one face) adds nothing; non-finite rows are skipped.
+double seam_length(const UvMesh& m);
+
+// Charts (degenerate ones excluded) whose UV area covers fewer than
+// `min_texels` texels of a `resolution`^2 texture over [0,1]^2, or over the
+// UVs' bounding square when they leave [0,1]^2 (as utilization).
+int small_charts(const UvMesh& m, const UvAtlasMetrics& atlas, int resolution, double min_texels);
+
 // The atlas part of the `metrics` report: charts, utilization, mirrored
 // charts, flipped, collapsed and overlapping triangles, per-chart list.
 nlohmann::json atlas_metrics_json(const UvAtlasMetrics& atlas);

@@ -1,4 +1,4 @@
-// Fuzzes the browser editor's request path (README "intrinsic serve"): every
+// Fuzzes the browser editor's request path (docs/cli.md "intrinsic serve"): every
 // body goes through parse_solve_request (`POST /api/solve`) and, when
 // accepted, through one EditSession (the server's per-tab engine), whose
 // state carries over between inputs as a long-lived tab's does; the same

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages the project builds with (see README,
-# "Dependencies"). Run as root (or with sudo available).
+# Installs the Debian 12 packages the project builds with (see
+# docs/dependencies.md). Run as root (or with sudo available).
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi

@@ -8,9 +8,11 @@ JOBS=${JOBS:-$(nproc)}
 # The CGAL comparison is a benchmark of its own (slow to compile); not built here.
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DINTRINSIC_BENCH_CGAL=OFF
 cmake --build build -j"$JOBS"
-# ctest also runs the Python tests (python_tests: /usr/bin/python3 -m pytest
-# python/tests) and install_consumer (cmake --install into a temporary prefix,
-# a find_package(intrinsic) project and the installed Python package).
+# ctest also runs the Python tests (python_tests and python_tests_corpus:
+# /usr/bin/python3 -m pytest python/tests) and install_consumer (cmake
+# --install into a temporary prefix, a find_package(intrinsic) project and the
+# installed Python package). Tests labelled corpus read ../shared/meshes and
+# report Skipped where it is absent (a clone alone).
 (cd build && ctest --output-on-failure -j"$JOBS")
 if [ "${INTRINSIC_SKIP_SANITIZERS:-0}" != 1 ]; then
   # No Python module here (INTRINSIC_SANITIZE turns it off: an ASan-instrumented

@@ -38,7 +38,9 @@ UvAtlasMetrics measure(const MeshData& m, const AtlasResult& r) {
 
 TEST(AtlasWeld, UnweldedPairBecomesOneChart) {
   const MeshData m = unwelded_square();
-  const AtlasResult apart = atlas(m);
+  AtlasOptions none;
+  none.weld = 0;
+  const AtlasResult apart = atlas(m, none);
   EXPECT_EQ(apart.components, 2);
   EXPECT_EQ(apart.charts.size(), 2u);
   EXPECT_EQ(apart.cleaning.welded_vertices, 0);
@@ -67,7 +69,8 @@ TEST(AtlasWeld, UnweldedPairBecomesOneChart) {
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Usage, "weld");
 }
 
-TEST(AtlasWeld, TeapotSeams) {
+TEST(AtlasWeldCorpus, TeapotSeams) {
+  REQUIRE_SHARED_MESHES();
   const std::string path = test::shared_mesh("assets/teapot.obj");
   const MeshData m = read_mesh(path);
   std::set<std::array<double, 3>> distinct;
@@ -76,7 +79,9 @@ TEST(AtlasWeld, TeapotSeams) {
   ASSERT_GT(duplicates, 0);
   AtlasOptions o;
   o.weld = 1e-9;
-  const AtlasResult plain = atlas(m);
+  AtlasOptions none;
+  none.weld = 0;
+  const AtlasResult plain = atlas(m, none);
   const AtlasResult r = atlas(m, o);
   EXPECT_EQ(r.cleaning.welded_vertices, duplicates);
   EXPECT_LT(r.components, plain.components);

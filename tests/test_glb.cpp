@@ -160,9 +160,8 @@ TEST(Glb, FailuresLeaveNoFile) {
   EXPECT_TRUE(std::filesystem::is_empty(std::string(dir / "")));
 }
 
-TEST(Glb, AtlasCliWritesGlb) {
-  test::TempDir dir;
-  const std::string in = test::shared_mesh("assets/teapot.obj");
+// `intrinsic atlas IN -o x.glb`: one mesh with every face; .glb.gz refused.
+void expect_atlas_cli_glb(const std::string& in, const test::TempDir& dir) {
   const auto r = test::run_cli("atlas " + in + " -o " + (dir / "t.glb") + " -q", dir);
   ASSERT_EQ(r.code, 0) << r.err;
   const MeshData m = read_mesh(in);
@@ -174,9 +173,21 @@ TEST(Glb, AtlasCliWritesGlb) {
   EXPECT_FALSE(std::filesystem::exists(std::string(dir / "t.glb.gz")));
 }
 
-TEST(Glb, ParamWritesGlbWithOneUvPerVertex) {
+TEST(Glb, AtlasCliWritesGlb) {
   test::TempDir dir;
-  const std::string in = test::shared_mesh("cat_head.obj");
+  ASSERT_EQ(test::run_cli("generate genus2 --rings 8 -o " + (dir / "g.obj"), dir).code, 0);
+  expect_atlas_cli_glb(dir / "g.obj", dir);
+}
+
+TEST(GlbCorpus, AtlasCliWritesGlb) {
+  REQUIRE_SHARED_MESHES();
+  test::TempDir dir;
+  expect_atlas_cli_glb(test::shared_mesh("assets/teapot.obj"), dir);
+}
+
+// `intrinsic param IN -o p.glb`: every corner's position and texture
+// coordinate equal to the OBJ output's.
+void expect_param_glb(const std::string& in, const test::TempDir& dir) {
   const auto r = test::run_cli("param " + in + " -o " + (dir / "p.glb") + " -q", dir);
   ASSERT_EQ(r.code, 0) << r.err;
   ASSERT_EQ(test::run_cli("param " + in + " -o " + (dir / "p.obj") + " -q", dir).code, 0);
@@ -195,6 +206,18 @@ TEST(Glb, ParamWritesGlbWithOneUvPerVertex) {
       EXPECT_NEAR(tex[2 * i], obj.TC(obj.FTC(f, c), 0), 1e-6);
       EXPECT_NEAR(tex[2 * i + 1], 1 - obj.TC(obj.FTC(f, c), 1), 1e-6);
     }
+}
+
+TEST(Glb, ParamWritesGlbWithOneUvPerVertex) {
+  test::TempDir dir;
+  ASSERT_EQ(test::run_cli("generate wave --rings 8 -o " + (dir / "w.obj"), dir).code, 0);
+  expect_param_glb(dir / "w.obj", dir);
+}
+
+TEST(GlbCorpus, ParamWritesGlbWithOneUvPerVertex) {
+  REQUIRE_SHARED_MESHES();
+  test::TempDir dir;
+  expect_param_glb(test::shared_mesh("cat_head.obj"), dir);
 }
 
 }  // namespace

@@ -8,7 +8,8 @@
 // a dense Lagrange (KKT) system assembled and solved here with Eigen's
 // FullPivLU from the weights of tests/independent_assembly.h; invariances
 // under scaling and rigid motions; and the weight matrices' rows (zero sums,
-// entries equal to the independent weights) on every shared mesh.
+// entries equal to the independent weights) on generated surfaces and every
+// shared mesh.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -417,32 +418,48 @@ TEST(Independent, NaturalDefaultPinsAreScaleInvariant) {
   check_scaling(wavy_data(), natural, {});
 }
 
-// Every method's matrix K on every shared mesh: each row sums to zero
-// (K 1 = 0, maths §1.4) to 1e-12 of its largest entry, and its off-diagonal
-// entries are -w_ij of the independent assembly.
+// Every method's matrix K: each row sums to zero (K 1 = 0, maths §1.4) to
+// 1e-12 of its largest entry, and its off-diagonal entries are -w_ij of the
+// independent assembly.
+void expect_weight_rows(const Mesh& mesh) {
+  for (const WeightOptions& w : {WeightOptions{Method::Conformal, 1, 0}, WeightOptions{Method::Authalic, 0, 1},
+                                 WeightOptions{Method::Tutte, 0, 0}, WeightOptions{Method::Floater, 0, 0},
+                                 WeightOptions{Method::Mixed, 0.3, 0.7}}) {
+    const test::RowSparse K = assemble_weight_matrix(mesh.V, mesh.F, w);
+    const test::RowSparse W = test::weight_table(mesh.V, mesh.F, w);
+    const test::RowSparse D = K + W;  // zero off the diagonal
+    double worst_sum = 0, worst_entry = 0;
+    for (int i = 0; i < K.rows(); ++i) {
+      double sum = 0, largest = 0, off = 0;
+      for (test::RowSparse::InnerIterator it(K, i); it; ++it) sum += it.value(), largest = std::max(largest, std::abs(it.value()));
+      for (test::RowSparse::InnerIterator it(D, i); it; ++it)
+        if (it.col() != i) off = std::max(off, std::abs(it.value()));
+      if (largest == 0) continue;  // unused vertex
+      worst_sum = std::max(worst_sum, std::abs(sum) / largest);
+      worst_entry = std::max(worst_entry, off / largest);
+    }
+    EXPECT_LE(worst_sum, 1e-12) << method_name(w.method);
+    EXPECT_LE(worst_entry, 1e-12) << method_name(w.method);
+  }
+}
+
 TEST(Independent, WeightMatrixRowsSumToZeroAndEqualTheWeights) {
+  GenerateOptions g;
+  g.rings = 12;
+  g.jitter = 0.6;
+  for (const char* name : {"wave", "cap", "strip", "flat"}) {
+    SCOPED_TRACE(name);
+    expect_weight_rows(make_mesh(generate_surface(name, g)));
+  }
+  SCOPED_TRACE("holed wave");
+  expect_weight_rows(make_mesh(test::holed_wavy(3)));
+}
+
+TEST(IndependentCorpus, WeightMatrixRowsSumToZeroAndEqualTheWeights) {
+  REQUIRE_SHARED_MESHES();
   for (const char* name : test::kSharedMeshes) {
     SCOPED_TRACE(name);
-    const Mesh mesh = make_mesh(read_mesh(test::shared_mesh(name)));
-    for (const WeightOptions& w : {WeightOptions{Method::Conformal, 1, 0}, WeightOptions{Method::Authalic, 0, 1},
-                                   WeightOptions{Method::Tutte, 0, 0}, WeightOptions{Method::Floater, 0, 0},
-                                   WeightOptions{Method::Mixed, 0.3, 0.7}}) {
-      const test::RowSparse K = assemble_weight_matrix(mesh.V, mesh.F, w);
-      const test::RowSparse W = test::weight_table(mesh.V, mesh.F, w);
-      const test::RowSparse D = K + W;  // zero off the diagonal
-      double worst_sum = 0, worst_entry = 0;
-      for (int i = 0; i < K.rows(); ++i) {
-        double sum = 0, largest = 0, off = 0;
-        for (test::RowSparse::InnerIterator it(K, i); it; ++it) sum += it.value(), largest = std::max(largest, std::abs(it.value()));
-        for (test::RowSparse::InnerIterator it(D, i); it; ++it)
-          if (it.col() != i) off = std::max(off, std::abs(it.value()));
-        if (largest == 0) continue;  // unused vertex
-        worst_sum = std::max(worst_sum, std::abs(sum) / largest);
-        worst_entry = std::max(worst_entry, off / largest);
-      }
-      EXPECT_LE(worst_sum, 1e-12) << method_name(w.method);
-      EXPECT_LE(worst_entry, 1e-12) << method_name(w.method);
-    }
+    expect_weight_rows(make_mesh(read_mesh(test::shared_mesh(name))));
   }
 }
 

@@ -164,7 +164,8 @@ TEST(Natural, EqualsLscmOnCurvedIrregularMesh) {
   expect_matches_lscm(make_mesh(generate_sphere_strip(g)), "sphere strip");
 }
 
-TEST(Natural, EqualsLscmOnSharedMeshes) {
+TEST(NaturalCorpus, EqualsLscmOnSharedMeshes) {
+  REQUIRE_SHARED_MESHES();
   for (const char* name : {"cat_head.obj", "snail.obj"}) {
     const Mesh mesh = make_mesh(read_mesh(test::shared_mesh(name)));
     expect_matches_lscm(mesh, name);
@@ -232,46 +233,54 @@ MatrixX2d natural_holes_reference(const Mesh& mesh, const WeightOptions& w) {
   return UV;
 }
 
+void expect_natural_holes_equal_reference(const Mesh& mesh) {
+  const Topology& top = mesh.topology;
+  ASSERT_GT(top.component_loops[0].size(), 1u);
+  const int outer = static_cast<int>(top.boundary_loops[top.component_loops[0][0]].size());
+  const int used = static_cast<int>(std::count(top.is_used.begin(), top.is_used.end(), 1));
+  WeightOptions mixed;
+  mixed.method = Method::Mixed;
+  mixed.lambda = 0.6;
+  mixed.mu = 0.4;
+  for (const WeightOptions& w : {WeightOptions{}, mixed})
+    for (ScaleMode scale : {ScaleMode::Unit, ScaleMode::Surface}) {
+      SCOPED_TRACE(method_name(w.method) + (scale == ScaleMode::Unit ? " unit" : " surface"));
+      ParamOptions o;
+      o.weights = w;
+      o.holes = HoleRule::Natural;
+      o.scale = scale;
+      const ParamResult r = parameterize(mesh, o);
+      MatrixX2d ref = natural_holes_reference(mesh, w);
+      if (scale == ScaleMode::Unit) {  // the circle's box [-1, 1]^2 onto [0, 1]^2
+        for (int v = 0; v < ref.rows(); ++v)
+          if (top.is_used[v]) ref.row(v) = 0.5 * ref.row(v) + Eigen::RowVector2d(0.5, 0.5);
+      } else {
+        ref *= std::sqrt(surface_area(mesh.V, mesh.F) / std::abs(parameter_area(mesh.F, ref)));
+      }
+      EXPECT_LT((r.UV - ref).cwiseAbs().maxCoeff(), 1e-10 * diameter(ref));
+      EXPECT_EQ(r.holes, HolesApplied::Natural);
+      EXPECT_EQ(r.placement, scale == ScaleMode::Unit ? Placement::Unit : Placement::Surface);
+      EXPECT_EQ(r.fixed_vertices, outer);
+      EXPECT_EQ(r.free_vertices, used - outer);
+      EXPECT_EQ(r.filled_holes, 0);
+      EXPECT_EQ(r.factorizations, 1);
+      EXPECT_TRUE(r.pins.empty());
+      EXPECT_GT(r.residual, 0);
+      EXPECT_LT(r.residual, 1e-10);
+      EXPECT_GT(r.timings.factor_ms, 0);
+      EXPECT_GT(r.timings.solve_ms, 0);
+    }
+}
+
 TEST(Natural, NaturalHolesEqualLscmWithOuterLoopFixed) {
+  expect_natural_holes_equal_reference(make_mesh(test::holed_wavy(3)));
+}
+
+TEST(NaturalCorpus, NaturalHolesEqualLscmWithOuterLoopFixed) {
+  REQUIRE_SHARED_MESHES();
   for (const char* name : {"fairing-cross.off", "inverted-triangles.obj"}) {
     SCOPED_TRACE(name);
-    const Mesh mesh = make_mesh(read_mesh(test::shared_mesh(name)));
-    const Topology& top = mesh.topology;
-    ASSERT_GT(top.component_loops[0].size(), 1u);
-    const int outer = static_cast<int>(top.boundary_loops[top.component_loops[0][0]].size());
-    const int used = static_cast<int>(std::count(top.is_used.begin(), top.is_used.end(), 1));
-    WeightOptions mixed;
-    mixed.method = Method::Mixed;
-    mixed.lambda = 0.6;
-    mixed.mu = 0.4;
-    for (const WeightOptions& w : {WeightOptions{}, mixed})
-      for (ScaleMode scale : {ScaleMode::Unit, ScaleMode::Surface}) {
-        SCOPED_TRACE(method_name(w.method) + (scale == ScaleMode::Unit ? " unit" : " surface"));
-        ParamOptions o;
-        o.weights = w;
-        o.holes = HoleRule::Natural;
-        o.scale = scale;
-        const ParamResult r = parameterize(mesh, o);
-        MatrixX2d ref = natural_holes_reference(mesh, w);
-        if (scale == ScaleMode::Unit) {  // the circle's box [-1, 1]^2 onto [0, 1]^2
-          for (int v = 0; v < ref.rows(); ++v)
-            if (top.is_used[v]) ref.row(v) = 0.5 * ref.row(v) + Eigen::RowVector2d(0.5, 0.5);
-        } else {
-          ref *= std::sqrt(surface_area(mesh.V, mesh.F) / std::abs(parameter_area(mesh.F, ref)));
-        }
-        EXPECT_LT((r.UV - ref).cwiseAbs().maxCoeff(), 1e-10 * diameter(ref));
-        EXPECT_EQ(r.holes, HolesApplied::Natural);
-        EXPECT_EQ(r.placement, scale == ScaleMode::Unit ? Placement::Unit : Placement::Surface);
-        EXPECT_EQ(r.fixed_vertices, outer);
-        EXPECT_EQ(r.free_vertices, used - outer);
-        EXPECT_EQ(r.filled_holes, 0);
-        EXPECT_EQ(r.factorizations, 1);
-        EXPECT_TRUE(r.pins.empty());
-        EXPECT_GT(r.residual, 0);
-        EXPECT_LT(r.residual, 1e-10);
-        EXPECT_GT(r.timings.factor_ms, 0);
-        EXPECT_GT(r.timings.solve_ms, 0);
-      }
+    expect_natural_holes_equal_reference(make_mesh(read_mesh(test::shared_mesh(name))));
   }
 }
 
@@ -555,41 +564,48 @@ double worst_natural_row(const Mesh& mesh, const ParamResult& r, const WeightOpt
   return test::worst_row(test::weight_table(mesh.V, mesh.F, w), r.UV, t.is_used, skip, natural_loops, lambda_h);
 }
 
-// Every hole rule and the natural boundary on the shared meshes with holes,
+// Every hole rule and the natural boundary on a mesh with holes (generated;
+// the shared meshes with holes in NaturalCorpus),
 // against the rules' own equations assembled here (fan faces included for
 // fill): a map that satisfies them is the rule's solution, whatever its flip
 // count. Cotangent weights may be negative and hole rules other than fill
 // let holes fold, so flips are only bounded (fill: 1% of the faces; the
 // others: 5%, beyond which the map would be broken rather than folded).
-TEST(Natural, HoleRulesOnHoledSharedMeshes) {
+void expect_hole_rules(const Mesh& mesh) {
+  ASSERT_GT(mesh.topology.boundary_loops.size(), 1u);
+  auto run = [&](ParamOptions o, double max_flipped_fraction) {
+    const ParamResult r = parameterize(mesh, o);
+    EXPECT_TRUE(r.UV.allFinite());
+    EXPECT_LE(r.residual, o.max_residual);
+    EXPECT_LE(summarize_distortion(mesh.V, mesh.F, r.UV).flipped_triangles,
+              max_flipped_fraction * static_cast<double>(mesh.F.rows()));
+    return r;
+  };
+  ParamOptions o;
+  o.holes = HoleRule::Fill;
+  ParamResult r = run(o, 0.01);
+  EXPECT_LE(worst_filled_row(mesh, r.UV, o.weights), 1e-8) << "fill";
+  o.holes = HoleRule::Free;
+  r = run(o, 0.05);
+  EXPECT_LE(worst_natural_row(mesh, r, o.weights, true, 0), 1e-8) << "free";
+  o.holes = HoleRule::Natural;
+  r = run(o, 0.05);
+  EXPECT_LE(worst_natural_row(mesh, r, o.weights, true, 1), 1e-8) << "natural holes";
+  o.weights = {Method::Mixed, 0.5, 0.5};
+  r = run(o, 0.05);
+  EXPECT_LE(worst_natural_row(mesh, r, o.weights, true, 0.5), 1e-8) << "mixed natural holes";
+  r = run(natural(), 0.05);
+  EXPECT_LE(worst_natural_row(mesh, r, WeightOptions{}, false, 1), 1e-8) << "natural boundary";
+}
+
+TEST(Natural, HoleRulesOnAHoledPatch) { expect_hole_rules(make_mesh(test::holed_wavy(3))); }
+
+TEST(NaturalCorpus, HoleRulesOnHoledSharedMeshes) {
+  REQUIRE_SHARED_MESHES();
   for (const char* name : {"stanford-bunny.obj", "beetle.off", "fairing-cross.off", "inverted-triangles.obj",
                            "animal.obj"}) {
     SCOPED_TRACE(name);
-    const Mesh mesh = make_mesh(read_mesh(test::shared_mesh(name)));
-    ASSERT_GT(mesh.topology.boundary_loops.size(), 1u);
-    auto run = [&](ParamOptions o, double max_flipped_fraction) {
-      const ParamResult r = parameterize(mesh, o);
-      EXPECT_TRUE(r.UV.allFinite());
-      EXPECT_LE(r.residual, o.max_residual);
-      EXPECT_LE(summarize_distortion(mesh.V, mesh.F, r.UV).flipped_triangles,
-                max_flipped_fraction * static_cast<double>(mesh.F.rows()));
-      return r;
-    };
-    ParamOptions o;
-    o.holes = HoleRule::Fill;
-    ParamResult r = run(o, 0.01);
-    EXPECT_LE(worst_filled_row(mesh, r.UV, o.weights), 1e-8) << "fill";
-    o.holes = HoleRule::Free;
-    r = run(o, 0.05);
-    EXPECT_LE(worst_natural_row(mesh, r, o.weights, true, 0), 1e-8) << "free";
-    o.holes = HoleRule::Natural;
-    r = run(o, 0.05);
-    EXPECT_LE(worst_natural_row(mesh, r, o.weights, true, 1), 1e-8) << "natural holes";
-    o.weights = {Method::Mixed, 0.5, 0.5};
-    r = run(o, 0.05);
-    EXPECT_LE(worst_natural_row(mesh, r, o.weights, true, 0.5), 1e-8) << "mixed natural holes";
-    r = run(natural(), 0.05);
-    EXPECT_LE(worst_natural_row(mesh, r, WeightOptions{}, false, 1), 1e-8) << "natural boundary";
+    expect_hole_rules(make_mesh(read_mesh(test::shared_mesh(name))));
   }
 }
 

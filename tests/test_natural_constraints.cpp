@@ -57,14 +57,16 @@ std::vector<Case> natural_cases(const Mesh& disk, const Mesh& holed) {
 
 double tol(const MatrixX2d& UV) { return 1e-10 * std::max(1.0, UV.cwiseAbs().maxCoeff()); }
 
+// The holed cases run on a generated holed patch, and on fairing-cross.off
+// (4 boundary loops) in the *Corpus tests.
 const Mesh& holed_mesh() {
-  static const Mesh mesh = make_mesh(read_mesh(test::shared_mesh("fairing-cross.off")));
+  static const Mesh mesh = make_mesh(test::holed_wavy(3));
   return mesh;
 }
 
-TEST(NaturalConstraints, MetToTolerance) {
+void expect_met_to_tolerance(const Mesh& holed) {
   const Mesh disk = wavy();
-  for (const Case& c : natural_cases(disk, holed_mesh())) {
+  for (const Case& c : natural_cases(disk, holed)) {
     SCOPED_TRACE(c.name);
     const Mesh& mesh = *c.mesh;
     Parameterizer p(mesh, c.o);
@@ -105,9 +107,16 @@ TEST(NaturalConstraints, MetToTolerance) {
   }
 }
 
-TEST(NaturalConstraints, NoneEqualsNaturalMapAndOwnValuesChangeNothing) {
+TEST(NaturalConstraints, MetToTolerance) { expect_met_to_tolerance(holed_mesh()); }
+
+TEST(NaturalConstraintsCorpus, MetToTolerance) {
+  REQUIRE_SHARED_MESHES();
+  expect_met_to_tolerance(make_mesh(read_mesh(test::shared_mesh("fairing-cross.off"))));
+}
+
+void expect_none_equals_natural_map(const Mesh& holed) {
   const Mesh disk = wavy();
-  for (const Case& c : natural_cases(disk, holed_mesh())) {
+  for (const Case& c : natural_cases(disk, holed)) {
     SCOPED_TRACE(c.name);
     const Mesh& mesh = *c.mesh;
     const ParamResult plain = parameterize(mesh, c.o);
@@ -130,6 +139,15 @@ TEST(NaturalConstraints, NoneEqualsNaturalMapAndOwnValuesChangeNothing) {
     p.clear_constraints();
     EXPECT_LT((p.solve().UV - plain.UV).cwiseAbs().maxCoeff(), tol(plain.UV));
   }
+}
+
+TEST(NaturalConstraints, NoneEqualsNaturalMapAndOwnValuesChangeNothing) {
+  expect_none_equals_natural_map(holed_mesh());
+}
+
+TEST(NaturalConstraintsCorpus, NoneEqualsNaturalMapAndOwnValuesChangeNothing) {
+  REQUIRE_SHARED_MESHES();
+  expect_none_equals_natural_map(make_mesh(read_mesh(test::shared_mesh("fairing-cross.off"))));
 }
 
 TEST(NaturalConstraints, ContradictingPinsAreRefused) {
@@ -219,10 +237,9 @@ TEST(NaturalConstraints, CliReportsResiduals) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.obj"));
 }
 
-TEST(NaturalConstraints, CliNaturalHoles) {
-  test::TempDir dir;
-  const Mesh& mesh = holed_mesh();
-  const std::string in = test::shared_mesh("fairing-cross.off");
+// `intrinsic param IN --holes natural` with a point constraint on face 500.
+void expect_cli_natural_holes(const std::string& in, const test::TempDir& dir) {
+  const Mesh mesh = make_mesh(read_mesh(in));
   const auto plain = test::run_cli("param " + in + " -q -o " + (dir / "plain.obj") + " --holes natural", dir);
   ASSERT_EQ(plain.code, 0) << plain.err;
   const MeshData p = read_mesh(dir / "plain.obj");
@@ -241,6 +258,19 @@ TEST(NaturalConstraints, CliNaturalHoles) {
   ASSERT_EQ(report["constraints"].size(), 1u);
   EXPECT_LT(report["constraints"][0]["residual"].get<double>(), 1e-10);
   EXPECT_GT(mesh.topology.boundary_loops.size(), 1u);
+}
+
+TEST(NaturalConstraints, CliNaturalHoles) {
+  test::TempDir dir;
+  const MeshData holed = test::holed_wavy(3);
+  write_mesh(dir / "holed.obj", holed.V, holed.F, MatrixX2d());
+  expect_cli_natural_holes(dir / "holed.obj", dir);
+}
+
+TEST(NaturalConstraintsCorpus, CliNaturalHoles) {
+  REQUIRE_SHARED_MESHES();
+  test::TempDir dir;
+  expect_cli_natural_holes(test::shared_mesh("fairing-cross.off"), dir);
 }
 
 }  // namespace

@@ -200,22 +200,7 @@ TEST(Parameterize, GivenBoundaryMustCoverOuterLoop) {
 }
 
 // A disk with holes: faces around a few interior vertices removed.
-Mesh holed_disk(int holes) {
-  GenerateOptions g;
-  g.rings = 16;
-  MeshData d = generate_wavy_patch(g);
-  std::vector<char> drop(d.F.rows(), 0);
-  const int centres[] = {3 * 10 * 9 + 5, 3 * 6 * 5 + 40, 3 * 12 * 11 + 20};
-  for (int h = 0; h < holes; ++h)
-    for (int f = 0; f < d.F.rows(); ++f)
-      for (int c = 0; c < 3; ++c) drop[f] = drop[f] || d.F(f, c) == centres[h] + 1;
-  MatrixX3i F(d.F.rows(), 3);
-  int m = 0;
-  for (int f = 0; f < d.F.rows(); ++f)
-    if (!drop[f]) F.row(m++) = d.F.row(f);
-  d.F = F.topRows(m);
-  return make_mesh(d);
-}
+Mesh holed_disk(int holes) { return make_mesh(test::holed_wavy(holes)); }
 
 TEST(Parameterize, HolesFilledOrFreeGiveValidMaps) {
   const Mesh mesh = holed_disk(3);

@@ -1,6 +1,7 @@
 // Pictures from the command line (`render`, `param --render`, `compare`):
 // expected pixels for known configurations, the colour bar's range against
-// `metrics`, every shared mesh in every mode, and refused runs.
+// `metrics`, generated surfaces and every shared mesh in every mode, and
+// refused runs.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -180,14 +181,9 @@ TEST(RenderCli, PerCornerUvsWithSeams) {
   }
 }
 
-// Every shared mesh, explicitly listed: a missing one fails.
-class RenderCliSharedMeshes : public ::testing::TestWithParam<const char*> {};
-
-TEST_P(RenderCliSharedMeshes, EveryModeAfterParam) {
-  const std::string name = GetParam();
-  const std::string mesh = test::shared_mesh(name);
-  ASSERT_TRUE(std::filesystem::exists(mesh)) << "missing shared mesh " << mesh;
-  TempDir dir;
+// `intrinsic param MESH --render-all`, then `intrinsic render` of its output
+// in every mode: pictures of the right size, not blank.
+void expect_every_mode_after_param(const std::string& mesh, bool large, const TempDir& dir) {
   const auto p = run_cli("param " + mesh + " -o " + (dir / "uv.ply") + " --binary --render-all " + (dir / "p") +
                              " --render-size 200,200 -q",
                          dir);
@@ -199,7 +195,6 @@ TEST_P(RenderCliSharedMeshes, EveryModeAfterParam) {
   }
   // The render command on param's output: every mode (the large mesh only
   // once, to keep the suite fast).
-  const bool large = name == "max-planck-partial-loop2.obj.gz";
   std::vector<std::string> runs = {"checker", "layout", "angle", "area", "stretch", "area --on-surface --log"};
   if (large) runs = {"stretch --on-surface"};
   for (const std::string& mode : runs) {
@@ -211,7 +206,29 @@ TEST_P(RenderCliSharedMeshes, EveryModeAfterParam) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(RenderCli, RenderCliSharedMeshes,
+TEST(RenderCli, EveryModeAfterParamOnGeneratedSurfaces) {
+  for (const char* surface : {"wave", "strip", "cap"}) {
+    SCOPED_TRACE(surface);
+    TempDir dir;
+    ASSERT_EQ(run_cli(std::string("generate ") + surface + " --rings 10 -o " + (dir / "in.obj"), dir).code, 0);
+    expect_every_mode_after_param(dir / "in.obj", false, dir);
+  }
+}
+
+// Every shared mesh, explicitly listed: where ../shared/meshes is present, a
+// missing one fails.
+class RenderCliCorpus : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RenderCliCorpus, EveryModeAfterParam) {
+  REQUIRE_SHARED_MESHES();
+  const std::string name = GetParam();
+  const std::string mesh = test::shared_mesh(name);
+  ASSERT_TRUE(std::filesystem::exists(mesh)) << "missing shared mesh " << mesh;
+  TempDir dir;
+  expect_every_mode_after_param(mesh, name == "max-planck-partial-loop2.obj.gz", dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(RenderCli, RenderCliCorpus,
                          ::testing::Values("alligator.obj", "animal.obj", "beetle.off", "camel_b.obj",
                                            "camelhead.off", "cat_head.obj", "face-bff.obj", "fairing-cross.off",
                                            "inspired_mesh.obj", "inverted-triangles.obj", "max-planck-partial.obj",

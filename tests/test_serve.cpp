@@ -2,15 +2,13 @@
 // child process (killed at the end of every test, also on failure) and is
 // driven over HTTP; its maps must equal `intrinsic param` with the same
 // settings (moved boundary written to a boundary file, moved pins as --pin)
-// to 1e-9 on shared meshes, also when constraints change on the kept
-// factorization (path and factorization count checked); the optimization
-// endpoints equal the library's optimal_lambda and optimize_boundary; bad
-// requests get 400/413 and the server keeps answering; two sessions stay
-// independent.
-#include <poll.h>
-#include <signal.h>
-#include <unistd.h>
-
+// to 1e-9 on generated surfaces (and on shared meshes: ServeCorpus), also
+// when constraints change on the kept factorization (path and factorization
+// count checked); the optimization endpoints equal the library's
+// optimal_lambda and optimize_boundary; bad requests get 400/413 and the
+// server keeps answering; two sessions stay independent. Every request
+// carries the server's token (X-Intrinsic-Token; test_serve_guard.cpp tests
+// the guard itself).
 #include <array>
 #include <cstdio>
 #include <cstring>
@@ -22,6 +20,7 @@
 #include "intrinsic/io.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/mesh.h"
+#include "serve_support.h"
 #include "test_support.h"
 
 // Last: httplib.h includes <resolv.h>, whose macro _res breaks Eigen's headers.
@@ -32,58 +31,24 @@ namespace {
 
 using nlohmann::json;
 
-// `intrinsic serve MESH --port 0` with its stdout on a pipe; the port is read
-// from the URL it prints.
-class ServerProcess {
- public:
-  explicit ServerProcess(const std::string& mesh) {
-    int fds[2];
-    if (pipe(fds) != 0) return;
-    pid_ = fork();
-    if (pid_ == 0) {
-      dup2(fds[1], STDOUT_FILENO);
-      close(fds[0]);
-      close(fds[1]);
-      execl(INTRINSIC_CLI, INTRINSIC_CLI, "serve", mesh.c_str(), "--port", "0", "--max-sessions", "4",
-            static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    close(fds[1]);
-    port_ = read_port(fds[0]);
-    close(fds[0]);
-  }
-  ~ServerProcess() {
-    if (pid_ <= 0) return;
-    kill(pid_, SIGKILL);
-    waitpid(pid_, nullptr, 0);
-  }
-  int port() const { return port_; }
-  bool alive() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
-
- private:
-  static int read_port(int fd) {
-    std::string line;
-    char c;
-    pollfd p{fd, POLLIN, 0};
-    while (line.find('\n') == std::string::npos && poll(&p, 1, 60000) > 0 && read(fd, &c, 1) == 1) line += c;
-    const size_t at = line.find("http://127.0.0.1:");
-    return at == std::string::npos ? -1 : std::atoi(line.c_str() + at + 17);
-  }
-  pid_t pid_ = -1;
-  int port_ = -1;
-};
+using test::ServerProcess;
 
 struct Reply {
   int status = -1;
   json body;
 };
 
-Reply post(int port, const std::string& body, const std::string& session = "s1",
+// The server's token goes in the header (test_serve_guard.cpp checks the guard).
+httplib::Headers api_headers(const ServerProcess& server, const std::string& session = "s1") {
+  return {{"X-Session", session}, {"X-Intrinsic-Token", server.token()}};
+}
+
+Reply post(const ServerProcess& server, const std::string& body, const std::string& session = "s1",
            const std::string& route = "/api/solve") {
-  httplib::Client client("127.0.0.1", port);
+  httplib::Client client("127.0.0.1", server.port());
   client.set_read_timeout(300, 0);
   client.set_write_timeout(300, 0);
-  auto res = client.Post(route.c_str(), {{"X-Session", session}}, body, "application/json");
+  auto res = client.Post(route.c_str(), api_headers(server, session), body, "application/json");
   Reply r;
   if (!res) return r;
   r.status = res->status;
@@ -159,23 +124,33 @@ double max_diff(const MatrixX2d& a, const MatrixX2d& b) {
 
 class ServeTest : public ::testing::Test {
  protected:
-  void start(const std::string& name) {
-    path_ = test::shared_mesh(name);
+  // Serves a generated wavy patch written to the test's folder: rings 8
+  // (about 190 vertices, near cat_head.obj's 131) or more.
+  void start(int rings = 8) {
+    GenerateOptions g;
+    g.rings = rings;
+    const MeshData d = generate_wavy_patch(g);
+    write_mesh(dir_ / "wave.obj", d.V, d.F, MatrixX2d());
+    serve(dir_ / "wave.obj");
+  }
+  void serve(const std::string& path) {
+    path_ = path;
     mesh_ = make_mesh(read_mesh(path_));
     server_ = std::make_unique<ServerProcess>(path_);
     ASSERT_GT(server_->port(), 0) << "intrinsic serve did not print its URL";
   }
   int port() const { return server_->port(); }
+  const ServerProcess& server() const { return *server_; }
 
   // Solves `options` + moves through the server, then `intrinsic param` with
   // the moved boundary in a file, and compares.
   void expect_fixed_equals_param(json options, const std::string& cli_options, const json& moves,
                                  const std::string& constraints_file = "") {
-    const Reply base = post(port(), options.dump());
+    const Reply base = post(server(), options.dump());
     ASSERT_EQ(base.status, 200) << base.body.dump();
     EXPECT_EQ(base.body["path"], "factor");
     options["moves"] = moves;
-    const Reply moved = post(port(), options.dump());
+    const Reply moved = post(server(), options.dump());
     ASSERT_EQ(moved.status, 200) << moved.body.dump();
     EXPECT_EQ(moved.body["path"], "responses");
     test::write_text(dir_ / "b.txt", boundary_file(mesh_, uv_of(base.body), moves));
@@ -191,9 +166,9 @@ class ServeTest : public ::testing::Test {
 };
 
 TEST_F(ServeTest, MeshCountsEqualTheMesh) {
-  start("cat_head.obj");
+  start();
   httplib::Client client("127.0.0.1", port());
-  auto res = client.Get("/api/mesh");
+  auto res = client.Get("/api/mesh", api_headers(server()));
   ASSERT_TRUE(res);
   ASSERT_EQ(res->status, 200);
   const json m = json::parse(res->body);
@@ -202,34 +177,34 @@ TEST_F(ServeTest, MeshCountsEqualTheMesh) {
   EXPECT_EQ(m["positions"].size(), 3 * mesh_.V.rows());
   EXPECT_EQ(m["triangles"].size(), 3 * mesh_.F.rows());
   EXPECT_EQ(m["boundary_loops"].size(), mesh_.topology.boundary_loops.size());
-  auto page = client.Get("/");
+  auto page = client.Get(server().page().c_str());
   ASSERT_TRUE(page);
   EXPECT_NE(page->body.find("<canvas"), std::string::npos);
 }
 
 TEST_F(ServeTest, FixedCircleWithMovesEqualsParam) {
-  start("cat_head.obj");
+  start();
   const int v = mesh_.topology.boundary_loops[0][3], w = mesh_.topology.boundary_loops[0][10];
   expect_fixed_equals_param(json::object(), "", json::array({json::array({v, 0.55, 0.02})}));
   // The next drag from the same base: v goes back, w moves.
   const json moves = json::array({json::array({w, 0.9, 0.95})});
-  const Reply again = post(port(), json{{"moves", moves}}.dump());
+  const Reply again = post(server(), json{{"moves", moves}}.dump());
   ASSERT_EQ(again.status, 200);
   EXPECT_EQ(again.body["path"], "responses");
-  const Reply base = post(port(), "{}");
+  const Reply base = post(server(), "{}");
   test::write_text(dir_ / "b2.txt", boundary_file(mesh_, uv_of(base.body), moves));
   EXPECT_LT(max_diff(uv_of(again.body), run_param(path_ + " --boundary " + (dir_ / "b2.txt"), dir_)), 1e-9);
 }
 
 TEST_F(ServeTest, MixedSquareEqualsParam) {
-  start("camel_b.obj");
+  start(24);
   const int v = mesh_.topology.boundary_loops[0][5];
   expect_fixed_equals_param({{"method", "mixed"}, {"lambda", 0.3}, {"mu", 0.7}, {"boundary", "square"}},
                             "--method mixed --lambda 0.3 --mu 0.7", json::array({json::array({v, 0.1, -0.05})}));
 }
 
 TEST_F(ServeTest, ConstraintsEqualParam) {
-  start("cat_head.obj");
+  start();
   std::vector<char> on_boundary(mesh_.V.rows(), 0);
   for (const auto& loop : mesh_.topology.boundary_loops)
     for (const int i : loop) on_boundary[i] = 1;
@@ -242,13 +217,13 @@ TEST_F(ServeTest, ConstraintsEqualParam) {
 }
 
 TEST_F(ServeTest, NaturalWithMovedPinsEqualsParam) {
-  start("cat_head.obj");
-  const Reply first = post(port(), R"({"boundary": "natural"})");
+  start();
+  const Reply first = post(server(), R"({"boundary": "natural"})");
   ASSERT_EQ(first.status, 200) << first.body.dump();
   json pins = first.body.at("pins");
   ASSERT_EQ(pins.size(), 2u);
   // The default pins given explicitly: the same map, on the same factorization.
-  const Reply given = post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump());
+  const Reply given = post(server(), json{{"boundary", "natural"}, {"pins", pins}}.dump());
   ASSERT_EQ(given.status, 200);
   EXPECT_EQ(given.body["path"], "responses");
   EXPECT_EQ(given.body["factorizations"], 1);
@@ -259,7 +234,7 @@ TEST_F(ServeTest, NaturalWithMovedPinsEqualsParam) {
   for (int step = 0; step < 2; ++step) {
     pins[step][1] = pins[step][1].get<double>() + 0.1;
     pins[1][2] = pins[1][2].get<double>() - 0.2;
-    const Reply moved = post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump());
+    const Reply moved = post(server(), json{{"boundary", "natural"}, {"pins", pins}}.dump());
     ASSERT_EQ(moved.status, 200);
     EXPECT_EQ(moved.body["path"], "responses") << step;
     EXPECT_EQ(moved.body["factorizations"], 1) << step;
@@ -269,7 +244,7 @@ TEST_F(ServeTest, NaturalWithMovedPinsEqualsParam) {
     EXPECT_LT(max_diff(uv_of(moved.body), run_param(args, dir_)), 1e-9) << step;
   }
   // No pins again: back to the default pins, still without refactoring.
-  const Reply back = post(port(), R"({"boundary": "natural"})");
+  const Reply back = post(server(), R"({"boundary": "natural"})");
   ASSERT_EQ(back.status, 200);
   EXPECT_EQ(back.body["factorizations"], 1);
   EXPECT_LT(max_diff(uv_of(back.body), uv_of(first.body)), 1e-9);
@@ -278,11 +253,11 @@ TEST_F(ServeTest, NaturalWithMovedPinsEqualsParam) {
 // Circle <-> square keeps the factorization (same fixed vertices, new
 // positions: one solve), with and without moves, against `intrinsic param`.
 TEST_F(ServeTest, CircleSquareSwitchKeepsTheFactorization) {
-  start("camel_b.obj");
-  const Reply circle = post(port(), R"({"method": "authalic"})");
+  start(24);
+  const Reply circle = post(server(), R"({"method": "authalic"})");
   ASSERT_EQ(circle.status, 200);
   EXPECT_EQ(circle.body["path"], "factor");
-  const Reply square = post(port(), R"({"method": "authalic", "boundary": "square"})");
+  const Reply square = post(server(), R"({"method": "authalic", "boundary": "square"})");
   ASSERT_EQ(square.status, 200) << square.body.dump();
   EXPECT_NE(square.body["path"], "factor");
   EXPECT_EQ(square.body["factorizations"], 1);
@@ -290,12 +265,12 @@ TEST_F(ServeTest, CircleSquareSwitchKeepsTheFactorization) {
   // A square drag, then back to the circle with a drag: moves are relative to each request's shape.
   const int v = mesh_.topology.boundary_loops[0][6];
   const json moves = json::array({json::array({v, 0.3, -0.1})});
-  const Reply dragged = post(port(), json{{"method", "authalic"}, {"boundary", "square"}, {"moves", moves}}.dump());
+  const Reply dragged = post(server(), json{{"method", "authalic"}, {"boundary", "square"}, {"moves", moves}}.dump());
   ASSERT_EQ(dragged.status, 200);
   EXPECT_EQ(dragged.body["path"], "responses");
   test::write_text(dir_ / "b.txt", boundary_file(mesh_, uv_of(square.body), moves));
   EXPECT_LT(max_diff(uv_of(dragged.body), run_param(path_ + " --method authalic --boundary " + (dir_ / "b.txt"), dir_)), 1e-9);
-  const Reply back = post(port(), json{{"method", "authalic"}, {"moves", moves}}.dump());
+  const Reply back = post(server(), json{{"method", "authalic"}, {"moves", moves}}.dump());
   ASSERT_EQ(back.status, 200);
   EXPECT_NE(back.body["path"], "factor");
   EXPECT_EQ(back.body["factorizations"], 1);
@@ -307,10 +282,10 @@ TEST_F(ServeTest, CircleSquareSwitchKeepsTheFactorization) {
 // factorization throughout, each answer equal to `intrinsic param` with the
 // constraint file and the moved boundary.
 TEST_F(ServeTest, ConstraintChangesReuseTheFactorization) {
-  start("cat_head.obj");
+  start();
   const std::array<int, 2> faces = interior_face_pair(mesh_);
   ASSERT_GE(faces[0], 0);
-  const Reply base = post(port(), "{}");
+  const Reply base = post(server(), "{}");
   ASSERT_EQ(base.status, 200);
   EXPECT_EQ(base.body["path"], "factor");
   const int v = mesh_.topology.boundary_loops[0][4];
@@ -329,7 +304,7 @@ TEST_F(ServeTest, ConstraintChangesReuseTheFactorization) {
   // Same rows, new targets: the target responses (computed on a row's first new target).
   const char* const paths[] = {"constraints", "responses", "constraints", "responses"};
   for (int k = 0; k < 4; ++k) {
-    const Reply r = post(port(), json{{"constraints", steps[k]}, {"moves", moves}}.dump());
+    const Reply r = post(server(), json{{"constraints", steps[k]}, {"moves", moves}}.dump());
     ASSERT_EQ(r.status, 200) << r.body.dump();
     EXPECT_EQ(r.body["path"], paths[k]) << k;
     EXPECT_EQ(r.body["factorizations"], 1) << k;
@@ -338,33 +313,33 @@ TEST_F(ServeTest, ConstraintChangesReuseTheFactorization) {
         run_param(path_ + " --boundary " + (dir_ / "b.txt") + " --constraints " + (dir_ / "c.json"), dir_);
     EXPECT_LT(max_diff(uv_of(r.body), cli), 1e-9) << k;
   }
-  const Reply cleared = post(port(), json{{"moves", moves}}.dump());
+  const Reply cleared = post(server(), json{{"moves", moves}}.dump());
   ASSERT_EQ(cleared.status, 200);
   EXPECT_EQ(cleared.body["path"], "constraints");
   EXPECT_EQ(cleared.body["factorizations"], 1);
   EXPECT_LT(max_diff(uv_of(cleared.body), run_param(path_ + " --boundary " + (dir_ / "b.txt"), dir_)), 1e-9);
   // A constraint the boundary cannot meet (on fixed vertices only, elsewhere): 400, and the session recovers.
   const json bad = {{"points", {{{"vertex", v}, {"uv", {0.1, 0.1}}}}}};
-  EXPECT_EQ(post(port(), json{{"constraints", bad}}.dump()).status, 400);
-  EXPECT_EQ(post(port(), "{}").status, 200);
+  EXPECT_EQ(post(server(), json{{"constraints", bad}}.dump()).status, 400);
+  EXPECT_EQ(post(server(), "{}").status, 200);
 }
 
 // Natural map: a constraint added and retargeted on the kept factorization,
 // then moved pins, against `intrinsic param --pin ... --constraints`.
 TEST_F(ServeTest, NaturalConstraintsAndPinsReuseTheFactorization) {
-  start("cat_head.obj");
+  start();
   const std::array<int, 2> faces = interior_face_pair(mesh_);
-  const Reply first = post(port(), R"({"boundary": "natural"})");
+  const Reply first = post(server(), R"({"boundary": "natural"})");
   ASSERT_EQ(first.status, 200);
   json pins = first.body.at("pins");
-  ASSERT_EQ(post(port(), json{{"boundary", "natural"}, {"pins", pins}}.dump()).status, 200);  // the default pins, given
+  ASSERT_EQ(post(server(), json{{"boundary", "natural"}, {"pins", pins}}.dump()).status, 200);  // the default pins, given
   const json c1 = {{"points", {{{"face", faces[0]}, {"bary", {0.3, 0.3, 0.4}}, {"uv", {0.5, 0.4}}}}}};
   const json c2 = {{"points", {{{"face", faces[0]}, {"bary", {0.3, 0.3, 0.4}}, {"uv", {0.55, 0.35}}}}}};
-  const Reply a = post(port(), json{{"boundary", "natural"}, {"constraints", c1}, {"pins", pins}}.dump());
+  const Reply a = post(server(), json{{"boundary", "natural"}, {"constraints", c1}, {"pins", pins}}.dump());
   ASSERT_EQ(a.status, 200) << a.body.dump();
   EXPECT_EQ(a.body["path"], "constraints");
   pins[1][1] = pins[1][1].get<double>() + 0.05;
-  const Reply b = post(port(), json{{"boundary", "natural"}, {"constraints", c2}, {"pins", pins}}.dump());
+  const Reply b = post(server(), json{{"boundary", "natural"}, {"constraints", c2}, {"pins", pins}}.dump());
   ASSERT_EQ(b.status, 200) << b.body.dump();
   EXPECT_EQ(b.body["path"], "responses") << "new target and pin through the editor's responses";
   EXPECT_EQ(b.body["factorizations"], 1);
@@ -376,9 +351,9 @@ TEST_F(ServeTest, NaturalConstraintsAndPinsReuseTheFactorization) {
 }
 
 TEST_F(ServeTest, OptimalLambdaEqualsTheLibrary) {
-  start("camel_b.obj");
+  start(24);
   for (const char* energy : {"edge", "area"}) {
-    const Reply r = post(port(), json{{"energy", energy}, {"boundary", "square"}}.dump(), "s1", "/api/optimal_lambda");
+    const Reply r = post(server(), json{{"energy", energy}, {"boundary", "square"}}.dump(), "s1", "/api/optimal_lambda");
     ASSERT_EQ(r.status, 200) << r.body.dump();
     OptimalLambdaOptions o;
     o.base.boundary = BoundaryShape::Square;
@@ -390,10 +365,10 @@ TEST_F(ServeTest, OptimalLambdaEqualsTheLibrary) {
     EXPECT_EQ(r.body["path"], "blend");
   }
   // With moves: the library with the moved boundary as given positions.
-  const Reply base = post(port(), "{}");
+  const Reply base = post(server(), "{}");
   const int v = mesh_.topology.boundary_loops[0][6];
   const json moves = json::array({json::array({v, 0.3, -0.1})});
-  const Reply r = post(port(), json{{"moves", moves}}.dump(), "s1", "/api/optimal_lambda");
+  const Reply r = post(server(), json{{"moves", moves}}.dump(), "s1", "/api/optimal_lambda");
   ASSERT_EQ(r.status, 200) << r.body.dump();
   OptimalLambdaOptions o;
   o.base.boundary = BoundaryShape::Given;
@@ -405,8 +380,8 @@ TEST_F(ServeTest, OptimalLambdaEqualsTheLibrary) {
 }
 
 TEST_F(ServeTest, BoundaryOptimizationEqualsTheLibraryAndReportsProgress) {
-  start("cat_head.obj");
-  const Reply r = post(port(), R"({"energy": "area", "max_iterations": 5})", "s1", "/api/optimize_boundary");
+  start();
+  const Reply r = post(server(), R"({"energy": "area", "max_iterations": 5})", "s1", "/api/optimize_boundary");
   ASSERT_EQ(r.status, 200) << r.body.dump();
   BoundaryOptimizationOptions o;
   o.energy = BoundaryEnergy::Area;
@@ -418,7 +393,7 @@ TEST_F(ServeTest, BoundaryOptimizationEqualsTheLibraryAndReportsProgress) {
   EXPECT_LT(max_diff(uv_of(r.body), lib.map.UV), 1e-9);
   EXPECT_EQ(r.body["iterations"], lib.iterations);
   httplib::Client client("127.0.0.1", port());
-  auto progress = client.Get("/api/optimize_boundary/progress", {{"X-Session", "s1"}});
+  auto progress = client.Get("/api/optimize_boundary/progress", api_headers(server()));
   ASSERT_TRUE(progress);
   const json p = json::parse(progress->body);
   EXPECT_EQ(p["running"], false);
@@ -426,12 +401,12 @@ TEST_F(ServeTest, BoundaryOptimizationEqualsTheLibraryAndReportsProgress) {
 }
 
 TEST_F(ServeTest, BadOptimizationRequestsGet400) {
-  start("cat_head.obj");
+  start();
   const char* const bad_lambda[] = {"{", R"({"energy": "fancy"})", R"({"energy": 3})", R"({"boundary": "natural"})",
                                     R"({"constraints": {"points": [{"vertex": 0, "uv": [0, 0]}]}})",
                                     R"({"max_iterations": 3})", R"({"moves": [[-1, 0, 0]]})"};
   for (const char* body : bad_lambda) {
-    const Reply r = post(port(), body, "s1", "/api/optimal_lambda");
+    const Reply r = post(server(), body, "s1", "/api/optimal_lambda");
     EXPECT_EQ(r.status, 400) << body << " -> " << r.body.dump();
     EXPECT_TRUE(r.body.is_object() && r.body.contains("error")) << body;
   }
@@ -439,15 +414,15 @@ TEST_F(ServeTest, BadOptimizationRequestsGet400) {
                                       R"({"max_iterations": 1.5})", R"({"max_iterations": 100000})",
                                       R"({"boundary": "natural"})", R"({"moves": [[0, NaN, 0]]})"};
   for (const char* body : bad_boundary) {
-    const Reply r = post(port(), body, "s1", "/api/optimize_boundary");
+    const Reply r = post(server(), body, "s1", "/api/optimize_boundary");
     EXPECT_EQ(r.status, 400) << body << " -> " << r.body.dump();
   }
-  EXPECT_EQ(post(port(), R"({"energy": "area"})", "s1", "/api/optimal_lambda").status, 200);
+  EXPECT_EQ(post(server(), R"({"energy": "area"})", "s1", "/api/optimal_lambda").status, 200);
   EXPECT_TRUE(server_->alive());
 }
 
 TEST_F(ServeTest, BadRequestsGet400AndTheServerKeepsServing) {
-  start("cat_head.obj");
+  start();
   const std::string n = std::to_string(mesh_.V.rows());
   const char* const bad[] = {
       "{", "[]", "nonsense", R"({"method": "fancy"})", R"({"unknown": 1})", R"({"boundary": 3})",
@@ -457,18 +432,18 @@ TEST_F(ServeTest, BadRequestsGet400AndTheServerKeepsServing) {
       R"({"boundary": "natural", "pins": [[0, 0, 0]]})", R"({"constraints": {"points": [{"vertex": 0}]}})",
       R"({"constraints": {"points": [{"vertex": 99999999, "uv": [0, 0]}]}})", R"({"constraints": 5})"};
   for (const char* body : bad) {
-    const Reply r = post(port(), body);
+    const Reply r = post(server(), body);
     EXPECT_EQ(r.status, 400) << body << " -> " << r.body.dump();
     EXPECT_TRUE(r.body.is_object() && r.body.contains("error")) << body;
   }
-  EXPECT_EQ(post(port(), "{\"moves\": [[" + n + ", 0, 0]]}").status, 400);
+  EXPECT_EQ(post(server(), "{\"moves\": [[" + n + ", 0, 0]]}").status, 400);
   const int interior_or_not = 0;  // vertex 0 may or may not be fixed: 200 or 400, never a crash
-  const int s = post(port(), "{\"moves\": [[" + std::to_string(interior_or_not) + ", 0.5, 0.5]]}").status;
+  const int s = post(server(), "{\"moves\": [[" + std::to_string(interior_or_not) + ", 0.5, 0.5]]}").status;
   EXPECT_TRUE(s == 200 || s == 400);
-  EXPECT_EQ(post(port(), std::string(200, '[') + std::string(200, ']')).status, 400);
-  const Reply big = post(port(), "{\"moves\": [" + std::string(17 << 20, ' ') + "]}");
+  EXPECT_EQ(post(server(), std::string(200, '[') + std::string(200, ']')).status, 400);
+  const Reply big = post(server(), "{\"moves\": [" + std::string(17 << 20, ' ') + "]}");
   EXPECT_EQ(big.status, 413);
-  const Reply ok = post(port(), "{}");
+  const Reply ok = post(server(), "{}");
   EXPECT_EQ(ok.status, 200);
   EXPECT_TRUE(server_->alive());
 }
@@ -476,13 +451,13 @@ TEST_F(ServeTest, BadRequestsGet400AndTheServerKeepsServing) {
 // ?uv=binary (what the page uses): the same UVs bit for bit as raw
 // little-endian float64, the rest of the answer in the X-Answer header.
 TEST_F(ServeTest, BinaryAnswerEqualsTheJsonAnswer) {
-  start("cat_head.obj");
+  start();
   const int v = mesh_.topology.boundary_loops[0][2];
   const std::string body = "{\"moves\": [[" + std::to_string(v) + ", 0.4, 0.1]]}";
-  const Reply text = post(port(), body);
+  const Reply text = post(server(), body);
   ASSERT_EQ(text.status, 200);
   httplib::Client client("127.0.0.1", port());
-  auto res = client.Post("/api/solve?uv=binary", {{"X-Session", "s1"}}, body, "application/json");
+  auto res = client.Post("/api/solve?uv=binary", api_headers(server()), body, "application/json");
   ASSERT_TRUE(res);
   ASSERT_EQ(res->status, 200);
   ASSERT_EQ(res->body.size(), static_cast<size_t>(16 * mesh_.V.rows()));
@@ -499,9 +474,9 @@ TEST_F(ServeTest, BinaryAnswerEqualsTheJsonAnswer) {
   EXPECT_FALSE(header.contains("uv"));
   EXPECT_EQ(header["flipped_triangles"], text.body["flipped_triangles"]);
   EXPECT_EQ(header["path"], "responses");
-  EXPECT_EQ(client.Post("/api/solve?uv=text", {{"X-Session", "s1"}}, body, "application/json")->status, 400);
+  EXPECT_EQ(client.Post("/api/solve?uv=text", api_headers(server()), body, "application/json")->status, 400);
   // ?uv=float32: each value is the JSON answer's double rounded to float32 (half the bytes).
-  auto small = client.Post("/api/solve?uv=float32", {{"X-Session", "s1"}}, body, "application/json");
+  auto small = client.Post("/api/solve?uv=float32", api_headers(server()), body, "application/json");
   ASSERT_TRUE(small);
   ASSERT_EQ(small->status, 200);
   ASSERT_EQ(small->body.size(), static_cast<size_t>(8 * mesh_.V.rows()));
@@ -521,21 +496,35 @@ TEST_F(ServeTest, BinaryAnswerEqualsTheJsonAnswer) {
   EXPECT_TRUE(header.contains("angle_distortion_mean"));
 }
 
+// The same server on shared real meshes (skipped where ../shared is absent).
+class ServeCorpus : public ServeTest {};
+
+TEST_F(ServeCorpus, SharedMeshesEqualParam) {
+  REQUIRE_SHARED_MESHES();
+  serve(test::shared_mesh("cat_head.obj"));
+  const int v = mesh_.topology.boundary_loops[0][3];
+  expect_fixed_equals_param(json::object(), "", json::array({json::array({v, 0.55, 0.02})}));
+  serve(test::shared_mesh("camel_b.obj"));
+  const int w = mesh_.topology.boundary_loops[0][5];
+  expect_fixed_equals_param({{"method", "mixed"}, {"lambda", 0.3}, {"mu", 0.7}, {"boundary", "square"}},
+                            "--method mixed --lambda 0.3 --mu 0.7", json::array({json::array({w, 0.1, -0.05})}));
+}
+
 TEST_F(ServeTest, TwoSessionsAreIndependent) {
-  start("cat_head.obj");
-  const Reply base_a = post(port(), "{}", "tab-a");
-  const Reply base_b = post(port(), R"({"boundary": "square"})", "tab-b");
+  start();
+  const Reply base_a = post(server(), "{}", "tab-a");
+  const Reply base_b = post(server(), R"({"boundary": "square"})", "tab-b");
   ASSERT_EQ(base_a.status, 200);
   ASSERT_EQ(base_b.status, 200);
   const int v = mesh_.topology.boundary_loops[0][7];
   const std::string move = "{\"moves\": [[" + std::to_string(v) + ", 0.3, 0.3]]}";
-  const Reply moved_a = post(port(), move, "tab-a");
+  const Reply moved_a = post(server(), move, "tab-a");
   ASSERT_EQ(moved_a.status, 200);
   EXPECT_EQ(moved_a.body["path"], "responses");
-  const Reply again_b = post(port(), R"({"boundary": "square"})", "tab-b");
+  const Reply again_b = post(server(), R"({"boundary": "square"})", "tab-b");
   EXPECT_EQ(again_b.body["path"], "responses");  // b's factorization was kept
   EXPECT_LT(max_diff(uv_of(again_b.body), uv_of(base_b.body)), 1e-12);
-  const Reply again_a = post(port(), move, "tab-a");
+  const Reply again_a = post(server(), move, "tab-a");
   EXPECT_EQ(again_a.body["path"], "responses");
   EXPECT_LT(max_diff(uv_of(again_a.body), uv_of(moved_a.body)), 1e-12);
 }

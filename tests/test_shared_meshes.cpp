@@ -9,8 +9,9 @@
 // here) or the square; and every interior vertex satisfies its method's row
 // sum_j w_ij (u_i - u_j) = 0 with weights assembled in
 // tests/independent_assembly.h. The conformal and authalic weights may be
-// negative and guarantee nothing about flips: they are only bounded. A
-// missing mesh fails; nothing is skipped.
+// negative and guarantee nothing about flips: they are only bounded. Label
+// corpus: skipped where ../shared/meshes is absent; where it is present, a
+// missing mesh fails.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -152,7 +153,8 @@ void check_case(const Mesh& mesh, const MethodCase& c) {
   else EXPECT_LE(flipped, 0.01 * mesh.F.rows());
 }
 
-TEST(SharedMeshes, EveryMeshEveryMethodSatisfiesItsEquationsAndGuarantees) {
+TEST(SharedMeshesCorpus, EveryMeshEveryMethodSatisfiesItsEquationsAndGuarantees) {
+  REQUIRE_SHARED_MESHES();
   const nlohmann::json stat = meshstat();
   for (const char* name : test::kSharedMeshes) {
     SCOPED_TRACE(name);
@@ -162,7 +164,8 @@ TEST(SharedMeshes, EveryMeshEveryMethodSatisfiesItsEquationsAndGuarantees) {
   }
 }
 
-TEST(SharedMeshes, AlligatorIsFlatSoItsOwnBoundaryReproducesIt) {
+TEST(SharedMeshesCorpus, AlligatorIsFlatSoItsOwnBoundaryReproducesIt) {
+  REQUIRE_SHARED_MESHES();
   const Mesh mesh = make_mesh(read_mesh(test::shared_mesh("alligator.obj")));
   ParamOptions o;
   o.boundary = BoundaryShape::Given;
@@ -174,7 +177,8 @@ TEST(SharedMeshes, AlligatorIsFlatSoItsOwnBoundaryReproducesIt) {
   }
 }
 
-TEST(SharedMeshesLarge, GzipLoop2ParameterizesWithoutFlips) {
+TEST(SharedMeshesLargeCorpus, GzipLoop2ParameterizesWithoutFlips) {
+  REQUIRE_SHARED_MESHES();
   const Mesh mesh = make_mesh(read_mesh(test::shared_mesh(kLargeMesh)));
   EXPECT_EQ(mesh.V.rows(), 507655);
   check_topology(kLargeMesh, mesh, meshstat());

@@ -1,5 +1,6 @@
 // Shared helpers for the tests: small meshes built in code, rigid motions,
-// access to the shared real meshes (a missing mesh fails the test), the
+// access to the shared real meshes (the corpus: tests in a suite named
+// *Corpus, skipped where ../shared/meshes is absent), the
 // intrinsic methods the constraint and editing tests loop over, surface
 // points, and the check that a call is refused with a given error.
 #pragma once
@@ -8,7 +9,9 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include <zlib.h>
 
@@ -45,7 +48,35 @@ inline Mesh two_disks() {
   return make_mesh(generate_two_disks(g), vo);
 }
 
-inline std::string shared_mesh(const std::string& name) { return std::string(INTRINSIC_SHARED_MESHES) + "/" + name; }
+// The corpus: the real meshes in ../shared/meshes beside the repository
+// (CI always has them; a clone alone does not). A test that reads them lives
+// in a suite whose name ends in "Corpus" (CMakeLists.txt gives those the
+// ctest label `corpus`) and starts with REQUIRE_SHARED_MESHES(), which skips
+// it, saying why, where the folder is absent. Where the folder is present, a
+// missing mesh in it still fails the test: these are the reference inputs.
+inline bool have_shared_meshes() { return std::filesystem::is_directory(INTRINSIC_SHARED_MESHES); }
+
+inline bool in_corpus_suite() {
+  const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string suite = t ? t->test_suite_name() : "";
+  return suite.size() >= 6 && suite.compare(suite.size() - 6, 6, "Corpus") == 0;
+}
+
+#define REQUIRE_SHARED_MESHES()                                                                              \
+  do {                                                                                                       \
+    if (!::intrinsic::test::have_shared_meshes())                                                            \
+      GTEST_SKIP() << INTRINSIC_SHARED_MESHES " is absent: this test needs the shared real meshes (ctest "   \
+                      "label corpus; the repository's own tests run on generated meshes)";                   \
+  } while (0)
+
+// The path of a shared mesh; only from a *Corpus suite, so that the ctest
+// label and the skip cannot be forgotten.
+inline std::string shared_mesh(const std::string& name) {
+  if (!in_corpus_suite())
+    ADD_FAILURE() << "shared_mesh(\"" << name << "\") outside a *Corpus test suite: name the suite *Corpus "
+                  << "and start the test with REQUIRE_SHARED_MESHES()";
+  return std::string(INTRINSIC_SHARED_MESHES) + "/" + name;
+}
 
 // The shared real meshes small enough to solve in every test that loops over
 // them (every patch of meshstat.json but the half-million-vertex loop2).
@@ -77,6 +108,26 @@ inline Mesh wavy(int rings = 10, double jitter = GenerateOptions().jitter) {
   g.rings = rings;
   g.jitter = jitter;
   return make_mesh(generate_wavy_patch(g));
+}
+
+// A curved disk with holes (the generated stand-in for the shared holed
+// meshes): the wavy patch, rings 16, with the faces around up to three
+// interior vertices removed (`holes` + 1 boundary loops).
+inline MeshData holed_wavy(int holes) {
+  GenerateOptions g;
+  g.rings = 16;
+  MeshData d = generate_wavy_patch(g);
+  std::vector<char> drop(d.F.rows(), 0);
+  const int centres[] = {3 * 10 * 9 + 5, 3 * 6 * 5 + 40, 3 * 12 * 11 + 20};
+  for (int h = 0; h < holes; ++h)
+    for (int f = 0; f < d.F.rows(); ++f)
+      for (int c = 0; c < 3; ++c) drop[f] = drop[f] || d.F(f, c) == centres[h] + 1;
+  MatrixX3i F(d.F.rows(), 3);
+  int m = 0;
+  for (int f = 0; f < d.F.rows(); ++f)
+    if (!drop[f]) F.row(m++) = d.F.row(f);
+  d.F = F.topRows(m);
+  return d;
 }
 
 // The intrinsic family at its two ends and one mix.

@@ -1,4 +1,4 @@
-// Requests to the server's API (README "intrinsic serve"): the solve queue
+// Requests to the server's API (docs/cli.md "intrinsic serve"): the solve queue
 // with at most one /api/solve in flight (the newest waiting body is sent
 // next), and plain JSON posts for the other endpoints.
 import { $, natural, session, state } from './state.js';
@@ -24,13 +24,23 @@ export function requestBody(method = $('method').value) {
   return body;
 }
 
+// The API's refusals are {"error": message}; the server's guard answers in
+// plain text (a wrong or missing token: the server was restarted, so its URL
+// changed; see docs/cli.md "intrinsic serve"). The same-origin fetches carry the
+// token in the cookie the page's first load got.
+export async function failure(res) {
+  const text = await res.text();
+  try { return new Error(JSON.parse(text).error || ('HTTP ' + res.status)); } catch (e) {
+    return new Error(`HTTP ${res.status}: ${text.trim()}`);
+  }
+}
+
 export async function post(route, body, sessionId = session) {
   const res = await fetch(route, {
     method: 'POST', headers: { 'Content-Type': 'application/json', 'X-Session': sessionId }, body: JSON.stringify(body),
   });
-  const answer = await res.json();
-  if (!res.ok) throw new Error(answer.error || ('HTTP ' + res.status));
-  return answer;
+  if (!res.ok) throw await failure(res);
+  return res.json();
 }
 
 // /api/solve?uv=binary: the UVs as raw float64 (little-endian, as every
@@ -41,7 +51,7 @@ async function postSolve(body, float32) {
   const res = await fetch(float32 ? '/api/solve?uv=float32' : '/api/solve?uv=binary', {
     method: 'POST', headers: { 'Content-Type': 'application/json', 'X-Session': session }, body: JSON.stringify(body),
   });
-  if (!res.ok) { const e = await res.json(); throw new Error(e.error || ('HTTP ' + res.status)); }
+  if (!res.ok) throw await failure(res);
   const headersAt = performance.now();
   const answer = JSON.parse(res.headers.get('X-Answer'));
   const bytes = await res.arrayBuffer();

@@ -4,7 +4,7 @@
 // optimize.js lambda preview and optimizations) and asks for the first map.
 // window.__intrinsic exposes the state for the browser test and the bench.
 import { $, session, state } from './state.js';
-import { requestBody, solve } from './api.js';
+import { failure, requestBody, solve } from './api.js';
 import { clearConstraints, dragControls, finishLine, surfaceClick } from './interact.js';
 import { fetchBasis, optimalLambda, optimizeBoundary, previewBlend } from './optimize.js';
 import { draw } from './view.js';
@@ -59,6 +59,7 @@ function controls() {
 
 async function main() {
   const res = await fetch('/api/mesh');
+  if (!res.ok) { $('error').textContent = (await failure(res)).message; return; }
   state.mesh = await res.json();
   $('meshInfo').textContent = `${state.mesh.vertices} vertices, ${state.mesh.faces} faces`;
   controls();

@@ -12,7 +12,7 @@ export const state = {
   answer: null,        // the last answer drawn
   moves: new Map(),    // fixed boundary: vertex -> [u, v]
   pins: null,          // natural map: [[vertex, u, v], ...]
-  // Same shape as a constraint file (README); barycentrics in the file's corner order.
+  // Same shape as a constraint file (docs/formats.md); barycentrics in the file's corner order.
   constraints: { points: [], lines: [] },
   linePath: null,      // a line being drawn: [{face, bary, uv}, ...]
   selection: null,     // boundary range: {from, to} indices along the outer loop

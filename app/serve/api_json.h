@@ -1,4 +1,4 @@
-// The JSON bodies `intrinsic serve` answers with (README "intrinsic serve"):
+// The JSON bodies `intrinsic serve` answers with (docs/cli.md "intrinsic serve"):
 // the mesh of GET /api/mesh and the map of POST /api/solve.
 #pragma once
 

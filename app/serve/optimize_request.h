@@ -1,5 +1,5 @@
 // Bodies of `POST /api/optimal_lambda` and `POST /api/optimize_boundary`
-// (README "intrinsic serve"; paper section 5.1 and 5.2, docs/maths.md §7, §8):
+// (docs/cli.md "intrinsic serve"; paper section 5.1 and 5.2, docs/maths.md §7, §8):
 // a solve request (solve_request.h: method, boundary, moves; the session's
 // fixed boundary after the moves is where they start) plus their own keys.
 // Both refuse the natural boundary and constraints (the library's optimal

@@ -1,4 +1,4 @@
-// The body of `POST /api/solve` (README "intrinsic serve"): every key
+// The body of `POST /api/solve` (docs/cli.md "intrinsic serve"): every key
 // optional, unknown keys and wrong types refused. Every request body goes
 // through parse_solve_request, which throws Error(Usage) for malformed JSON,
 // unknown keys, wrong types, non-finite numbers and vertices out of range,

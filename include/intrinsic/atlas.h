@@ -1,4 +1,4 @@
-// Whole assets (issue 13): a packed, overlap-free UV atlas of any triangle
+// Whole assets: a packed, overlap-free UV atlas of any triangle
 // mesh, closed, higher-genus or messy. The input is cleaned for the
 // computation only (zero-area faces set aside, non-manifold edges and vertices
 // split, inconsistently oriented edges cut, so every chart keeps its faces'
@@ -16,6 +16,7 @@
 
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/mesh_data.h"
+#include "intrinsic/metrics.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
 
@@ -38,7 +39,7 @@ enum class ChartMethod {
 // "natural", "triangle", "fixed-boundary", "optimal-lambda", "optimized-boundary"
 const char* chart_method_name(ChartMethod m);
 
-// The map of every chart (issue 13 item 3): any map of `intrinsic param`.
+// The map of every chart: any map of `intrinsic param`.
 // The default is the natural conformal map. With a circle or square
 // boundary the chart's boundary is fixed (arc-length spacing) and `weights`
 // chooses the interior map; `optimizer` then optionally picks lambda or
@@ -52,6 +53,13 @@ struct ChartMapOptions {
   ChartOptimizer optimizer = ChartOptimizer::None;  // needs Circle or Square
   LambdaEnergy lambda_energy = LambdaEnergy::EdgeLength;        // OptimalLambda
   BoundaryEnergy boundary_energy = BoundaryEnergy::EdgeLength;  // OptimizeBoundary
+  // Natural boundary only: local/global isometric refinement steps after the
+  // natural conformal map (docs/maths.md §9.9). The conformal map lets area
+  // drift across a curved chart (a texel grows or shrinks); the refinement
+  // trades that for a little shear, keeping every triangle's orientation,
+  // and is dropped when the chart's boundary would touch itself. 0: the
+  // natural conformal map as it is.
+  int isometric_iterations = 10;
 };
 
 // An edge the user wants cut (`--seams FILE`): two vertex indices of the input.
@@ -63,15 +71,25 @@ struct AtlasOptions {
   ChartMapOptions chart_map;  // how each chart is flattened (default: the natural conformal map)
   Segmentation segmentation = Segmentation::NormalCones;
   double max_normal_deviation_deg = 60;  // NormalCones: face normal vs the chart's mean normal
-  double sharp_angle_deg = 70;           // dihedral angle above which an edge is always a seam
-  // The distortion bound: a chart whose area-weighted mean L2 stretch
-  // (Sander) exceeds it is split, and neighbouring charts are merged while
-  // the union is valid and stays within it. Then, with
-  // atlas_stretch_budget, valid unions under 1% of the surface are merged
-  // past it, smallest chart first, while the whole atlas's area-weighted
-  // mean L2 stretch stays within it (single charts may then exceed it; the
-  // atlas never does).
-  double max_stretch = 1.05;
+  double sharp_angle_deg = 70;           // segmentation: region growing never crosses a sharper edge (merges may)
+  // Hard edges: where the faces' normals turn by more than this many
+  // degrees the edge is always a seam, through every stage (merges and the
+  // chart limit included), as lightmaps want. 0: none.
+  double hard_angle_deg = 0;
+  // The distortion bound, on what a texel sees: per face the stretch
+  // max(s1, 1/s2) of the map at the atlas's one texel density (s1 >= s2 the
+  // singular values; 1.08: stretched or shrunk by 8%). A chart whose
+  // area-weighted 95th percentile of it exceeds max_stretch, or with any
+  // face above max_face_stretch, is split; neighbouring charts are merged
+  // while the union stays within both. Then, with atlas_stretch_budget,
+  // valid unions under 1% of the surface are merged past max_stretch
+  // (never past max_face_stretch), smallest chart first, while the whole
+  // atlas's 95th percentile stays within it (docs/maths.md §9.7).
+  double max_stretch = 1.08;
+  // No face of a chart may be stretched or shrunk more than this
+  // (max(s1, 1/s2) at the atlas's one texel density): no bound on the
+  // average can then hide a broken chart.
+  double max_face_stretch = 2;
   // See max_stretch; false: every merged chart stays within max_stretch.
   bool atlas_stretch_budget = true;
   // Charts with fewer faces may be merged up to their neighbour's own
@@ -85,10 +103,10 @@ struct AtlasOptions {
   // repeated vertex) is degenerate: it gets UVs but takes no part in a solve.
   double degenerate_ratio = 1e-12;
   // Weld vertices closer than this fraction of the bounding box diagonal
-  // (unwelded seams, as in teapot.obj) for the computation only: the output
-  // keeps the input's vertices, and welded corners share texture
-  // coordinates. 0: no welding.
-  double weld = 0;
+  // (coincident corners of unwelded exports, split at every normal or UV
+  // seam) for the computation only: the output keeps the input's vertices,
+  // and welded corners share texture coordinates. 0: no welding.
+  double weld = 1e-7;
   // Reverse the faces listed against their piece's majority orientation in
   // the output (AtlasResult::F), so charts may span them, as `param`'s
   // validation does (the issue's "inconsistent orientation fixed"). Off
@@ -111,7 +129,11 @@ struct AtlasChart {
   int faces = 0, vertices = 0;  // vertices: the chart's own copies (corners glued across its interior edges)
   ChartMethod method = ChartMethod::Natural;
   int flipped = 0;  // always 0 in a result: flipped charts are split
-  double angle_distortion_mean = 1, stretch_l2_mean = 1;  // docs/maths.md §9, area-weighted
+  double angle_distortion_mean = 1, stretch_l2_mean = 1;  // docs/maths.md §9, area-weighted means
+  double stretch_l2_rms = 1;    // Sander's L2 of the chart: root mean square of per-face L2, 3D-area weighted
+  double face_stretch_p95 = 1;  // per-face max(s1, 1/s2), area-weighted 95th percentile
+  double face_stretch_max = 1;  // largest per-face max(s1, 1/s2) (a texel's worst stretch or shrink)
+  bool refined = false;         // the isometric refinement was kept
   double area_3d = 0;
   // 3D length of the chart's boundary: its edges not shared with another of
   // its faces (seams and the mesh's own boundary alike; docs/maths.md §9.6).
@@ -133,6 +155,7 @@ struct AtlasCleaning {
   int orientation_cuts = 0;
   int unreferenced_vertices = 0;  // written unchanged, no UV
   int welded_vertices = 0;        // --weld: vertices merged into an earlier one within the distance
+  int hard_edges = 0;             // --hard-angle: edges cut because their faces' normals turn more
 };
 
 // Why charts were split (each split counted once, by the first check that failed).
@@ -165,10 +188,14 @@ struct AtlasResult {
   int splits = 0;          // charts split: not disks, flipped, boundary crossing, or too sparse for packing
   AtlasSplits split_reasons;
   double utilization = 0;  // UV area of the charts / area of [0,1]^2
-  // Area-weighted mean over all charts of the per-triangle L2 stretch
-  // (Sander; docs/maths.md §9): every chart has UV area = 3D area before
-  // packing, so this is the whole atlas's figure at one texel density.
+  // Area-weighted mean of the per-chart L2 stretch (each chart's own
+  // area-weighted mean of the per-triangle L2 of docs/maths.md §9.3, every
+  // chart at UV area = 3D area before packing). Not Sander's L2, which is
+  // the root mean square, nor what max_stretch bounds: see `stretch`.
   double stretch_l2_mean = 1;
+  // What a person sees of the packed atlas (docs/maths.md §9.8):
+  // summarize_stretch of the output's per-corner UVs.
+  StretchSummary stretch;
   // 3D length of the seams in the output: per edge of the input's faces (a
   // vertex pair), the number of distinct per-corner UV pairs on it minus one,
   // times its length. The mesh's own boundary is no seam; a manifold edge cut

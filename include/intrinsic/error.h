@@ -1,7 +1,7 @@
 // The project's single exception type. Every failure that reaches the API
 // boundary is an intrinsic::Error carrying a message that names the problem
 // and where it is (file, line, element), plus a category the command-line
-// tool maps to its exit code (see README "Exit codes").
+// tool maps to its exit code (see docs/formats.md "Exit codes").
 #pragma once
 
 #include <cstdio>

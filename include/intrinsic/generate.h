@@ -32,7 +32,7 @@ MeshData generate_sphere_strip(const GenerateOptions& o);
 // Two disjoint flat disks side by side (a two-component file).
 MeshData generate_two_disks(const GenerateOptions& o);
 
-// Closed surfaces (no boundary), for `intrinsic atlas` (issue 13). Regular
+// Closed surfaces (no boundary), for `intrinsic atlas`. Regular
 // grids jittered inside their cells, outward-oriented.
 // A bumpy sphere (latitude-longitude grid with two poles, radius modulated):
 // genus 0, Euler characteristic 2; about 2 * rings^2 vertices.

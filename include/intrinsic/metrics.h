@@ -72,7 +72,43 @@ FaceDistortion face_distortion(const FaceFrames& frames, const MatrixX3i& F, con
 int count_flipped(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV);
 DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV);
 
-// ---- Atlases and other tools' outputs (issue 13 item 7) -------------------
+// ---- What a person sees: Sander's L2 and per-face stretch (docs/maths.md §9.8)
+// Texel-density figures of a whole UV layout at ONE normalisation: the UVs
+// are scaled so that the total |UV area| equals the total 3D area (of the
+// faces not collapsed), then each face is judged against that common texel
+// density (a chart drawn small stretches the texture over its surface
+// however conformal it is). Faces
+// with zero 3D area (make_mesh's test) have no surface to texture and are
+// left out; collapsed faces (zero UV area, exact test, or a non-finite UV)
+// have infinite stretch: they count in the percentiles and maxima, and are
+// left out of the means (sander_l2, anisotropy_mean).
+struct StretchSummary {
+  // sqrt(sum_f A3_f L2_f^2 / sum_f A3_f), L2_f = sqrt((1/s1^2 + 1/s2^2)/2):
+  // the root-mean-square stretch of Sander et al. 2001 (texture -> surface).
+  double sander_l2 = 1;
+  double sander_linf = 1;  // max_f 1/s2 (+inf with a collapsed face)
+  // Per face max(s1, 1/s2) >= 1: how far the texture is magnified (1/s2)
+  // or minified (s1) in its worst direction. Percentiles are weighted by 3D
+  // area: the smallest value x such that faces with stretch <= x hold at
+  // least that fraction of the 3D area.
+  double face_stretch_p50 = 1, face_stretch_p95 = 1, face_stretch_p99 = 1, face_stretch_max = 1;
+  double anisotropy_mean = 1;  // area-weighted mean of s1/s2 (1 = conformal)
+  int faces = 0;               // faces counted (non-zero 3D area), collapsed ones included
+  int collapsed_faces = 0;     // among them, zero UV area: infinite stretch
+  int degenerate_faces = 0;    // zero 3D area: left out
+  double scale_factor = 1;     // the normalisation: sqrt(sum A3 / sum |A_uv|), collapsed faces left out
+};
+
+// UV is #V x 2, one coordinate per vertex (callers with per-corner UVs pass
+// the mesh split by texture coordinate). All figures are unchanged by a
+// uniform scale of UV and by a rigid motion of V or UV (a reflection included).
+// Every figure is 1 when no face has 3D area, +inf when every face counted is collapsed.
+StretchSummary summarize_stretch(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV);
+// Per-corner UVs: corner c of face f has position V.row(F(f, c)) and UV
+// UV.row(FUV(f, c)) (an atlas's output, AtlasResult::F / FUV).
+StretchSummary summarize_stretch(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, const MatrixX3i& FUV);
+
+// ---- Atlases and other tools' outputs -------------------------------------
 // Per-corner UVs: FT (#F x 3) indexes rows of UV, PT (#UV x 3) is the 3D
 // position of each texture coordinate's corners (app/uv_mesh.h builds it from
 // OBJ `f v/vt`, triangle soups with split vertices included). Texture

@@ -1,7 +1,7 @@
 """Intrinsic parameterizations of surface meshes (Desbrun, Meyer, Alliez 2002).
 
 The Python face of the Intrinsic library: the same pipeline, options, reports
-and error messages as the ``intrinsic`` command line (README "Python").
+and error messages as the ``intrinsic`` command line (docs/python.md).
 
     import intrinsic
     V, F = intrinsic.read_mesh("face.obj")          # float64 n x 3, int32 m x 3
@@ -90,7 +90,7 @@ def parameterize(
     laid out side by side, as on the command line.
 
     The keywords are the command line's long options with dashes as
-    underscores (README "Command line"):
+    underscores (docs/cli.md):
 
     - ``method``: conformal | authalic | mixed | tutte | floater.
     - ``lam`` / ``lambda_`` (``lambda`` is a Python keyword; ``**{"lambda": x}``

@@ -1,6 +1,6 @@
 """``python3 -m intrinsic.batch INPUT_DIR OUTPUT_DIR [options]``: ``intrinsic param``
 (or, with ``--command atlas``, ``intrinsic atlas``) over every mesh file of a
-folder, on a Dask cluster (README "Batches").
+folder, on a Dask cluster (docs/python.md "Batches").
 
 Every ``.obj``, ``.off`` and ``.ply`` file of INPUT_DIR (optionally ``.gz``; not
 recursive) is one task: the worker runs :func:`intrinsic.parameterize` on the
@@ -180,7 +180,7 @@ def make_parser() -> argparse.ArgumentParser:
                    help="output format (default obj; ply with --binary; atlas: obj or glb)")
     p.add_argument("--force", action="store_true", help="redo files whose output is already complete")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress on standard error")
-    g = p.add_argument_group("param options (as `intrinsic param`, README 'Command line')")
+    g = p.add_argument_group("param options (as `intrinsic param`, docs/cli.md)")
     S = argparse.SUPPRESS  # only options given are passed: the library's defaults apply
     g.add_argument("--method", default=S)
     g.add_argument("--lambda", dest="lambda", type=float, default=S)

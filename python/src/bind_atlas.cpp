@@ -53,6 +53,9 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices,
     else if (k == "min_chart_faces") o.min_chart_faces = value.cast<int>();
     else if (k == "max_stretch") o.max_stretch = value.cast<double>();
     else if (k == "max_charts") o.max_charts = value.cast<int>();
+    else if (k == "hard_angle") o.hard_angle_deg = value.cast<double>();
+    else if (k == "max_face_stretch") o.max_face_stretch = value.cast<double>();
+    else if (k == "isometric_iterations") o.chart_map.isometric_iterations = value.cast<int>();
     else if (k == "weld") o.weld = value.cast<double>();
     else if (k == "reorient") o.reorient = value.cast<bool>();
     else if (k == "atlas_stretch_budget") o.atlas_stretch_budget = value.cast<bool>();
@@ -122,7 +125,7 @@ void register_atlas(py::module_& m) {
       });
   m.def("atlas", &run_atlas, py::arg("V"), py::arg("F") = py::none(),
         "atlas(V, F=None, *, padding=2, resolution=1024, max_normal_deviation=60, min_chart_faces=20,\n"
-        "      max_stretch=1.05, max_charts=0, weld=0, reorient=True, atlas_stretch_budget=True, seams=None,\n"
+        "      max_stretch=1.08, max_face_stretch=2, hard_angle=0, isometric_iterations=10, max_charts=0, weld=1e-7, reorient=True, atlas_stretch_budget=True, seams=None,\n"
         "      boundary='natural', method='conformal', lambda_=None, mu=None, optimize_lambda=None,\n"
         "      optimize_boundary=None, max_vertices=50000000) -> Atlas\n\n"
         "`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or on a mesh file (atlas(path)):\n"

@@ -252,7 +252,7 @@ void register_param(py::module_& m) {
       .def_readonly("residual", &Result::residual, "max over u and v of |Ax-b|/|b|")
       .def_readonly("flipped_triangles", &Result::flipped_triangles, "triangles with non-positive UV area")
       .def_readonly("timings", &Result::timings, "stage timings in ms (report['timings_ms'])")
-      .def_readonly("report", &Result::report, "the command line's report as a dict (README 'Report')")
+      .def_readonly("report", &Result::report, "the command line's report as a dict (docs/formats.md 'Report')")
       .def_property_readonly(
           "V", [](const Result& r) { return from_V(r.mesh->V); },
           "the validated mesh's positions (n x 3 float64, a new array): what `intrinsic param -o` writes\n"

@@ -26,6 +26,7 @@ py::dict metrics(const py::object& V, const py::object& F, const py::object& uv)
     report = app::mesh_json(mesh);
     report.erase("input");
     app::add_distortion(report, summarize_distortion(data.V, data.F, UV));
+    report["stretch"] = app::stretch_json(summarize_stretch(data.V, data.F, UV));
   }
   return to_python(report);
 }
@@ -84,7 +85,8 @@ void register_render(py::module_& m) {
         "The distortion report of `intrinsic metrics` for one UV per vertex: mesh facts (vertices, faces,\n"
         "boundary_loops, loops, components, ...), flipped_triangles, collapsed_triangles, min/mean/max of\n"
         "angle_distortion, area_distortion, stretch_l2, stretch_linf, edge_length_distortion, and\n"
-        "edge_length_energy, area_energy, distortion_normalisation (README 'Report'). Faces are taken as\n"
+        "edge_length_energy, area_energy, distortion_normalisation, stretch (Sander's L2 and per-face\n"
+        "stretch percentiles, docs/maths.md 9.8; docs/formats.md 'Report'). Faces are taken as\n"
         "listed (not reoriented) so flipped triangles are counted.");
   m.def("render", &render, py::arg("V"), py::arg("F"), py::arg("uv"), py::arg("mode") = "checker",
         py::arg("size") = py::make_tuple(1024, 1024), py::arg("view") = "auto", py::arg("path") = py::none(),

@@ -1,5 +1,5 @@
 // intrinsic._intrinsic: the Python binding of the Intrinsic library
-// (pybind11). The package intrinsic/ re-exports it; see README "Python".
+// (pybind11). The package intrinsic/ re-exports it; see docs/python.md.
 #include "common.h"
 
 PYBIND11_MODULE(_intrinsic, m) {

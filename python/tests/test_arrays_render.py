@@ -11,11 +11,11 @@ import pytest
 
 import intrinsic
 from intrinsic import _intrinsic
-from conftest import cli_path, shared_mesh
+from conftest import cli_path, corpus, generated_mesh, mesh
 
 
 def test_no_copy_for_c_contiguous_input():
-    V, F = intrinsic.read_mesh(shared_mesh("cat_head.obj"))
+    V, F = intrinsic.read_mesh(generated_mesh("wave"))
     assert V.dtype == np.float64 and F.dtype == np.int32 and V.flags.c_contiguous and F.flags.c_contiguous
     assert _intrinsic._view_address(V, 3) == V.ctypes.data
     assert _intrinsic._view_address(F, 3, True) == F.ctypes.data
@@ -27,8 +27,9 @@ def test_no_copy_for_c_contiguous_input():
     assert np.array_equal(a, b)
 
 
-def test_read_write_round_trip(tmp_path):
-    V, F = intrinsic.read_mesh(shared_mesh("snail.obj"))
+@pytest.mark.parametrize("name", ["wave", *corpus("snail.obj")])
+def test_read_write_round_trip(tmp_path, name):
+    V, F = intrinsic.read_mesh(mesh(name))
     uv = intrinsic.parameterize(V, F).uv
     for name, binary in (("a.obj", False), ("a.ply", False), ("b.ply", True)):
         intrinsic.write_mesh(tmp_path / name, V, F, uv, binary=binary)
@@ -36,8 +37,9 @@ def test_read_write_round_trip(tmp_path):
         assert np.array_equal(V, V2) and np.array_equal(F, F2)
 
 
-def test_metrics_like_cli(tmp_path):
-    path = shared_mesh("alligator.obj")
+@pytest.mark.parametrize("name", ["cap", *corpus("alligator.obj")])
+def test_metrics_like_cli(tmp_path, name):
+    path = mesh(name)
     V, F = intrinsic.read_mesh(path)
     uv = intrinsic.parameterize(V, F, method="authalic").uv
     intrinsic.write_mesh(tmp_path / "uv.obj", V, F, uv)
@@ -46,13 +48,14 @@ def test_metrics_like_cli(tmp_path):
     cli = json.loads(proc.stdout)
     m = intrinsic.metrics(V, F, uv)
     for k in ("flipped_triangles", "angle_distortion", "area_distortion", "stretch_l2", "edge_length_energy",
-              "area_energy", "faces", "boundary_loops"):
+              "area_energy", "faces", "boundary_loops", "stretch"):
         assert m[k] == pytest.approx(cli[k], rel=1e-12), k
 
 
+@pytest.mark.parametrize("name", ["wave", *corpus("cat_head.obj")])
 @pytest.mark.parametrize("mode", ["checker", "layout", "angle"])
-def test_render_like_cli(tmp_path, mode):
-    path = shared_mesh("cat_head.obj")
+def test_render_like_cli(tmp_path, mode, name):
+    path = mesh(name)
     V, F = intrinsic.read_mesh(path)
     uv = intrinsic.parameterize(V, F).uv
     intrinsic.write_mesh(tmp_path / "uv.obj", V, F, uv)
@@ -66,10 +69,11 @@ def test_render_like_cli(tmp_path, mode):
     assert (tmp_path / "py.png").read_bytes() == out.read_bytes()
 
 
-def test_gil_released():
+@pytest.mark.parametrize("name", ["wave@100", *corpus("max-planck-partial.obj")])
+def test_gil_released(name):
     """Two threads parameterizing at once take clearly less than twice one
     (asserted loosely: the machine may be busy)."""
-    V, F = intrinsic.read_mesh(shared_mesh("max-planck-partial.obj"))
+    V, F = intrinsic.read_mesh(mesh(name))
     intrinsic.parameterize(V, F, solver="eigen-llt")
     t0 = time.perf_counter()
     intrinsic.parameterize(V, F, solver="eigen-llt")
@@ -92,7 +96,7 @@ def test_gil_released():
 
 
 def test_render_view_and_modes():
-    V, F = intrinsic.read_mesh(shared_mesh("cat_head.obj"))
+    V, F = intrinsic.read_mesh(generated_mesh("wave"))
     uv = intrinsic.parameterize(V, F).uv
     a = intrinsic.render(V, F, uv, size=(64, 48), view=(30, 45))
     b = intrinsic.render(V, F, uv, size=(64, 48), view="30,45")
@@ -105,7 +109,7 @@ def test_render_view_and_modes():
 
 
 def test_set_boundary_then_solve():
-    V, F = intrinsic.read_mesh(shared_mesh("cat_head.obj"))
+    V, F = intrinsic.read_mesh(generated_mesh("wave"))
     p = intrinsic.Parameterizer(V, F, boundary="square")
     fixed = [(v, 0.5 * u, 0.5 * w) for v, u, w in p.boundary]
     p.set_boundary(fixed)

@@ -1,5 +1,6 @@
 """intrinsic.atlas equals `intrinsic atlas`: same OBJ bytes, same report
-(timings and paths aside), on a generated torus and on shared assets."""
+(timings and paths aside), on generated closed surfaces and on shared assets
+(marker corpus)."""
 import json
 import subprocess
 
@@ -8,7 +9,7 @@ import pytest
 
 import intrinsic
 
-from conftest import cli_path, shared_mesh  # noqa: E402
+from conftest import cli_path, corpus, mesh  # noqa: E402
 
 
 def run_cli(*args):
@@ -19,9 +20,9 @@ def strip(report):
     return {k: v for k, v in report.items() if k not in ("timings_ms", "input", "output")}
 
 
-@pytest.mark.parametrize("name", ["assets/teapot.obj", "assets/3holes.off", "cat_head.obj"])
+@pytest.mark.parametrize("name", ["torus", "genus2", *corpus("assets/teapot.obj", "assets/3holes.off", "cat_head.obj")])
 def test_atlas_equals_cli(tmp_path, name):
-    path = str(shared_mesh(name))
+    path = str(mesh(name))
     out, rep = str(tmp_path / "cli.obj"), str(tmp_path / "cli.json")
     r = run_cli("atlas", path, "-o", out, "--report", rep, "-q", "--padding", "3")
     assert r.returncode == 0, r.stderr

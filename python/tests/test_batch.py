@@ -1,5 +1,5 @@
 # python3 -m intrinsic.batch with a 2-worker LocalCluster over a folder of
-# shared meshes plus one broken file: every good file done and equal to the
+# generated surfaces plus one broken file: every good file done and equal to the
 # CLI's output, the broken one recorded with the CLI's kind and message, a
 # second run skips the done files and retries the failed one.
 import json
@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 import intrinsic
-from conftest import cli_path, read_obj_uv, shared_mesh
+from conftest import cli_path, generated_mesh, read_obj_uv
 from test_equal_cli import assert_reports_equal
 
-MESHES = ["cat_head.obj", "snail.obj", "camel_b.obj", "alligator.obj"]
+MESHES = ["wave.obj", "strip.obj", "cap.obj", "flat.obj"]
 OPTIONS = ["--method", "mixed", "--lambda", "0.5", "--mu", "0.5", "--boundary", "square"]
 BROKEN = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 9\n"  # face index 9 out of range
 
@@ -36,7 +36,7 @@ def cli_message(stderr):
 def folder(tmp_path_factory):
     src = tmp_path_factory.mktemp("in")
     for m in MESHES:
-        shutil.copy(shared_mesh(m), src / m)
+        shutil.copy(generated_mesh(m[:-4]), src / m)
     (src / "broken.obj").write_text(BROKEN)
     (src / "notes.txt").write_text("not a mesh\n")
     return src
@@ -96,13 +96,13 @@ def test_incomplete_output_is_redone(folder, tmp_path):
     out = tmp_path / "out"
     one = tmp_path / "one"
     one.mkdir()
-    shutil.copy(folder / "cat_head.obj", one / "cat_head.obj")
+    shutil.copy(folder / "wave.obj", one / "wave.obj")
     assert batch(one, out, "--workers", 1, "-q").returncode == 0
-    (out / "cat_head.obj").unlink()  # report left, output gone: not complete
+    (out / "wave.obj").unlink()  # report left, output gone: not complete
     r = batch(one, out, "--workers", 1, "-q")
     assert r.returncode == 0, r.stderr
     doc, files = load_manifest(out)
-    assert files["cat_head.obj"]["status"] == "done" and (out / "cat_head.obj").exists()
+    assert files["wave.obj"]["status"] == "done" and (out / "wave.obj").exists()
 
 
 def test_atlas_batch_equals_cli(folder, tmp_path):

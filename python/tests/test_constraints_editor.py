@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import intrinsic
-from conftest import cli_path, read_obj_uv, shared_mesh
+from conftest import cli_path, corpus, generated_mesh, mesh, read_obj_uv
 
 CONSTRAINTS = {
     "points": [{"face": 40, "bary": [0.2, 0.3, 0.5], "uv": [0.45, 0.55]}, {"vertex": 60, "uv": [0.6, 0.5]}],
@@ -15,9 +15,15 @@ CONSTRAINTS = {
 }
 
 
+# camel_b.obj (2,032 vertices), and a generated wave of about the same size
+# (the constraints' faces and vertices exist in both).
+MESHES = ["wave@26", *corpus("camel_b.obj")]
+
+
+@pytest.mark.parametrize("name", MESHES)
 @pytest.mark.parametrize("boundary", ["circle", "natural"])
-def test_constraints_like_cli(cli, tmp_path, boundary):
-    path = shared_mesh("camel_b.obj")
+def test_constraints_like_cli(cli, tmp_path, boundary, name):
+    path = mesh(name)
     cfile = tmp_path / "c.json"
     cfile.write_text(json.dumps(CONSTRAINTS))
     c = cli([path, "--constraints", cfile, "--boundary", boundary])
@@ -37,7 +43,7 @@ def test_constraints_like_cli(cli, tmp_path, boundary):
 
 
 def test_bad_constraints_input_error():
-    V, F = intrinsic.read_mesh(shared_mesh("camel_b.obj"))
+    V, F = intrinsic.read_mesh(generated_mesh("wave@26"))
     with pytest.raises(intrinsic.InputError, match=r"constraints: points\[0\]: unknown key 'uvw'"):
         intrinsic.parameterize(V, F, constraints={"points": [{"vertex": 3, "uvw": [0, 0]}]})
     with pytest.raises(intrinsic.InputError):
@@ -48,8 +54,9 @@ def write_fixed(path, fixed):
     path.write_text("".join(f"{v} {u!r} {w!r}\n" for v, u, w in fixed))
 
 
-def test_parameterizer_and_editor_like_cli(tmp_path):
-    path = shared_mesh("camel_b.obj")
+@pytest.mark.parametrize("name", MESHES)
+def test_parameterizer_and_editor_like_cli(tmp_path, name):
+    path = mesh(name)
     V, F = intrinsic.read_mesh(path)
     p = intrinsic.Parameterizer(V, F)
     base = p.solve()

@@ -1,12 +1,14 @@
-# Python results equal the CLI's (UVs to 1e-12, same report) on the shared
-# meshes, for every method and boundary mode.
+# Python results equal the CLI's (UVs to 1e-12, same report) on generated
+# surfaces and on the shared meshes (marker corpus), for every method and
+# boundary mode.
 import numpy as np
 import pytest
 
 import intrinsic
-from conftest import shared_mesh
+from conftest import corpus, generated_mesh, mesh
 
-MESHES = ["cat_head.obj", "snail.obj", "camel_b.obj", "alligator.obj", "fairing-cross.off", "beetle.off"]
+MESHES = ["wave", "strip", "holed", *corpus("cat_head.obj", "snail.obj", "camel_b.obj", "alligator.obj",
+                                            "fairing-cross.off", "beetle.off")]
 METHODS = [("conformal", {}), ("authalic", {}), ("mixed", {"lam": 0.5, "mu": 0.5}), ("tutte", {}),
            ("floater", {})]
 # natural: the natural conformal map (conformal part needed)
@@ -37,10 +39,10 @@ def assert_reports_equal(py, cli, where="report"):
         assert py == pytest.approx(cli, rel=1e-9, abs=1e-12), where
 
 
-@pytest.mark.parametrize("mesh", MESHES)
+@pytest.mark.parametrize("name", MESHES)
 @pytest.mark.parametrize("method,kw,boundary", CASES)
-def test_same_as_cli(cli, mesh, method, kw, boundary):
-    path = shared_mesh(mesh)
+def test_same_as_cli(cli, name, method, kw, boundary):
+    path = mesh(name)
     c = cli([path, *cli_args(method, kw, boundary)])
     V, F = intrinsic.read_mesh(path)
     try:
@@ -65,8 +67,9 @@ def test_same_as_cli(cli, mesh, method, kw, boundary):
     ({"optimize_lambda": "area"}, ["--optimize-lambda", "area"]),
     ({"optimize_boundary": "edge", "iterations": 5}, ["--optimize-boundary", "edge", "--iterations", "5"]),
 ])
-def test_options_same_as_cli(cli, options, args):
-    path = shared_mesh("fairing-cross.off")
+@pytest.mark.parametrize("name", ["holed", *corpus("fairing-cross.off")])
+def test_options_same_as_cli(cli, options, args, name):
+    path = mesh(name)
     c = cli([path, *args])
     assert c.returncode == 0, c.stderr
     r = intrinsic.parameterize(str(path), **options)  # read from the file, as the CLI
@@ -75,8 +78,9 @@ def test_options_same_as_cli(cli, options, args):
     assert_reports_equal(r.report, c.report)
 
 
-def test_optimizer_wrappers(cli):
-    path = shared_mesh("snail.obj")
+@pytest.mark.parametrize("name", ["wave", *corpus("snail.obj")])
+def test_optimizer_wrappers(cli, name):
+    path = mesh(name)
     V, F = intrinsic.read_mesh(path)
     r = intrinsic.optimal_lambda(V, F, energy="edge")
     c = cli([path, "--optimize-lambda", "edge"])
@@ -89,7 +93,7 @@ def test_optimizer_wrappers(cli):
 
 def test_charts_like_cli(cli):
     """Several components become charts, as on the command line."""
-    V, F = intrinsic.read_mesh(shared_mesh("cat_head.obj"))
+    V, F = intrinsic.read_mesh(generated_mesh("wave"))
     V2 = np.vstack([V, V + [10.0, 0.0, 0.0]])
     F2 = np.vstack([F, F + V.shape[0]]).astype(np.int32)
     import tempfile, os
@@ -102,18 +106,19 @@ def test_charts_like_cli(cli):
     np.testing.assert_allclose(r.uv, c.uv, rtol=0, atol=1e-12)
 
 
-def test_large_patch(cli):
-    path = shared_mesh("max-planck-partial.obj")
+@pytest.mark.parametrize("name", ["wave@100", *corpus("max-planck-partial.obj")])
+def test_large_patch(cli, name):
+    path = mesh(name)
     for method, boundary in (("conformal", "circle"), ("conformal", "natural")):
         c = cli([path, "--method", method, "--boundary", boundary])
         r = intrinsic.parameterize(*intrinsic.read_mesh(path), method=method, boundary=boundary)
         np.testing.assert_allclose(r.uv, c.uv, rtol=0, atol=1e-12)
 
 
-@pytest.mark.parametrize("mesh", ["inverted-triangles.obj", "cat_head.obj"])
-def test_result_mesh_is_what_cli_writes(cli, tmp_path, mesh):
+@pytest.mark.parametrize("name", ["wave", *corpus("inverted-triangles.obj", "cat_head.obj")])
+def test_result_mesh_is_what_cli_writes(cli, tmp_path, name):
     """r.V, r.F: the validated mesh (faces reoriented), the one `param -o` writes."""
-    path = shared_mesh(mesh)
+    path = mesh(name)
     c = cli([path])
     assert c.returncode == 0, c.stderr
     r = intrinsic.parameterize(str(path))

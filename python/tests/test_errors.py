@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import intrinsic
-from conftest import shared_mesh
+from conftest import generated_mesh
 
 TETRA = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n"
 BAD_INDEX = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"
@@ -55,7 +55,7 @@ def test_read_mesh_bad_index_matches_cli(cli, tmp_path):
 
 
 def test_numerical_error_matches_cli(cli):
-    path = shared_mesh("cat_head.obj")
+    path = generated_mesh("wave")
     c = cli([path, "--solver", "bicgstab", "--max-residual", "1e-300"])
     assert c.returncode == 3
     with pytest.raises(intrinsic.NumericalError) as e:
@@ -64,7 +64,7 @@ def test_numerical_error_matches_cli(cli):
 
 
 def test_output_error_matches_cli(cli, tmp_path):
-    path = shared_mesh("cat_head.obj")
+    path = generated_mesh("wave")
     out = tmp_path / "missing-dir" / "x.obj"
     c = cli([path], output="missing-dir/x.obj")
     assert c.returncode == 4
@@ -89,7 +89,7 @@ def test_output_error_matches_cli(cli, tmp_path):
                                                                "--optimize-boundary", "edge"]),
 ])
 def test_usage_errors_match_cli(cli, options, args):
-    path = shared_mesh("cat_head.obj")
+    path = generated_mesh("wave")
     c = cli([path, *args])
     assert c.returncode == 1
     with pytest.raises(intrinsic.UsageError) as e:
@@ -98,7 +98,7 @@ def test_usage_errors_match_cli(cli, options, args):
 
 
 def test_unknown_option_and_lambda_spellings():
-    V, F = intrinsic.read_mesh(shared_mesh("cat_head.obj"))
+    V, F = intrinsic.read_mesh(generated_mesh("wave"))
     with pytest.raises(intrinsic.UsageError, match="unknown option 'colour'"):
         intrinsic.parameterize(V, F, colour="red")
     a = intrinsic.parameterize(V, F, method="mixed", lam=0.3, mu=0.7).uv

@@ -64,6 +64,10 @@ class ChartFaceIndex {
 // find_seam_problem refuses.
 void cut_seams(const MeshData& input, const std::vector<SeamEdge>& seams, CleanMesh& clean);
 
+// Cuts every glued edge whose faces' normals are more than hard_angle_deg
+// apart (a hard edge: no chart spans it). Returns the edges cut.
+int cut_hard_edges(double hard_angle_deg, CleanMesh& clean);
+
 // Charts as lists of face indices (sorted), each connected through glued edges.
 std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options);
 // Two connected halves grown from two far-apart faces of the chart (at least two faces).
@@ -87,6 +91,9 @@ struct FlatChart {
   ChartMesh mesh;
   MatrixX2d UV;  // per local vertex; UV area equals 3D area
   AtlasChart summary;
+  // Per face of the chart (mesh.faces order): max(s1, 1/s2) at the chart's
+  // own scale (the atlas's texel density) and the face's 3D area.
+  std::vector<double> face_stretch, face_area;
 };
 
 // Flattens `chart` (the map `map` chooses, by default the natural conformal
@@ -95,6 +102,17 @@ struct FlatChart {
 // wound once.
 ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double degenerate_ratio);
 
+// A chart's distortion within `bound` (95% of its surface stretched or
+// shrunk by at most that factor) and no face past `face_bound`: the test of
+// every split and merge.
+inline bool within_stretch(const AtlasChart& chart, double bound, double face_bound) {
+  return chart.face_stretch_p95 <= bound && chart.face_stretch_max <= face_bound;
+}
+
+// The area-weighted quantile q of per-face stretch: the smallest value x
+// such that the faces with stretch <= x hold at least q of the area.
+double weighted_quantile(const std::vector<double>& value, const std::vector<double>& weight, double q);
+
 // Merges neighbouring charts while the union flattens validly within
 // options.max_stretch (chart_merge.cpp), then (atlas_stretch_budget) past it
 // while the whole atlas's mean stays within it, then past it down to
@@ -102,14 +120,24 @@ ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double d
 void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
                   std::vector<FlatChart>& charts);
 
-// The chart's area over the square on the longer side of its smallest
-// bounding box (UV area = 3D area): low for sparse or long thin charts.
-double square_fill(const FlatChart& chart);
+// A chart's smallest bounding box (whose side lies on a convex hull edge)
+// and the fraction of it the chart fills (UV area = 3D area).
+struct ChartBox {
+  double longer = 0, shorter = 0, fill = 1;
+};
+ChartBox chart_box(const FlatChart& chart);
 // The same before the chart is flattened, from its projection onto the
 // plane of its mean normal (lengths only shrink there, so a chart sparse in
 // projection is about as sparse flattened; its natural map would be solved
 // only to be split).
-double planar_square_fill(const ChartMesh& chart);
+ChartBox planar_chart_box(const ChartMesh& chart);
+// What the packer takes without waste: a chart filling at least 15% of its
+// box (not a ring, a C or a spiral) whose longer side is at most twice the
+// side of a square of the whole surface's area (a longer one alone would
+// keep the layout under 25% full). A long straight strip packs lengthwise
+// and is not cut; filling its square (area over the longer side squared),
+// the earlier test, cut a long handle across into dozens of slivers.
+bool packs_well(const ChartBox& box, double surface_area);
 
 // Scales all charts by one factor, turns them and packs their texel masks
 // with padding on a bitmap (atlas_packing.cpp, packing/), and fits the layout into

@@ -21,19 +21,22 @@
 namespace intrinsic::detail {
 namespace {
 
-// `area` over the square on the longer side of the smallest box of the points UV.
-double fill_of_square(const MatrixX2d& UV, double area) {
+// The smallest box of the points UV and the fraction `area` fills of it.
+ChartBox box_of(const MatrixX2d& UV, double area) {
   double box = 0;
   const MatrixX2d turned = packing::turned_to(UV, packing::smallest_box_angle(UV, box));
-  const double side = turned.colwise().maxCoeff().maxCoeff();
-  return side > 0 ? area / (side * side) : 1;
+  const Eigen::Vector2d size = turned.colwise().maxCoeff().transpose();
+  ChartBox b;
+  b.longer = size.maxCoeff(), b.shorter = size.minCoeff();
+  b.fill = b.longer * b.shorter > 0 ? area / (b.longer * b.shorter) : 1;
+  return b;
 }
 
 }  // namespace
 
-double square_fill(const FlatChart& chart) { return fill_of_square(chart.UV, chart.summary.area_3d); }
+ChartBox chart_box(const FlatChart& chart) { return box_of(chart.UV, chart.summary.area_3d); }
 
-double planar_square_fill(const ChartMesh& chart) {
+ChartBox planar_chart_box(const ChartMesh& chart) {
   const MatrixX3d& V = chart.data.V;
   const MatrixX3i& F = chart.data.F;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
@@ -42,13 +45,17 @@ double planar_square_fill(const ChartMesh& chart) {
     const Eigen::Vector3d n = (V.row(F(f, 1)) - V.row(F(f, 0))).cross(V.row(F(f, 2)) - V.row(F(f, 0)));
     normal += n, area += n.norm() / 2;
   }
-  if (!(normal.norm() > 0)) return 1;
+  if (!(normal.norm() > 0)) return {};
   normal.normalize();
   const Eigen::Vector3d u = normal.unitOrthogonal(), v = normal.cross(u);
   MatrixX2d P(V.rows(), 2);
   P.col(0) = V * u;
   P.col(1) = V * v;
-  return fill_of_square(P, area);
+  return box_of(P, area);
+}
+
+bool packs_well(const ChartBox& box, double surface_area) {
+  return box.fill >= 0.15 && box.longer * box.longer <= 4 * surface_area;
 }
 
 double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping) {

@@ -4,7 +4,7 @@
 // chooses (a fixed circle or square boundary with any weights, optionally
 // optimal lambda or boundary optimization, paper section 5), scaled so its
 // UV area is its 3D area (docs/maths.md §2.4). Then the checks that make the chart safe to
-// ship (issue 13, "guaranteed valid"): a disk (one boundary loop, Euler
+// ship (every chart of an atlas must be valid): a disk (one boundary loop, Euler
 // characteristic 1), every triangle positively oriented in the input's corner
 // order, every interior vertex wound once (angle sum below 3 pi), and a
 // boundary that does not cross itself. A locally injective map of a disk
@@ -18,6 +18,7 @@
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
+#include "optimize/isometric_refinement.h"
 
 namespace intrinsic::detail {
 namespace {
@@ -140,6 +141,49 @@ ChartStatus solve(FlatChart& chart, Mesh& mesh, const ChartMapOptions& map) {
   return ChartStatus::Valid;
 }
 
+// The natural map refined toward an isometry (isometric_refinement.h),
+// kept only when its boundary stays simple (the refinement keeps every
+// triangle positively oriented, not the boundary from touching itself).
+void refine(const Mesh& mesh, const ChartMapOptions& map, double degenerate_ratio, FlatChart& chart) {
+  IsometricRefinementOptions o;
+  o.iterations = map.isometric_iterations;
+  o.degenerate_ratio = degenerate_ratio;
+  MatrixX2d UV = chart.UV;
+  if (refine_isometric(mesh, UV, o).iterations == 0) return;
+  const double a3 = surface_area(mesh.V, mesh.F), a2 = parameter_area(mesh.F, UV);
+  if (!(a2 > 0)) return;
+  UV *= std::sqrt(a3 / a2);
+  int flipped = 0;
+  if (folds(mesh, UV, degenerate_ratio, flipped) || boundary_crosses(mesh.topology.boundary_loops[0], UV)) return;
+  chart.UV = std::move(UV);
+  chart.summary.refined = true;
+}
+
+// The chart's figures at its own scale (UV area = 3D area, as in the atlas):
+// the area-weighted mean and root mean square of Sander's per-face L2, and
+// per face the stretch max(s1, 1/s2) with its 95th percentile and maximum
+// (docs/maths.md §9.7).
+void summarize_stretch(const Mesh& mesh, FlatChart& chart) {
+  const FaceDistortion d = face_distortion(mesh.V, mesh.F, chart.UV);
+  AtlasChart& s = chart.summary;
+  const int nf = static_cast<int>(mesh.F.rows());
+  chart.face_stretch.assign(nf, INFINITY);
+  chart.face_area.assign(d.area_3d.data(), d.area_3d.data() + nf);
+  double area = 0, angle = 0, mean = 0, square = 0;
+  for (int f = 0; f < nf; ++f) {
+    const double a = d.area_3d[f], l2 = d.stretch_l2[f], linf = d.stretch_linf[f];
+    if (!std::isfinite(l2)) continue;
+    area += a, angle += a * d.angle[f], mean += a * l2, square += a * l2 * l2;
+    // s1 from L2^2 = (1/s1^2 + 1/s2^2) / 2 and Linf = 1/s2.
+    const double inv_s1_sq = std::max(2 * l2 * l2 - linf * linf, 1e-300);
+    chart.face_stretch[f] = std::max({1.0, 1 / std::sqrt(inv_s1_sq), linf});
+  }
+  if (area > 0) s.angle_distortion_mean = angle / area, s.stretch_l2_mean = mean / area,
+                s.stretch_l2_rms = std::sqrt(square / area);
+  s.face_stretch_max = *std::max_element(chart.face_stretch.begin(), chart.face_stretch.end());
+  s.face_stretch_p95 = weighted_quantile(chart.face_stretch, chart.face_area, 0.95);
+}
+
 }  // namespace
 
 ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double degenerate_ratio) {
@@ -182,10 +226,23 @@ ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double d
   }
   if (folds(mesh, chart.UV, degenerate_ratio, s.flipped)) return ChartStatus::Flipped;
   if (boundary_crosses(t.boundary_loops[0], chart.UV)) return ChartStatus::BoundaryCrossing;
-  const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, chart.UV);
-  s.angle_distortion_mean = d.angle_distortion.mean;
-  s.stretch_l2_mean = d.stretch_l2.mean;
+  if (nf > 1 && map.boundary == BoundaryShape::Natural && map.isometric_iterations > 0) refine(mesh, map, degenerate_ratio, chart);
+  summarize_stretch(mesh, chart);
   return ChartStatus::Valid;
+}
+
+double weighted_quantile(const std::vector<double>& value, const std::vector<double>& weight, double q) {
+  std::vector<int> order(value.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return value[a] < value[b]; });
+  double total = 0;
+  for (double w : weight) total += w;
+  double below = 0;
+  for (int i : order) {
+    below += weight[i];
+    if (below >= q * total) return value[i];
+  }
+  return order.empty() ? 1 : value[order.back()];
 }
 
 }  // namespace intrinsic::detail

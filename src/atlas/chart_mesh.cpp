@@ -1,4 +1,4 @@
-// A chart as a mesh of its own (issue 13: non-manifold edges and vertices are
+// A chart as a mesh of its own (so that non-manifold edges and vertices are
 // split into manifold pieces for the computation). Its vertices are the
 // corners of its faces, glued across the chart's interior edges by union-find,
 // so a vertex of the input shared by pieces that meet only there becomes one

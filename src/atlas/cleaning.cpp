@@ -1,4 +1,4 @@
-// Cleaning for the atlas (issue 13, "cleaning, reported, never silent"): the
+// Cleaning for the atlas (every change reported, never silent): the
 // input is never changed; this decides which faces take part in a solve
 // (non-degenerate ones, by the same area test as make_mesh) and across which
 // edges charts may be glued: edges with exactly two such faces that list the

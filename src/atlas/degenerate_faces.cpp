@@ -1,5 +1,5 @@
 // Texture coordinates for the faces that take part in no solve (zero area or
-// a repeated vertex; issue 13: "kept in the output but handled safely";
+// a repeated vertex), kept in the output so that every input face has UVs (see
 // docs/maths.md §9.6). Each gets zero UV area, so it can neither flip nor
 // overlap. Where possible it is laid along an edge of a face already placed
 // (a chart's boundary edge, or a degenerate face placed before it): it then

@@ -1,7 +1,9 @@
-// The user's seams (issue 13, `--seams FILE`; docs/maths.md §9.6): the one
+// The user's seams (`--seams FILE`; docs/maths.md §9.6): the one
 // check that each listed pair is an edge of a face (find_seam_problem, used
 // by atlas() and, for file and line, by the seams file reader) and the cut
-// itself (no face is glued across a seam for the computation).
+// itself (no face is glued across a seam for the computation); and the
+// hard edges (`--hard-angle`), cut the same way.
+#include <cmath>
 #include <unordered_map>
 
 #include "atlas/atlas_internal.h"
@@ -59,6 +61,20 @@ namespace detail {
 void cut_seams(const MeshData& input, const std::vector<SeamEdge>& seams, CleanMesh& clean) {
   const SeamProblem p = match_seams(input, seams, &clean.glued);
   if (p.index >= 0) throw_input("seam edge " + std::to_string(p.index) + ": " + p.message);
+}
+
+int cut_hard_edges(double hard_angle_deg, CleanMesh& clean) {
+  // Normals are those of the orientation used (reversed faces turned), so
+  // the angle between them is the dihedral angle's complement to pi.
+  const double limit = std::cos(hard_angle_deg * M_PI / 180);
+  int cut = 0;
+  for (size_t h = 0; h < clean.glued.size(); ++h) {
+    const int g = clean.glued[h];
+    if (g < 0 || clean.normal[h / 3].dot(clean.normal[g]) >= limit) continue;
+    clean.glued[h] = -1;
+    ++cut;
+  }
+  return cut / 2;  // each edge has two half-edges
 }
 
 }  // namespace detail

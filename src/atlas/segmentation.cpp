@@ -1,4 +1,4 @@
-// Segmentation into charts (issue 13, "segmentation into disk charts"): region
+// Segmentation into disk charts (each one can then be flattened): region
 // growing from seeds over glued edges, a face joining a chart while its normal
 // stays within a cone around the chart's mean normal and never across a sharp
 // edge (the charts are then close to height fields, where the natural map of
@@ -7,6 +7,8 @@
 // out not to be disks, or whose map is invalid, are split in two by
 // split_in_two (atlas.cpp).
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <deque>
 #include <queue>
@@ -15,6 +17,16 @@
 
 namespace intrinsic::detail {
 namespace {
+
+// The glued neighbours of face f, in increasing face order (-1 last): the
+// traversals below then do not depend on where each face's listing starts
+// or on its winding (a face written reversed lists its edges in another order).
+std::array<int, 3> neighbours(const CleanMesh& m, int f) {
+  std::array<int, 3> g = {m.glued[3 * f], m.glued[3 * f + 1], m.glued[3 * f + 2]};
+  std::sort(g.begin(), g.end(), [](int a, int b) { return (a < 0 ? INT32_MAX : a) < (b < 0 ? INT32_MAX : b); });
+  return g;
+}
+
 
 struct Grower {
   const MeshData& in;
@@ -46,10 +58,8 @@ struct Grower {
       }
     }
     for (int f : faces)
-      for (int c = 0; c < 3; ++c) {
-        const int g = m.glued[3 * f + c];
+      for (int g : neighbours(m, f))
         if (g >= 0 && label[g] < 0) frontier.push_back(g);
-      }
     std::sort(faces.begin(), faces.end());
     return faces;
   }
@@ -64,8 +74,8 @@ int farthest(const CleanMesh& m, const std::vector<int>& faces, const ChartFaceI
   while (!queue.empty()) {
     last = queue.front();
     queue.pop_front();
-    for (int c = 0; c < 3; ++c) {
-      const int g = m.glued[3 * last + c], k = g < 0 ? -1 : index(g);
+    for (int g : neighbours(m, last)) {
+      const int k = g < 0 ? -1 : index(g);
       if (k >= 0 && !seen[k]) seen[k] = 1, queue.push_back(g);
     }
   }
@@ -144,8 +154,8 @@ std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::
   while (!queue.empty()) {
     const int f = queue.front();
     queue.pop_front();
-    for (int c = 0; c < 3; ++c) {
-      const int g = clean.glued[3 * f + c], k = g < 0 ? -1 : index(g);
+    for (int g : neighbours(clean, f)) {
+      const int k = g < 0 ? -1 : index(g);
       if (k >= 0 && side[k] < 0) side[k] = side[index(f)], queue.push_back(g);
     }
   }

@@ -1,5 +1,5 @@
 // After a failed solve: what cheap checks can tell about why, appended to
-// the Error(Numerical) message (README "Exit codes").
+// the Error(Numerical) message (docs/formats.md "Exit codes").
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// Where a solved map goes in output coordinates (README "--scale",
+// Where a solved map goes in output coordinates (docs/cli.md "--scale",
 // docs/maths.md §2.4): the one function every caller places a map with.
 #pragma once
 

@@ -1,4 +1,4 @@
-// glTF 2.0 binary output (issue 13 item 6: atlases for engines and Blender),
+// glTF 2.0 binary output (atlases for game engines and Blender),
 // through Debian's tinygltf. glTF has one index per vertex for all
 // attributes, so each (vertex, texture coordinate) pair used by a corner
 // becomes one glTF vertex: vertices are split exactly at the seams. Normals

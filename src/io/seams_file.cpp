@@ -1,5 +1,5 @@
-// The seams file of `intrinsic atlas --seams FILE` (issue 13, "uses the
-// user's own seams, as artists mark them"): one edge per line, `i j`, two
+// The seams file of `intrinsic atlas --seams FILE` (so the atlas uses the
+// user's own seams, as artists mark them): one edge per line, `i j`, two
 // 0-based vertex indices in the input's vertex order (as boundary files),
 // `#` comments and blank lines allowed. Each pair must be an edge of a face
 // (find_seam_problem, src/atlas/seam_edges.cpp).

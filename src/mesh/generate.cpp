@@ -172,7 +172,7 @@ MeshData generate_two_disks(const GenerateOptions& o) {
   return m;
 }
 
-// Closed surfaces (issue 13): regular grids over a parameter domain, jittered
+// Closed surfaces (inputs for the atlas): regular grids over a parameter domain, jittered
 // inside their cells, so every face keeps the orientation of the grid
 // (outward normals: counter-clockwise in the domain's (polar, azimuth) or
 // (u, v) coordinates).

@@ -1,4 +1,4 @@
-// Charts, per-chart flips and utilization of any UV atlas (issue 13 item 7;
+// Charts, per-chart flips and utilization of any UV atlas (ours or another tool's;
 // docs/maths.md §9 "Atlases"): what `intrinsic metrics` reports for our atlases
 // and for other tools' outputs (triangle soups with vertices split at seams).
 // A chart is a set of faces connected through UV edges: two faces sharing two

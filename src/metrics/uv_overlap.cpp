@@ -1,5 +1,5 @@
-// Overlapping UV triangles (issue 13: "an overlap test independent of the
-// packer"; docs/maths.md §9 for the other atlas measures). Two triangles
+// Overlapping UV triangles (a test independent of the packer, so that it
+// checks it; docs/maths.md §9 for the other atlas measures). Two triangles
 // overlap when their interiors meet; touching along an edge or at a corner
 // is not an overlap. For convex polygons with disjoint interiors some edge's
 // supporting line separates them (the separating axis theorem), so the test

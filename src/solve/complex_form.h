@@ -1,4 +1,4 @@
-// The natural map's system as an n x n complex Hermitian matrix (issue 14;
+// The natural map's system as an n x n complex Hermitian matrix (to halve the work;
 // docs/maths.md §3.6). With z = u + i v the energy E_D - A is z^H M z for
 // M = K + iB, K the cotangent matrix and B the antisymmetric boundary
 // coupling of the area term; its real form, the 2n x 2n matrix the

@@ -4,8 +4,8 @@
 // level of a breadth-first search from a pseudo-peripheral vertex is a short
 // vertex separator (a curve across the piece). Ordering both halves first and
 // the separator last, recursively, gives fill within a small factor of METIS
-// at a fraction of its cost (George 1973; the "geometric nested dissection"
-// lead of issue 7, using the graph instead of coordinates so any matrix of
+// at a fraction of its cost (George 1973; like geometric nested dissection,
+// but on the graph instead of coordinates so that any matrix of
 // the solver can be ordered).
 #pragma once
 

@@ -1,4 +1,4 @@
-// Who runs in parallel while a sparse factorization runs (issue 14). The
+// Who runs in parallel while a sparse factorization runs. The
 // solver libraries each assume the whole machine: OpenBLAS starts a thread
 // per core for every BLAS call, and Debian's CHOLMOD opens OpenMP teams of 4
 // threads per supernode (a compiled-in num_threads clause). Idle threads of

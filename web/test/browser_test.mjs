@@ -1,6 +1,8 @@
 // Browser test of `intrinsic serve` (registered in CTest when node, Debian's
 // /usr/bin/chromium and this folder's node_modules exist): opens the editor in
-// headless Chromium, drags a boundary handle of the 2D layout with real mouse
+// headless Chromium at the printed URL (with its token; the page then works
+// through the cookie, and the server refuses requests without the token or
+// from another origin), drags a boundary handle of the 2D layout with real mouse
 // events, waits for the update, reads the UVs back through the API (same
 // session) and compares them with `intrinsic param --boundary FILE` for the
 // dragged position (1e-9); then, with the "click on surface" tool, clicks the
@@ -10,27 +12,38 @@
 // shift-click-selected boundary range with falloff and compares again; then checks a
 // screenshot (angle distortion colouring on) is not blank; then switches to
 // the natural map, drags a pin and compares with `intrinsic param --pin`.
-// Usage: node browser_test.mjs PATH/TO/intrinsic MESH
+// Usage: node browser_test.mjs PATH/TO/intrinsic MESH|generated
+// "generated": a wavy patch written by `intrinsic generate` (nothing needed
+// beside the repository). A MESH whose folder is absent (../shared beside a
+// clone alone) exits 77, which ctest reports as Skipped.
 import { spawn, execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 
-const [binary, mesh] = process.argv.slice(2);
-if (!binary || !mesh) {
-  console.error('usage: node browser_test.mjs INTRINSIC MESH');
+const [binary, meshArg] = process.argv.slice(2);
+if (!binary || !meshArg) {
+  console.error('usage: node browser_test.mjs INTRINSIC MESH|generated');
   process.exit(2);
 }
+if (meshArg !== 'generated' && !fs.existsSync(path.dirname(meshArg))) {
+  console.log(`SKIPPED: ${path.dirname(meshArg)} is absent (the shared meshes are not beside this clone)`);
+  process.exit(77);
+}
+const meshDir = meshArg === 'generated' ? fs.mkdtempSync(path.join(os.tmpdir(), 'intrinsic-browser-mesh-')) : null;
+const mesh = meshDir ? path.join(meshDir, 'wave.obj') : meshArg;
+if (meshDir) execFileSync(binary, ['generate', 'wave', '--rings', '8', '-o', mesh]);
 
-// Starts the server on a free port; resolves with its URL.
+// Starts the server on a free port; resolves with the URL it prints
+// (http://127.0.0.1:PORT/?token=HEX: the page's first load needs the token).
 function startServer() {
   const child = spawn(binary, ['serve', mesh, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
   const url = new Promise((resolve, reject) => {
     let out = '';
     child.stdout.on('data', (d) => {
       out += d;
-      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
+      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\/\?token=[0-9a-f]+/);
       if (m) resolve(m[0]);
     });
     child.on('exit', (code) => reject(new Error('intrinsic serve exited with ' + code)));
@@ -39,9 +52,11 @@ function startServer() {
   return { child, url };
 }
 
+// The API from node: no cookie here, so the token goes in the header.
 async function api(url, route, body, session) {
-  const res = await fetch(url.replace(/\/$/, '') + route, body === undefined ? {} : {
-    method: 'POST', headers: { 'Content-Type': 'application/json', 'X-Session': session }, body: JSON.stringify(body),
+  const u = new URL(url), token = { 'X-Intrinsic-Token': u.searchParams.get('token') };
+  const res = await fetch(u.origin + route, body === undefined ? { headers: token } : {
+    method: 'POST', headers: { ...token, 'Content-Type': 'application/json', 'X-Session': session }, body: JSON.stringify(body),
   });
   if (!res.ok) throw new Error(`${route}: HTTP ${res.status} ${await res.text()}`);
   return res.json();
@@ -244,6 +259,22 @@ async function compareWithParam(page, url, base, meshInfo, dir, what) {
   return request;
 }
 
+// The page works through the cookie its first load got (HttpOnly: no
+// script sees it); without the token, and from another origin, the server refuses.
+async function checkGuard(page, url) {
+  const origin = new URL(url).origin;
+  const seen = await page.evaluate(async () => ({
+    cookie: document.cookie, mesh: (await fetch('/api/mesh')).status, page: (await fetch('/')).status,
+  }));
+  if (seen.cookie !== '' || seen.mesh !== 200 || seen.page !== 200) throw new Error('the page with its cookie: ' + JSON.stringify(seen));
+  const bare = await fetch(origin + '/api/mesh'), noPage = await fetch(origin + '/');
+  const foreign = await fetch(url, { headers: { Origin: 'http://evil.example' } });
+  if (bare.status !== 403 || noPage.status !== 403 || foreign.status !== 403) {
+    throw new Error(`without token / foreign origin: ${bare.status} ${noPage.status} ${foreign.status}`);
+  }
+  console.log('guard: the page reads the API through its HttpOnly cookie; no token or a foreign Origin: 403');
+}
+
 async function main() {
   const { child, url: urlPromise } = startServer();
   let browser = null;
@@ -259,6 +290,7 @@ async function main() {
     await page.goto(url);
     await page.waitForFunction(() => window.__intrinsic && window.__intrinsic.state.updates >= 1 &&
       window.__intrinsic.state.frames >= 1, null, { timeout: 60000 });
+    await checkGuard(page, url);
     const vertex = await dragHandle(page);
     const meshInfo = await api(url, '/api/mesh');
     const base = await api(url, '/api/solve', {}, 'browser-test-base');
@@ -284,6 +316,7 @@ async function main() {
     if (browser) await browser.close();
     child.kill('SIGKILL');
     fs.rmSync(dir, { recursive: true, force: true });
+    if (meshDir) fs.rmSync(meshDir, { recursive: true, force: true });
   }
 }
 

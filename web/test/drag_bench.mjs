@@ -12,17 +12,19 @@ import { chromium } from 'playwright-core';
 const [bin, mesh, runsArg] = process.argv.slice(2);
 const runs = Number(runsArg || 50);
 const child = spawn(bin, ['serve', mesh, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
-const url = await new Promise((res) => { let o = ''; child.stdout.on('data', (d) => { o += d; const m = o.match(/http:\/\/127\.0\.0\.1:\d+/); if (m) res(m[0]); }); });
+// The printed URL holds the token: the page gets its cookie from it, node's fetches send it as a header.
+const printed = await new Promise((res) => { let o = ''; child.stdout.on('data', (d) => { o += d; const m = o.match(/http:\/\/127\.0\.0\.1:\d+\/\?token=[0-9a-f]+/); if (m) res(new URL(m[0])); }); });
+const url = printed.origin, token = { 'X-Intrinsic-Token': printed.searchParams.get('token') };
 const med = (x) => x.slice().sort((a, b) => a - b)[x.length >> 1];
 const post = async (b) => {
   const t = performance.now();
-  const r = await fetch(url + '/api/solve', { method: 'POST', headers: { 'X-Session': 'bench' }, body: JSON.stringify(b) });
+  const r = await fetch(url + '/api/solve', { method: 'POST', headers: { ...token, 'X-Session': 'bench' }, body: JSON.stringify(b) });
   const j = await r.json();
   return [j, performance.now() - t];
 };
 
 async function serverSide() {
-  const m = await (await fetch(url + '/api/mesh')).json();
+  const m = await (await fetch(url + '/api/mesh', { headers: token })).json();
   const [base, tf] = await post({});
   console.log('vertices', m.vertices, 'boundary', m.boundary_loops[0].length, 'factor', base.update_ms.toFixed(1), 'ms, round trip', tf.toFixed(0), 'ms');
   const v = m.boundary_loops[0][17], p = base.uv[v];
@@ -42,7 +44,7 @@ async function browserSide() {
   });
   try {
     const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-    await page.goto(url + '/');
+    await page.goto(printed.href);
     await page.waitForFunction(() => window.__intrinsic && window.__intrinsic.state.frames >= 1 && window.__intrinsic.state.updates >= 1, null, { timeout: 120000 });
     const hs = await page.evaluate(() => window.__intrinsic.handles());
     const h = hs[Math.floor(hs.length / 3)];
