@@ -156,23 +156,26 @@ def atlas(
     V: Any,
     F: Any = None,
     *,
-    padding: float = 2,
-    resolution: int = 1024,
-    max_normal_deviation: float = 60,
-    min_chart_faces: int = 20,
-    max_stretch: float = 1.05,
-    max_charts: int = 0,
-    weld: float = 0,
-    reorient: bool = True,
-    atlas_stretch_budget: bool = True,
+    padding: Optional[float] = None,
+    resolution: Optional[int] = None,
+    max_normal_deviation: Optional[float] = None,
+    min_chart_faces: Optional[int] = None,
+    max_stretch: Optional[float] = None,
+    max_face_stretch: Optional[float] = None,
+    hard_angle: Optional[float] = None,
+    isometric_iterations: Optional[int] = None,
+    max_charts: Optional[int] = None,
+    weld: Optional[float] = None,
+    reorient: Optional[bool] = None,
+    atlas_stretch_budget: Optional[bool] = None,
     seams: Any = None,
-    boundary: str = "natural",
-    method: str = "conformal",
+    boundary: Optional[str] = None,
+    method: Optional[str] = None,
     lambda_: Optional[float] = None,
     mu: Optional[float] = None,
     optimize_lambda: Optional[str] = None,
     optimize_boundary: Optional[str] = None,
-    max_vertices: int = 50_000_000,
+    max_vertices: Optional[int] = None,
 ) -> Atlas:
     """`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or a mesh file (atlas(path)).
 
@@ -182,21 +185,26 @@ def atlas(
     overlapping triangles. Returns an Atlas: uv (k x 2), uv_index (#F x 3, per face corner a row of
     uv), face_chart (#F, -1 for degenerate faces), V, F (the input, unchanged) and report (the
     command line's report as a dict). write_atlas(path, atlas) writes the command line's .obj or .glb.
-    As on the command line: charts above `max_stretch` (area-weighted L2 stretch) are split and
-    neighbours merged below it; `max_charts` (0: no limit) merges further; `weld` merges vertices
-    closer than that fraction of the bounding box diagonal for the computation only; `seams`, a
-    seams file's path or k x 2 vertex indices, cuts exactly those edges; `reorient=False` keeps the
-    winding of faces listed against their piece (cut there) instead of writing them reversed;
-    `atlas_stretch_budget=False` keeps every chart within `max_stretch` (`--per-chart-stretch`).
+    As on the command line (an option left out takes the library's default, as `intrinsic atlas`
+    prints with --help): each chart is split while 5% of its surface is stretched or shrunk by more
+    than `max_stretch` (per face max(s1, 1/s2)) or any face by more than `max_face_stretch`, and
+    neighbours are merged within both; `hard_angle` (degrees, 0: none) makes sharper edges seams;
+    `isometric_iterations` refines each natural map toward an isometry; `max_charts` (0: no limit)
+    merges further; `weld` merges vertices closer than that fraction of the bounding box diagonal
+    for the computation only; `seams`, a seams file's path or k x 2 vertex indices, cuts exactly
+    those edges; `reorient=False` keeps the winding of faces listed against their piece (cut there)
+    instead of writing them reversed; `atlas_stretch_budget=False` keeps every chart within
+    `max_stretch` (`--per-chart-stretch`).
     Each chart's map: the natural conformal map by default; `boundary="circle"` or `"square"` fixes
     the chart's boundary, with `method`/`lambda_`/`mu` weights and optionally `optimize_lambda`
     ("edge" | "area") or `optimize_boundary` ("edge" | "area" | "dirichlet"), as `parameterize`.
     Raises UsageError for bad options and InputError for unreadable or invalid input.
     """
-    return _intrinsic.atlas(V, F, padding=padding, resolution=resolution,
-                            max_normal_deviation=max_normal_deviation, min_chart_faces=min_chart_faces,
-                            max_stretch=max_stretch, max_charts=max_charts, weld=weld, reorient=reorient,
-                            atlas_stretch_budget=atlas_stretch_budget, seams=seams, boundary=boundary,
-                            method=method, optimize_lambda=optimize_lambda, optimize_boundary=optimize_boundary,
-                            **({} if lambda_ is None else {"lambda": lambda_}), **({} if mu is None else {"mu": mu}),
-                            max_vertices=max_vertices)
+    given = dict(padding=padding, resolution=resolution, max_normal_deviation=max_normal_deviation,
+                 min_chart_faces=min_chart_faces, max_stretch=max_stretch, max_face_stretch=max_face_stretch,
+                 hard_angle=hard_angle, isometric_iterations=isometric_iterations, max_charts=max_charts,
+                 weld=weld, reorient=reorient, atlas_stretch_budget=atlas_stretch_budget, seams=seams,
+                 boundary=boundary, method=method, optimize_lambda=optimize_lambda,
+                 optimize_boundary=optimize_boundary, max_vertices=max_vertices, mu=mu)
+    given["lambda"] = lambda_
+    return _intrinsic.atlas(V, F, **{k: v for k, v in given.items() if v is not None})

@@ -209,6 +209,9 @@ def make_parser() -> argparse.ArgumentParser:
     t.add_argument("--max-normal-deviation", type=float, default=S)
     t.add_argument("--min-chart-faces", type=int, default=S)
     t.add_argument("--max-stretch", type=float, default=S)
+    t.add_argument("--max-face-stretch", type=float, default=S)
+    t.add_argument("--hard-angle", type=float, default=S)
+    t.add_argument("--isometric-iterations", type=int, default=S)
     t.add_argument("--max-charts", type=int, default=S)
     t.add_argument("--weld", type=float, default=S)
     t.add_argument("--keep-winding", dest="reorient", action="store_false", default=S)
@@ -217,7 +220,8 @@ def make_parser() -> argparse.ArgumentParser:
 
 
 BATCH_KEYS = {"input_dir", "output_dir", "command", "scheduler", "workers", "format", "force", "quiet", "binary"}
-ATLAS_KEYS = {"padding", "resolution", "max_normal_deviation", "min_chart_faces", "max_stretch", "max_charts", "weld",
+ATLAS_KEYS = {"padding", "resolution", "max_normal_deviation", "min_chart_faces", "max_stretch", "max_face_stretch",
+              "hard_angle", "isometric_iterations", "max_charts", "weld",
               "reorient", "atlas_stretch_budget",
               "max_vertices"}
 

@@ -91,6 +91,15 @@ def test_atlas_options_equal_cli(tmp_path):
     intrinsic.write_atlas(mine, a)
     assert open(mine, "rb").read() == open(cli, "rb").read()
     assert a.report["atlas_stretch_budget"] is False and a.report["reorient"] is False
+    # The stretch bounds, hard edges and the isometric refinement.
+    r = run_cli("atlas", path, "-o", cli, "-q", "--max-stretch", "1.05", "--max-face-stretch", "1.5",
+                "--hard-angle", "50", "--isometric-iterations", "3")
+    assert r.returncode == 0, r.stderr
+    a = intrinsic.atlas(V, F, max_stretch=1.05, max_face_stretch=1.5, hard_angle=50, isometric_iterations=3)
+    intrinsic.write_atlas(mine, a)
+    assert open(mine, "rb").read() == open(cli, "rb").read()
+    assert a.report["max_face_stretch"] == 1.5 and a.report["hard_angle"] == 50
+    assert a.report["chart_map"]["isometric_iterations"] == 3
     # Every param map per chart, spelled as parameterize() spells it.
     r = run_cli("atlas", path, "-o", cli, "-q", "--boundary", "square", "--method", "mixed", "--lambda", "0.5",
                 "--max-stretch", "3")

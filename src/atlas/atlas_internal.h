@@ -25,6 +25,7 @@ struct CleanMesh {
   std::vector<char> reversed;  // per face: taken (and, with reorient, written) 0, 2, 1; all 0 without reorient
   std::vector<Eigen::Vector3d> normal;  // unit, per face as listed (zero for degenerate faces)
   std::vector<double> area;
+  std::vector<Eigen::Vector3d> centroid;  // per face: the mean of its corners
   std::vector<int> component;  // per face: connected component (faces sharing vertices)
   int components = 0;
   AtlasCleaning cleaning;
@@ -132,11 +133,12 @@ ChartBox chart_box(const FlatChart& chart);
 // only to be split).
 ChartBox planar_chart_box(const ChartMesh& chart);
 // What the packer takes without waste: a chart filling at least 15% of its
-// box (not a ring, a C or a spiral) whose longer side is at most twice the
-// side of a square of the whole surface's area (a longer one alone would
-// keep the layout under 25% full). A long straight strip packs lengthwise
-// and is not cut; filling its square (area over the longer side squared),
-// the earlier test, cut a long handle across into dozens of slivers.
+// box (not a ring, a C or a spiral), and either 15% of the square on its
+// longer side or, elongated, half of its box (a straight strip packs
+// lengthwise: filling the square, the only test before, cut a long handle
+// across into dozens of slivers; a V or an L of thin arms does not pack),
+// whose longer side is at most twice the side of a square of the whole
+// surface's area (a longer one alone would keep the layout under 25% full).
 bool packs_well(const ChartBox& box, double surface_area);
 
 // Scales all charts by one factor, turns them and packs their texel masks

@@ -55,7 +55,9 @@ ChartBox planar_chart_box(const ChartMesh& chart) {
 }
 
 bool packs_well(const ChartBox& box, double surface_area) {
-  return box.fill >= 0.15 && box.longer * box.longer <= 4 * surface_area;
+  const double square_fill = box.fill * box.shorter / box.longer;  // of the square on the longer side
+  return box.fill >= 0.15 && (square_fill >= 0.15 || box.fill >= 0.5) &&
+         box.longer * box.longer <= 4 * surface_area;
 }
 
 double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping) {

@@ -37,14 +37,16 @@ void check_input(const MeshData& in) {
     if (!in.V.row(v).allFinite()) throw_input(where + "vertex " + std::to_string(v) + " has a non-finite coordinate");
 }
 
-// Normals, areas and the degenerate test (make_mesh's: twice the area against the longest edge squared).
+// Normals, areas, centroids and the degenerate test (make_mesh's: twice the area against the longest edge squared).
 void face_geometry(const MeshData& in, double ratio, CleanMesh& m) {
   const int nf = static_cast<int>(in.F.rows());
   m.good.assign(nf, 0);
   m.normal.assign(nf, Eigen::Vector3d::Zero());
   m.area.assign(nf, 0);
+  m.centroid.resize(nf);
   for (int f = 0; f < nf; ++f) {
     const Eigen::Vector3d x0 = in.V.row(in.F(f, 0)), x1 = in.V.row(in.F(f, 1)), x2 = in.V.row(in.F(f, 2));
+    m.centroid[f] = (x0 + x1 + x2) / 3;
     const Eigen::Vector3d n = (x1 - x0).cross(x2 - x0);
     const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
     const bool repeated = in.F(f, 0) == in.F(f, 1) || in.F(f, 1) == in.F(f, 2) || in.F(f, 0) == in.F(f, 2);
@@ -200,26 +202,30 @@ MeshData weld_vertices(const MeshData& input, double relative_distance, int& wel
   const int nv = static_cast<int>(input.V.rows());
   std::vector<int> rep(nv), next(nv, -1);
   std::unordered_map<std::uint64_t, int> head;  // cell -> first kept vertex in it (a list through `next`)
-  auto cell_of = [&](int v) {
-    std::array<std::int64_t, 3> c;
-    for (int k = 0; k < 3; ++k) c[k] = static_cast<std::int64_t>(std::floor((input.V(v, k) - lo[k]) / d));
-    return c;
-  };
+  head.reserve(static_cast<size_t>(nv));  // no rehashing: most vertices open a cell of their own
+  // Cells of side 2d: the ball of radius d around a point meets its own
+  // cell and, per axis, the neighbour on the side of the nearer face, so 8
+  // cells hold every candidate (27 with cells of side d).
+  const double side = 2 * d;
   auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
     // Colliding cells only add candidates: distances decide.
     return static_cast<std::uint64_t>(x) * 73856093u ^ static_cast<std::uint64_t>(y) * 19349663u ^
            static_cast<std::uint64_t>(z) * 83492791u;
   };
+  std::array<std::int64_t, 3> c, step;
   for (int v = 0; v < nv; ++v) {
-    const auto c = cell_of(v);
+    for (int k = 0; k < 3; ++k) {
+      const double x = (input.V(v, k) - lo[k]) / side;
+      c[k] = static_cast<std::int64_t>(std::floor(x));
+      step[k] = x - c[k] < 0.5 ? -1 : 1;
+    }
     int best = v;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const auto it = head.find(key(c[0] + dx, c[1] + dy, c[2] + dz));
-          for (int u = it == head.end() ? -1 : it->second; u >= 0; u = next[u])
-            if (u < best && (input.V.row(u) - input.V.row(v)).norm() <= d) best = u;
-        }
+    for (int corner = 0; corner < 8; ++corner) {
+      const auto it = head.find(key(c[0] + (corner & 1 ? step[0] : 0), c[1] + (corner & 2 ? step[1] : 0),
+                                    c[2] + (corner & 4 ? step[2] : 0)));
+      for (int u = it == head.end() ? -1 : it->second; u >= 0; u = next[u])
+        if (u < best && (input.V.row(u) - input.V.row(v)).norm() <= d) best = u;
+    }
     rep[v] = best;
     if (best != v) {
       ++welded;

@@ -146,18 +146,44 @@ std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::
   const ChartFaceIndex index(faces, static_cast<int>(clean.glued.size() / 3));
   const int a = farthest(clean, faces, index, faces.front());
   const int b = farthest(clean, faces, index, a);
-  // Two fronts grown together, one face layer at a time: both halves connected.
+  // Two fronts grown together by distance (Dijkstra over the path through
+  // face centroids): each face goes to the nearer of a and b, so the cut
+  // runs along their bisector, straighter than the diamond of face-count
+  // layers; a face is reached from one of its own side, so both halves stay
+  // connected.
   std::vector<int> side(faces.size(), -1);
-  std::deque<int> queue{a, b};
-  side[index(a)] = 0;
-  side[index(b)] = a == b ? 0 : 1;
-  while (!queue.empty()) {
-    const int f = queue.front();
-    queue.pop_front();
+  std::vector<double> dist(faces.size(), INFINITY);
+  using Item = std::pair<double, int>;  // (distance, face): nearest first, then smallest face
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  dist[index(a)] = 0, side[index(a)] = 0, heap.emplace(0.0, a);
+  if (b != a) dist[index(b)] = 0, side[index(b)] = 1, heap.emplace(0.0, b);
+  while (!heap.empty()) {
+    const auto [d, f] = heap.top();
+    heap.pop();
+    const int kf = index(f);
+    if (d > dist[kf]) continue;
     for (int g : neighbours(clean, f)) {
       const int k = g < 0 ? -1 : index(g);
-      if (k >= 0 && side[k] < 0) side[k] = side[index(f)], queue.push_back(g);
+      if (k < 0) continue;
+      const double dg = d + (clean.centroid[g] - clean.centroid[f]).norm();
+      if (dg < dist[k]) dist[k] = dg, side[k] = side[kf], heap.emplace(dg, g);
     }
+  }
+  // Teeth: a face with two of its neighbours on the other side goes there
+  // (it has at most one on its own, so its side stays connected), a few
+  // passes in face order.
+  for (int pass = 0; pass < 4; ++pass) {
+    int moved = 0;
+    for (size_t k = 0; k < faces.size(); ++k) {
+      if (side[k] < 0 || faces[k] == a || faces[k] == b) continue;
+      int other = 0;
+      for (int g : neighbours(clean, faces[k])) {
+        const int j = g < 0 ? -1 : index(g);
+        other += j >= 0 && side[j] >= 0 && side[j] != side[k];
+      }
+      if (other >= 2) side[k] = 1 - side[k], ++moved;
+    }
+    if (moved == 0) break;
   }
   std::array<std::vector<int>, 2> halves;
   for (size_t k = 0; k < faces.size(); ++k) halves[side[k] == 1 ? 1 : 0].push_back(faces[k]);
