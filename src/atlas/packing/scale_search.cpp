@@ -78,9 +78,10 @@ struct Search {
     if (best.extent == 0 || l.scale / l.extent > best.scale / best.extent) best = std::move(l);
     return true;
   }
-  // From `start` down by `step` until a scale fits (false: none down to 1e-4 of it).
-  bool bracket(double start, double step) {
-    for (double s = start; s > start * 1e-4; s *= step)
+  // From `start` down by `step` until a scale fits, at most `tries` scales.
+  bool bracket(double start, double step, int tries) {
+    double s = start;
+    for (int i = 0; i < tries; ++i, s *= step)
       if (fits(s)) return true;
     return false;
   }
@@ -109,13 +110,15 @@ struct Search {
 // Brackets from the largest scale the area allows, then bisects to
 // `ratio`; the side doubles when even tiny scales fail (more charts than
 // the bitmap holds with their padding).
-Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side, int pad, double ratio, bool angles) {
+Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side, int pad, double ratio, bool angles,
+                    double* largest = nullptr) {
   while (true) {
     Search s{charts, side, pad, false, {}};
-    if (s.bracket(0.85 * side / std::sqrt(area), 0.8)) {
+    if (s.bracket(0.85 * side / std::sqrt(area), 0.8, 42)) {  // 0.8^42: 1e-4
       if (s.hi == INFINITY) s.hi = 0.85 * side / std::sqrt(area) / 0.8;
       s.bisect(ratio, 12);
       if (angles) s.with_angles();
+      if (largest) *largest = s.lo;
       return std::move(s.best);
     }
     side *= 2;
@@ -130,16 +133,17 @@ Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side
 Layout search_layout(const std::vector<PackChart>& charts, double area, int& side, int pad) {
   if (side < 256) return bisect_scale(charts, area, side, pad, 1.005, true);
   int half = side / 2;
-  const Layout coarse = bisect_scale(charts, area, half, (pad + 1) / 2, 1.02, false);
+  double coarse = 0;  // the largest scale that fitted (the best layout may be at a smaller one)
+  bisect_scale(charts, area, half, (pad + 1) / 2, 1.02, false, &coarse);
   if (half == side / 2) {  // the half bitmap held them: its scale, doubled, is close
     Search s{charts, side, pad, false, {}};
-    const double guess = 2 * coarse.scale;
-    if (s.fits(guess * 1.02)) {
-      s.hi = guess * 1.06;
-    } else if (!s.bracket(guess * 0.99, 0.97)) {
-      return bisect_scale(charts, area, side, pad, 1.005, true);
-    }
-    s.bisect(1.0075, 4);
+    // Down from 3% above twice that scale in steps of 1.5% until one fits
+    // (as packing is not monotone in the scale, a few scales near the top
+    // beat a bisection), then halfway up to the smallest that failed, twice.
+    const double guess = 2 * coarse;
+    if (!s.bracket(guess * 1.03, 1 / 1.015, 6)) return bisect_scale(charts, area, side, pad, 1.005, true);
+    if (s.hi == INFINITY) s.hi = s.lo * 1.03;
+    s.bisect(1.0075, 2);
     s.with_angles();
     return std::move(s.best);
   }
