@@ -1,7 +1,8 @@
 // The stages of intrinsic::atlas (atlas.h), one file each: cleaning.cpp
 // (face adjacency for the computation), segmentation.cpp (region growing and
 // splits), chart_mesh.cpp (a chart as a Mesh of its own), chart_flatten.cpp
-// (the natural map and the validity checks), atlas_packing.cpp.
+// (the natural map and the validity checks), atlas_packing.cpp (the packer,
+// its steps one file each under packing/).
 #pragma once
 
 #include <algorithm>
@@ -141,7 +142,7 @@ ChartBox planar_chart_box(const ChartMesh& chart);
 bool packs_well(const ChartBox& box, double surface_area);
 
 // Scales all charts by one factor, turns them and packs their texel masks
-// with padding on a bitmap (atlas_packing.cpp), and fits the layout into
+// with padding on a bitmap (atlas_packing.cpp, packing/), and fits the layout into
 // [0,1]^2 (UVs changed in place). Returns the utilization; `overlapping` is
 // 0: a mask is only placed where its dilated texels meet no taken texel.
 double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping);

@@ -1,0 +1,98 @@
+// Packing, step 3 (bitmap.h): occupancy bits and the first-fit scan.
+#include "atlas/packing/bitmap.h"
+
+#include <algorithm>
+
+namespace intrinsic::detail::packing {
+
+Bitmap::Bitmap(int side)
+    : side_(side), words_((side + 63) / 64), bits_(static_cast<size_t>(words_) * side, 0), widest_(side, side) {}
+
+namespace {
+
+// The longest run of set bits in x.
+int longest_ones(std::uint64_t x) {
+  int k = 0;
+  for (; x; ++k) x &= x << 1;
+  return k;
+}
+
+}  // namespace
+
+// Word by word: a free run grows across zero words, ends at a word's lowest
+// taken bit and restarts after its highest; runs inside a word are counted too.
+void Bitmap::update_widest(int y) {
+  const std::uint64_t* r = row(y);
+  int best = 0, run = 0;
+  for (int w = 0; w < words_; ++w) {
+    std::uint64_t word = r[w];
+    const int valid = std::min(64, side_ - 64 * w);
+    if (valid < 64) word |= ~std::uint64_t{0} << valid;  // past the side: taken
+    if (word == 0) {
+      run += 64;
+      continue;
+    }
+    best = std::max({best, run + __builtin_ctzll(word), longest_ones(~word)});
+    run = __builtin_clzll(word);
+  }
+  widest_[y] = std::max(best, run);
+}
+
+int Bitmap::last_taken(int y, int a, int b) const {
+  const std::uint64_t* r = row(y);
+  for (int x = b - 1; x >= a;) {
+    const int w = x >> 6;
+    std::uint64_t word = r[w];
+    const int hi = x & 63;
+    if (hi < 63) word &= (std::uint64_t{2} << hi) - 1;
+    const int lo_bit = std::max(a, w << 6) - (w << 6);
+    word &= ~((std::uint64_t{1} << lo_bit) - 1);
+    if (word) return (w << 6) + 63 - __builtin_clzll(word);
+    x = (w << 6) - 1;
+  }
+  return -1;
+}
+
+void Bitmap::take(const Mask& m, int x, int y) {
+  for (int r = 0; r < m.h; ++r) {
+    std::uint64_t* bits = &bits_[static_cast<size_t>(y + r) * words_];
+    for (const auto& s : m.own[r])
+      for (int t = x + s.first; t < x + s.second; ++t) bits[t >> 6] |= std::uint64_t{1} << (t & 63);
+    if (!m.own[r].empty()) update_widest(y + r);
+  }
+}
+
+bool Bitmap::fits(const Mask& m, int x, int y) const {
+  for (int r = 0; r < m.h; ++r)
+    for (const auto& s : m.rows[r])
+      if (last_taken(y + r, x + s.first, x + s.second) >= 0) return false;
+  return true;
+}
+
+bool Bitmap::may_fit(const Mask& m, int y) const {
+  for (int r : m.by_width)  // widest first: the likeliest to fail
+    if (m.widest[r] > widest_[y + r]) return false;
+  return true;
+}
+
+int Bitmap::first_fit(const Mask& m, int y, int x0, int limit) const {
+  int hot = 0;  // the row that last met a taken texel: tried first, it usually does again
+  for (int x = x0; x + m.w <= limit;) {
+    int next = -1;
+    for (int i = 0; i < m.h && next < 0; ++i) {
+      const int r = (hot + i) % m.h;
+      for (const auto& s : m.rows[r]) {
+        const int t = last_taken(y + r, x + s.first, x + s.second);
+        if (t >= 0) {
+          next = t - s.first + 1, hot = r;
+          break;
+        }
+      }
+    }
+    if (next < 0) return x;
+    x = next;
+  }
+  return -1;
+}
+
+}  // namespace intrinsic::detail::packing

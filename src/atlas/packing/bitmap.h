@@ -1,0 +1,46 @@
+// Packing, step 3: the layout's occupancy, one bit per texel, and the search
+// for the first position in a row band where a mask fits. A fit is tested
+// span by span: a dilated span meeting a taken texel tells how far right the
+// mask must move at least (past that texel), so a scan jumps over whole
+// charts instead of trying every x. Each row also keeps its widest free run:
+// a band where some row of the mask is wider than its row's widest run is
+// skipped without a scan (most bands, once the layout is dense).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "atlas/packing/texel_mask.h"
+
+namespace intrinsic::detail::packing {
+
+class Bitmap {
+ public:
+  explicit Bitmap(int side);
+  int side() const { return side_; }
+  // The last taken texel of row y in [a, b), or -1.
+  int last_taken(int y, int a, int b) const;
+  bool taken(int x, int y) const { return (row(y)[x >> 6] >> (x & 63)) & 1; }
+  // Takes the mask's own (undilated) texels with its frame's corner at (x, y).
+  void take(const Mask& m, int x, int y);
+  // True when the mask's dilated texels, frame corner at (x, y), meet no taken texel.
+  bool fits(const Mask& m, int x, int y) const;
+  // The first x >= x0 with the frame inside [0, limit) where the mask fits
+  // in the band of rows starting at y, or -1.
+  int first_fit(const Mask& m, int y, int x0, int limit) const;
+  // False when some row of the mask's band at y is wider than its row's
+  // widest free run: the mask fits nowhere in that band.
+  bool may_fit(const Mask& m, int y) const;
+  // The widest run of free texels in row y.
+  int widest_free(int y) const { return widest_[y]; }
+
+
+ private:
+  const std::uint64_t* row(int y) const { return &bits_[static_cast<size_t>(y) * words_]; }
+  void update_widest(int y);
+  int side_ = 0, words_ = 0;
+  std::vector<std::uint64_t> bits_;
+  std::vector<int> widest_;
+};
+
+}  // namespace intrinsic::detail::packing

@@ -1,0 +1,153 @@
+// Packing, step 5 (scale_search.h): the search for the scale.
+#include "atlas/packing/scale_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "util/parallel_for.h"
+
+namespace intrinsic::detail::packing {
+namespace {
+
+// Masks placed as their whole frame (BoxCursors in placement.cpp): frames
+// their dilated texels fill to at least kBoxFill, and small frames (at most
+// kBoxSide texels more than the padding on both sides), where the corners
+// given up are a few texels.
+constexpr double kBoxFill = 0.9;
+constexpr int kBoxSide = 6;
+
+bool as_box(const Mask& m, int pad) {
+  if (m.box) return false;
+  long dilated = 0;
+  for (const Spans& r : m.rows)
+    for (const auto& s : r) dilated += s.second - s.first;
+  const double fill = static_cast<double>(dilated) / (static_cast<double>(m.w) * m.h);
+  return fill >= kBoxFill || std::max(m.w, m.h) <= 2 * pad + kBoxSide;
+}
+
+}  // namespace
+
+void add_masks(const std::vector<PackChart>& charts, double scale, int pad, size_t first, size_t last,
+               std::vector<std::vector<Mask>>& masks) {
+  masks.resize(charts.size());
+  parallel_for(static_cast<std::int64_t>(charts.size()), [&](std::int64_t b, std::int64_t e) {
+    for (std::int64_t c = b; c < e; ++c)
+      for (size_t a = first; a < std::min(last, charts[c].poses.size()); ++a) {
+        std::vector<Mask> turns = quarter_turn_masks(*charts[c].F, charts[c].poses[a], scale, pad);
+        for (Mask& m : turns) {
+          if (as_box(m, pad)) fill_frame(m);
+          masks[c].push_back(std::move(m));
+        }
+      }
+  }, 8);
+}
+
+bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, bool angles, Layout& out) {
+  size_t n = 1;
+  for (const PackChart& c : charts) n = std::max(n, angles ? c.poses.size() : 1);
+  std::vector<std::vector<Mask>> masks;
+  add_masks(charts, scale, pad, 0, n, masks);
+  Layout l;
+  l.scale = scale;
+  if (!place_all(masks, side, static_cast<int>(4 * n), l.at, l.extent)) return false;
+  out = std::move(l);
+  return true;
+}
+
+namespace {
+
+// The layouts tried so far: the one with the largest scale / extent (the
+// utilization is the charts' area times its square), the largest scale that
+// fitted and the smallest that did not.
+struct Search {
+  const std::vector<PackChart>& charts;
+  int side, pad;
+  bool angles;  // try_scale with every pose angle
+  Layout best;
+  double lo = 0, hi = INFINITY;
+  int packings = 0;
+  bool fits(double scale) {
+    Layout l;
+    ++packings;
+    if (!try_scale(charts, scale, side, pad, angles, l)) {
+      hi = std::min(hi, scale);
+      return false;
+    }
+    lo = std::max(lo, scale);
+    if (best.extent == 0 || l.scale / l.extent > best.scale / best.extent) best = std::move(l);
+    return true;
+  }
+  // From `start` down by `step` until a scale fits, at most `tries` scales.
+  bool bracket(double start, double step, int tries) {
+    double s = start;
+    for (int i = 0; i < tries; ++i, s *= step)
+      if (fits(s)) return true;
+    return false;
+  }
+  // Bisects [lo, hi] (geometric mean) until hi / lo is within `ratio`.
+  void bisect(double ratio, int steps) {
+    for (int i = 0; i < steps && hi > lo * ratio; ++i) fits(std::sqrt(lo * hi));
+  }
+  // Above the largest scale the smallest-box poses reached, with every pose
+  // angle: two steps of a bisection up to 8% higher (the angles are tried
+  // only here, each costing a rasterization per angle: a layout the greedy
+  // placement finds with more poses can also be worse, so they never
+  // replace a better one).
+  void with_angles() {
+    bool more = false;
+    for (const PackChart& c : charts) more = more || c.poses.size() > 1;
+    if (!more || lo == 0) return;
+    angles = true;
+    double a = lo, b = lo * 1.08;
+    for (int i = 0; i < 2; ++i) {
+      const double mid = std::sqrt(a * b);
+      (fits(mid) ? a : b) = mid;
+    }
+  }
+};
+
+// Brackets from the largest scale the area allows, then bisects to
+// `ratio`; the side doubles when even tiny scales fail (more charts than
+// the bitmap holds with their padding).
+Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side, int pad, double ratio, bool angles,
+                    double* largest = nullptr) {
+  while (true) {
+    Search s{charts, side, pad, false, {}};
+    if (s.bracket(0.85 * side / std::sqrt(area), 0.8, 42)) {  // 0.8^42: 1e-4
+      if (s.hi == INFINITY) s.hi = 0.85 * side / std::sqrt(area) / 0.8;
+      s.bisect(ratio, 12);
+      if (angles) s.with_angles();
+      if (largest) *largest = s.lo;
+      return std::move(s.best);
+    }
+    side *= 2;
+  }
+}
+
+}  // namespace
+
+// The bisection on a bitmap of half the size first (a quarter of the texels
+// to place, twice the tolerance), then on the full bitmap around twice that
+// scale: a few full-size packings instead of a dozen.
+Layout search_layout(const std::vector<PackChart>& charts, double area, int& side, int pad) {
+  if (side < 256) return bisect_scale(charts, area, side, pad, 1.005, true);
+  int half = side / 2;
+  double coarse = 0;  // the largest scale that fitted (the best layout may be at a smaller one)
+  bisect_scale(charts, area, half, (pad + 1) / 2, 1.02, false, &coarse);
+  if (half == side / 2) {  // the half bitmap held them: its scale, doubled, is close
+    Search s{charts, side, pad, false, {}};
+    // Down from 3% above twice that scale in steps of 1.5% until one fits
+    // (as packing is not monotone in the scale, a few scales near the top
+    // beat a bisection), then halfway up to the smallest that failed, twice.
+    const double guess = 2 * coarse;
+    if (!s.bracket(guess * 1.03, 1 / 1.015, 6)) return bisect_scale(charts, area, side, pad, 1.005, true);
+    if (s.hi == INFINITY) s.hi = s.lo * 1.03;
+    s.bisect(1.0075, 2);
+    s.with_angles();
+    return std::move(s.best);
+  }
+  return bisect_scale(charts, area, side, pad, 1.005, true);
+}
+
+}  // namespace intrinsic::detail::packing
