@@ -61,7 +61,8 @@ void register_atlas(CLI::App& app, Runner& run) {
   auto a = std::make_shared<AtlasArgs>();
   CLI::App* cmd = app.add_subcommand(
       "atlas", "UV atlas of any mesh (closed, higher genus, several components, non-manifold): disk charts, "
-               "each flattened by the natural conformal map, packed into [0,1]^2 without flips or overlaps");
+               "each flattened by the natural conformal map refined toward an isometry, within a stretch bound, packed into "
+               "[0,1]^2 without flips or overlaps");
   cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, .stl, optionally .gz)")->required();
   cmd->add_option("-o,--output", a->output,
                   "Output mesh (.obj: input vertices, one vt per atlas UV, f v/vt; "
@@ -115,7 +116,7 @@ void register_atlas(CLI::App& app, Runner& run) {
       "Keep every merged chart within --max-stretch (default: unions under 1% of the surface may merge "
       "past it while the whole atlas's 95th percentile stays within it)");
   cmd->add_option("--max-charts", a->options.max_charts,
-                  "Merge further (past --max-stretch, never past validity) down to this many charts (0: no limit)")
+                  "Merge further (past both stretch bounds, never past validity) down to this many charts (0: no limit)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--weld", a->options.weld,
