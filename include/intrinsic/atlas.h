@@ -4,8 +4,9 @@
 // split, inconsistently oriented edges cut, so every chart keeps its faces'
 // input winding and is laid out counter-clockwise in it), segmented into disk
 // charts, each chart flattened by the natural conformal map of the paper (section 4.2,
-// eq. 7; docs/maths.md §3) through the one Parameterizer, checked (no flipped
-// triangle, simple boundary) and split until valid, then packed into
+// eq. 7; docs/maths.md §3) through the one Parameterizer and refined toward
+// an isometry (docs/maths.md §9.9), checked (no flipped triangle, simple
+// boundary, the stretch bound of §9.7) and split until valid, then packed into
 // [0,1]^2 at one texel density (paper section 1.3: an atlas of charts).
 // The input's vertices and faces are never changed: seams exist only in the
 // per-corner UV indices.
