@@ -395,7 +395,14 @@ TEST(ServeLoad, ConcurrentMixedRequestsStayCorrectAndBounded) {
   EXPECT_TRUE(s.alive());
   EXPECT_LT(seconds, 60);
   ASSERT_GT(rss_first, 0);
+#ifndef __SANITIZE_ADDRESS__
   EXPECT_LE(rss_second - rss_first, kRssGrowthKib);
+#else
+  // AddressSanitizer keeps freed memory in quarantine (up to 256 MB) and
+  // its shadow grows with it: resident memory says nothing about leaks
+  // there (LeakSanitizer checks those at exit).
+  std::cout << "serve load: memory bound not checked under AddressSanitizer\n";
+#endif
 }
 
 }  // namespace
