@@ -81,7 +81,8 @@ void count_split(detail::ChartStatus status, AtlasResult& r) {
 // for charts under `min_sparse_area`). A chart already sparse in projection
 // onto its mean plane is reported Sparse before its map is solved.
 detail::ChartStatus flatten_one(const MeshData& input, const detail::CleanMesh& clean, const std::vector<int>& faces,
-                                const AtlasOptions& options, double surface_area, detail::FlatChart& chart) {
+                                const AtlasOptions& options, detail::FlatChart& chart) {
+  const double surface_area = clean.surface_area;
   chart.mesh = detail::chart_mesh(input, clean, faces);
   chart.summary.component = clean.component[faces.front()];
   double area = 0;
@@ -110,8 +111,6 @@ std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::
                                            std::vector<std::vector<int>> work, const AtlasOptions& options,
                                            AtlasResult& r) {
   std::vector<detail::FlatChart> done;
-  double total_area = 0;
-  for (double a : clean.area) total_area += a;
   while (!work.empty()) {
     const std::int64_t n = static_cast<std::int64_t>(work.size());
     std::vector<detail::FlatChart> flat(work.size());
@@ -119,7 +118,7 @@ std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::
     const int parts = detail::parallel_parts(n, 1);
     detail::parallel_for_parts(parts, parts, [&](int part, std::int64_t, std::int64_t) {
       for (std::int64_t i = part; i < n; i += parts)
-        status[i] = flatten_one(input, clean, work[i], options, total_area, flat[i]);
+        status[i] = flatten_one(input, clean, work[i], options, flat[i]);
     });
     std::vector<std::vector<int>> next;
     for (std::int64_t i = 0; i < n; ++i) {

@@ -25,6 +25,7 @@ struct CleanMesh {
   std::vector<char> reversed;  // per face: taken (and, with reorient, written) 0, 2, 1; all 0 without reorient
   std::vector<Eigen::Vector3d> normal;  // unit, per face as listed (zero for degenerate faces)
   std::vector<double> area;
+  double surface_area = 0;  // the sum of `area`, in face order
   std::vector<Eigen::Vector3d> centroid;  // per face: the mean of its corners
   std::vector<int> component;  // per face: connected component (faces sharing vertices)
   int components = 0;

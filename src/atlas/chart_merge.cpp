@@ -85,8 +85,6 @@ struct Proposal {
 int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options, double bound,
                int wanted, long& budget, std::vector<FlatChart>& charts, std::vector<char>& gone,
                std::vector<int>& owner, std::map<std::pair<int, int>, bool>& failed, AtlasStretch* atlas = nullptr) {
-  double surface_area = 0;
-  for (double a : clean.area) surface_area += a;
   std::vector<int> order;
   for (size_t c = 0; c < charts.size(); ++c)
     if (!gone[c]) order.push_back(static_cast<int>(c));
@@ -123,7 +121,7 @@ int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions
       const double limit = small ? std::max(bound, charts[p.d].summary.face_stretch_p95) : bound;
       // Down to max_charts (wanted > 0) only validity bounds a union.
       p.valid = within_stretch(p.merged.summary, limit, wanted > 0 ? INFINITY : options.max_face_stretch) &&
-                (faces.size() < 64 || packs_well(chart_box(p.merged), surface_area));
+                (faces.size() < 64 || packs_well(chart_box(p.merged), clean.surface_area));
     }
   });
   std::vector<char> touched(charts.size(), 0);

@@ -58,6 +58,7 @@ void face_geometry(const MeshData& in, double ratio, CleanMesh& m) {
       ++m.cleaning.degenerate_faces;
     }
   }
+  for (double a : m.area) m.surface_area += a;
 }
 
 // Manifold edges (exactly two good faces) as pairs of half-edges, from the
