@@ -1,45 +1,13 @@
 // The atlas job the CLI (`intrinsic atlas`) and the Python module share:
-// the OBJ with per-corner texture coordinates and the JSON report, so both
-// write the same bytes.
+// the chart map options and the JSON report, so both write the same bytes.
 #include "atlas_job.h"
 
-#include <charconv>
-
-#include "mesh_paths.h"
 #include "report.h"
 #include "intrinsic/error.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/io.h"
 
 namespace intrinsic::app {
-namespace {
-
-void put(std::string& s, double x) {
-  char b[32];
-  s.append(b, std::to_chars(b, b + sizeof b, x).ptr);
-}
-
-void put(std::string& s, long x) {
-  char b[24];
-  s.append(b, std::to_chars(b, b + sizeof b, x).ptr);
-}
-
-}  // namespace
-
-void check_atlas_output(const std::string& path) {
-  const std::string ext = mesh_extension(path);
-  if (ext != ".obj" && ext != ".glb")
-    throw_usage("output '" + path + "': the atlas is written as .obj (one texture coordinate per corner) or .glb");
-  if (ext == ".glb" && path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0)
-    throw_usage("output '" + path + "': .glb is written uncompressed (drop the .gz)");
-}
-
-void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r) {
-  check_atlas_output(path);
-  if (mesh_extension(path) == ".glb") write_glb(path, m.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
-  else write_atlas_obj(path, m, r);
-}
-
 ChartMapOptions chart_map_options(const ChartMapArgs& a) {
   ChartMapOptions m;
   if (a.boundary != "natural" && a.boundary != "circle" && a.boundary != "square")
@@ -61,42 +29,6 @@ ChartMapOptions chart_map_options(const ChartMapArgs& a) {
     m.boundary_energy = parse_boundary_energy(a.optimize_boundary);
   }
   return m;
-}
-
-// The OBJ, streamed in blocks of lines.
-void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r) {
-  write_file_atomically(path, [&](const ByteSink& sink) {
-    std::string s = "# intrinsic atlas: " + std::to_string(r.charts.size()) + " charts\n";
-    auto flush = [&](bool force) {
-      if (force || s.size() > (1 << 20)) sink(s.data(), s.size()), s.clear();
-    };
-    for (int v = 0; v < m.V.rows(); ++v) {
-      s += "v";
-      for (int c = 0; c < 3; ++c) s += ' ', put(s, m.V(v, c));
-      s += '\n';
-      flush(false);
-    }
-    for (int t = 0; t < r.UV.rows(); ++t) {
-      s += "vt ";
-      put(s, r.UV(t, 0));
-      s += ' ';
-      put(s, r.UV(t, 1));
-      s += '\n';
-      flush(false);
-    }
-    for (int f = 0; f < r.F.rows(); ++f) {
-      s += "f";
-      for (int c = 0; c < 3; ++c) {
-        s += ' ';
-        put(s, static_cast<long>(r.F(f, c)) + 1);
-        s += '/';
-        put(s, static_cast<long>(r.FUV(f, c)) + 1);
-      }
-      s += '\n';
-      flush(false);
-    }
-    flush(true);
-  });
 }
 
 nlohmann::json atlas_report(const MeshData& m, const AtlasOptions& o, const AtlasResult& r) {

@@ -1,5 +1,5 @@
-// The atlas job shared by `intrinsic atlas` and the Python module: writing
-// the atlas OBJ and building its report from the result only.
+// The atlas job shared by `intrinsic atlas` and the Python module: the
+// chart map options and the report, built from the result only.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -9,17 +9,6 @@
 #include "weight_args.h"
 
 namespace intrinsic::app {
-
-// The input's vertices in input order, one `vt` per atlas UV, the result's
-// faces (the input's, reoriented ones reversed) `f v/vt` (seams only through
-// the per-corner texture coordinates); atomically.
-void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r);
-
-// The atlas in the format the extension names: .obj (write_atlas_obj) or .glb
-// (write_glb, vertices split at seams). Throws Error(Usage) for any other
-// extension, before anything is written.
-void check_atlas_output(const std::string& path);
-void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r);
 
 // The chart map as `param` spells it: --boundary natural|circle|square,
 // --method/--lambda/--mu (fixed boundaries only), --optimize-lambda

@@ -9,7 +9,7 @@
 #include <functional>
 #include <string>
 
-#include "mesh_paths.h"
+#include "intrinsic/io.h"
 
 namespace intrinsic::app {
 

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "intrinsic/io.h"
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/charts.h"
 #include "intrinsic/error.h"

@@ -16,7 +16,6 @@
 #include "intrinsic/io.h"
 #include "intrinsic/mesh.h"
 #include "intrinsic/parameterize.h"
-#include "mesh_paths.h"
 #include "weight_args.h"
 
 namespace intrinsic::app {

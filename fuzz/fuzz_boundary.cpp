@@ -1,5 +1,6 @@
 // Fuzzes the boundary file parser ("vertex_index u v" lines).
 #include "fuzz_support.h"
+#include "intrinsic/io.h"
 #include "intrinsic/boundary.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -8,6 +8,7 @@
 // The map is picked by the input size modulo 3 (circle conformal, natural
 // boundary, square mixed), so every seed stays a plain JSON file.
 #include "fuzz_support.h"
+#include "intrinsic/io.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/parameterizer.h"
 #include "intrinsic/mesh.h"

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "fuzz_support.h"
+#include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
 #include "intrinsic/parameterize.h"
 #include "intrinsic/mesh.h"

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "intrinsic/io.h"
 #include "intrinsic/error.h"
 
 namespace intrinsic::app {

@@ -218,12 +218,6 @@ struct SeamProblem {
 };
 SeamProblem find_seam_problem(const MeshData& mesh, const std::vector<SeamEdge>& seams);
 
-// Seams files (src/io/seams_file.cpp): one edge `i j` per line, 0-based
-// vertex indices in input order, `#` comments. Throws Error(Input) naming the
-// file and line for a malformed line, an out-of-range index, a pair that is
-// not an edge of `mesh` (find_seam_problem), and for a file with no edge.
-std::vector<SeamEdge> parse_seams_text(const std::string& text, const std::string& name, const MeshData& mesh);
-std::vector<SeamEdge> read_seams_file(const std::string& path, const MeshData& mesh);
 
 // The atlas of `input` (faces as given: triangles). Throws Error(Input) for
 // an empty mesh, an out-of-range index or a non-finite coordinate,

@@ -36,10 +36,5 @@ std::vector<FixedVertex> circle_boundary(const MatrixX3d& V, const std::vector<i
 // vertices are spaced between its corners. Needs at least 4 vertices.
 std::vector<FixedVertex> square_boundary(const MatrixX3d& V, const std::vector<int>& loop, Spacing spacing);
 
-// Reads a boundary file: lines "vertex_index u v", '#' comments, blank lines.
-// Throws Error(Input) naming file and line for malformed lines, out-of-range
-// or repeated vertices, non-finite values.
-std::vector<FixedVertex> read_boundary_file(const std::string& path, int num_vertices);
-std::vector<FixedVertex> parse_boundary_text(const std::string& text, const std::string& name, int num_vertices);
 
 }  // namespace intrinsic

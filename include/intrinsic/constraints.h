@@ -76,15 +76,6 @@ constexpr double kBaryTolerance = 1e-9;
 // negative, non-finite values, a line whose path cannot be walked.
 std::vector<LinearConstraint> resolve_constraints(const Mesh& mesh, const Constraints& constraints);
 
-// The constraint file: {"points": [...], "lines": [...]}, either optional.
-// A point is {"face": f, "bary": [b1, b2, b3], "uv": [u, v]} or
-// {"vertex": i, "uv": [u, v]}; a line is {"path": [points without "uv"],
-// "to": [[u0, v0], [u1, v1], ...]}. Unknown keys, wrong types and malformed
-// JSON are refused with Error(Input) naming `name` and the JSON path, e.g.
-// "c.json: points[2]: unknown key 'uvw'". Ranges are checked later, by
-// resolve_constraints, against the mesh.
-Constraints parse_constraints_json(const std::string& text, const std::string& name);
-Constraints read_constraints_file(const std::string& path);
 
 // Barycentric coordinates refer to the corners of the faces as the file lists
 // them; validation may have reoriented faces. Permutes each face point's

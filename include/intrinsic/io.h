@@ -1,7 +1,9 @@
-// Reading and writing meshes: OBJ, OFF, PLY (ASCII and binary, either
+// Every file format of the project. Reading and writing meshes: OBJ, OFF, PLY (ASCII and binary, either
 // endianness) and STL (read only, ASCII and binary, equal corners welded), each
 // optionally gzip-compressed (detected from the bytes, not the name). Writers
 // never leave a partial file: temporary file in the target directory, renamed.
+// Then the side files (boundary positions, constraints, seams) and the atlas
+// writers.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +11,9 @@
 #include <string>
 
 #include "intrinsic/error.h"
+#include "intrinsic/atlas.h"
+#include "intrinsic/boundary.h"
+#include "intrinsic/constraints.h"
 #include "intrinsic/mesh_data.h"
 
 namespace intrinsic {
@@ -55,6 +60,50 @@ void write_mesh(const std::string& path, const MatrixX3d& V, const MatrixX3i& F,
 // when writing fails; atomic.
 void write_glb(const std::string& path, const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV,
                const MatrixX3i& FUV);
+
+// Lower-case extension after stripping a trailing ".gz": "mesh.OBJ.gz" -> ".obj"
+// ("" when there is none).
+std::string mesh_extension(const std::string& path);
+
+// The face cap that goes with a vertex cap: a manifold triangle mesh has about
+// twice as many faces as vertices (4x leaves room for high genus and seams).
+// It also bounds the gzip inflate cap, so a vertex cap limits memory.
+std::int64_t faces_for_vertices(std::int64_t max_vertices);
+
+// Side files that go with a mesh. Boundary files (src/io/boundary_file.cpp):
+// reads lines "vertex_index u v", '#' comments, blank lines.
+// Throws Error(Input) naming file and line for malformed lines, out-of-range
+// or repeated vertices, non-finite values.
+std::vector<FixedVertex> read_boundary_file(const std::string& path, int num_vertices);
+std::vector<FixedVertex> parse_boundary_text(const std::string& text, const std::string& name, int num_vertices);
+
+// The constraint file: {"points": [...], "lines": [...]}, either optional.
+// A point is {"face": f, "bary": [b1, b2, b3], "uv": [u, v]} or
+// {"vertex": i, "uv": [u, v]}; a line is {"path": [points without "uv"],
+// "to": [[u0, v0], [u1, v1], ...]}. Unknown keys, wrong types and malformed
+// JSON are refused with Error(Input) naming `name` and the JSON path, e.g.
+// "c.json: points[2]: unknown key 'uvw'". Ranges are checked later, by
+// resolve_constraints, against the mesh.
+Constraints parse_constraints_json(const std::string& text, const std::string& name);
+Constraints read_constraints_file(const std::string& path);
+
+// Seams files (src/io/seams_file.cpp): one edge `i j` per line, 0-based
+// vertex indices in input order, `#` comments. Throws Error(Input) naming the
+// file and line for a malformed line, an out-of-range index, a pair that is
+// not an edge of `mesh` (find_seam_problem), and for a file with no edge.
+std::vector<SeamEdge> parse_seams_text(const std::string& text, const std::string& name, const MeshData& mesh);
+std::vector<SeamEdge> read_seams_file(const std::string& path, const MeshData& mesh);
+
+// Atlases (src/io/atlas_writer.cpp). The OBJ: the input's vertices in input
+// order, one `vt` per atlas UV, the result's faces (the input's, reoriented
+// ones reversed) `f v/vt` (seams only through the per-corner texture
+// coordinates); atomically.
+void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r);
+// The atlas in the format the extension names: .obj (write_atlas_obj) or .glb
+// (write_glb, vertices split at seams). check_atlas_output throws
+// Error(Usage) for any other extension, before anything is written.
+void check_atlas_output(const std::string& path);
+void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r);
 
 // Atomically writes `contents` to `path` (temp file + rename). Shared by every
 // writer in the project (JSON reports, PNG images, meshes).

@@ -84,7 +84,7 @@ AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs
     if (from_file) {
       ReadOptions ro;
       ro.max_vertices = max_vertices;
-      ro.max_faces = app::faces_for_vertices(max_vertices);
+      ro.max_faces = faces_for_vertices(max_vertices);
       out.data = read_mesh(path, ro);
     }
     if (!seams_path.empty()) o.seams = read_seams_file(seams_path, out.data);
@@ -138,9 +138,9 @@ void register_atlas(py::module_& m) {
       "write_atlas",
       [](const py::object& path, const AtlasOutput& a) {
         const std::string p = to_path(path);
-        app::check_atlas_output(p);
+        check_atlas_output(p);
         py::gil_scoped_release release;
-        app::write_atlas_file(p, a.data, a.result);
+        write_atlas_file(p, a.data, a.result);
       },
       py::arg("path"), py::arg("atlas"),
       "write_atlas(path, atlas)\n\nWrites the file `intrinsic atlas -o path` writes (same bytes): .obj (the\n"

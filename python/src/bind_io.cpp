@@ -10,7 +10,7 @@ void register_io(py::module_& m) {
       [](const py::object& path, std::int64_t max_vertices) {
         ReadOptions ro;
         ro.max_vertices = max_vertices;
-        ro.max_faces = app::faces_for_vertices(max_vertices);
+        ro.max_faces = faces_for_vertices(max_vertices);
         const std::string p = to_path(path);
         MeshData data;
         {

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "common.h"
+#include "intrinsic/io.h"
 #include "intrinsic/boundary_editor.h"
 #include "intrinsic/error.h"
 #include "intrinsic/metrics.h"
@@ -51,7 +52,7 @@ void read_source(Source& s, const app::ParamArgs& a) {
   if (s.path.empty()) return;
   ReadOptions ro;
   ro.max_vertices = a.max_vertices;
-  ro.max_faces = app::faces_for_vertices(ro.max_vertices);
+  ro.max_faces = faces_for_vertices(ro.max_vertices);
   s.data = read_mesh(s.path, ro);
 }
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "common.h"
+#include "intrinsic/io.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/error.h"
 

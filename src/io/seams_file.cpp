@@ -7,6 +7,7 @@
 #include <sstream>
 #include <set>
 
+#include "intrinsic/io.h"
 #include "intrinsic/atlas.h"
 #include "intrinsic/error.h"
 #include "io/text_file.h"

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "intrinsic/io.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/error.h"
 #include "io/text_file.h"

@@ -1,12 +1,11 @@
-// Mesh file names and size caps (mesh_paths.h).
-#include "mesh_paths.h"
+// Mesh file names and size caps (io.h).
 
 #include <algorithm>
 #include <cctype>
 
 #include "intrinsic/io.h"
 
-namespace intrinsic::app {
+namespace intrinsic {
 
 std::string mesh_extension(const std::string& path) {
   std::string p = path;
@@ -23,4 +22,4 @@ std::int64_t faces_for_vertices(std::int64_t max_vertices) {
   return max_vertices >= default_cap / 4 ? default_cap : 4 * max_vertices + 1000;
 }
 
-}  // namespace intrinsic::app
+}  // namespace intrinsic

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "intrinsic/io.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/error.h"
 #include "io/text_file.h"
