@@ -113,6 +113,13 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
         return work
 
     def execute(self, context):
+        try:
+            return self.run(context)
+        except Exception as e:  # noqa: BLE001  (a report, never a traceback)
+            self.report({"ERROR"}, f"Intrinsic Atlas failed: {type(e).__name__}: {e}")
+            return {"CANCELLED"}
+
+    def run(self, context):
         lib = library.load()
         if lib is None:
             self.report({"ERROR"}, library.failure())
@@ -134,9 +141,6 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
                 target_layer(obj.data, self.uv_map, self.new_uv_map).data.foreach_set("uv", uv.ravel())
         except ValueError as e:
             self.report({"ERROR"}, str(e))
-            return {"CANCELLED"}
-        except Exception as e:  # noqa: BLE001  (a report, never a traceback)
-            self.report({"ERROR"}, f"Intrinsic Atlas failed: {type(e).__name__}: {e}")
             return {"CANCELLED"}
         finally:
             wm.progress_end()

@@ -15,6 +15,7 @@ nothing.
 """
 import bmesh
 import bpy
+import numpy as np
 from bpy.props import EnumProperty, FloatProperty
 
 from . import islands as islands_mod
@@ -35,8 +36,8 @@ BOUNDARY_ENERGIES = [("NONE", "Off", "Keep the boundary above"),
                      ("DIRICHLET", "Dirichlet", "Move the boundary to minimise the symmetric Dirichlet energy")]
 
 
-# The last run's UVs in double precision, per object name: {(face index,
-# vertex index): (u, v)} (Blender stores UVs in single precision; the add-on's
+# The last run's UVs in double precision, per object name: (polygon, vertex,
+# uv) per selected loop (Blender stores UVs in single precision; the add-on's
 # test compares these with the library to 1e-9).
 LAST_UVS = {}
 
@@ -80,24 +81,32 @@ def solve_island(lib, op, obj_name, k, island):
 
 def solve_object(lib, op, wm, obj, done):
     """Reads, solves and packs one edit mesh; returns what to write."""
-    bm = bmesh.from_edit_mesh(obj.data)
-    uv_layer = bm.loops.layers.uv.verify()
-    sel = islands_mod.read_selection(bm, uv_layer)
+    sel = islands_mod.read_selection(obj)
     uvs = []
     for k, island in enumerate(sel.islands):
         uvs.append(solve_island(lib, op, obj.name, k, island))
         done += island.faces
         wm.progress_update(done)
     packing.pack([uv for uv, island in zip(uvs, sel.islands) if not island.pins], op.margin)
-    return (obj, bm, uv_layer, sel, uvs), done
+    loop_uv = np.empty((len(sel.loops), 2))
+    for k, uv in enumerate(uvs):
+        mine = sel.loop_island == k
+        loop_uv[mine] = uv[sel.loop_local[mine]]
+    return (obj, sel, loop_uv), done
 
 
-def write_object(obj, bm, uv_layer, sel, uvs):
-    for loop, k, v in zip(sel.loops, sel.loop_island, sel.loop_vertex):
-        loop[uv_layer].uv = uvs[k][v]
-    LAST_UVS[obj.name] = {key: tuple(uvs[k][v]) for key, k, v in zip(sel.corner_keys(), sel.loop_island,
-                                                                      sel.loop_vertex)}
+def write_object(obj, sel, loop_uv):
+    """The UVs into the edit mesh. The selected loops are in mesh order:
+    polygon by polygon, each from its first loop, as bmesh lists them."""
+    bm = bmesh.from_edit_mesh(obj.data)
+    layer = bm.loops.layers.uv.verify()
+    bm.faces.ensure_lookup_table()
+    values = iter(loop_uv.tolist())
+    for fi in np.unique(sel.loop_poly).tolist():
+        for loop in bm.faces[fi].loops:
+            loop[layer].uv = next(values)
     bmesh.update_edit_mesh(obj.data, loop_triangles=False, destructive=False)
+    LAST_UVS[obj.name] = (sel.loop_poly, sel.loop_vert, loop_uv)
 
 
 def edit_objects(context):
@@ -106,7 +115,7 @@ def edit_objects(context):
 
 
 def selected_faces(objs):
-    return sum(1 for o in objs for f in bmesh.from_edit_mesh(o.data).faces if f.select and not f.hide)
+    return sum(o.data.total_face_sel for o in objs)
 
 
 class INTRINSIC_OT_unwrap(bpy.types.Operator):
@@ -142,6 +151,13 @@ class INTRINSIC_OT_unwrap(bpy.types.Operator):
         col.prop(self, "margin")
 
     def execute(self, context):
+        try:
+            return self.run(context)
+        except Exception as e:  # noqa: BLE001  (a report, never a traceback)
+            self.report({"ERROR"}, f"Intrinsic Unwrap failed: {type(e).__name__}: {e}")
+            return {"CANCELLED"}
+
+    def run(self, context):
         lib = library.load()
         if lib is None:
             self.report({"ERROR"}, library.failure())
@@ -156,19 +172,17 @@ class INTRINSIC_OT_unwrap(bpy.types.Operator):
         try:
             work, done = [], 0
             for obj in objs:
-                item, done = solve_object(lib, self, wm, obj, done)
-                work.append(item)
+                if obj.data.total_face_sel:
+                    item, done = solve_object(lib, self, wm, obj, done)
+                    work.append(item)
         except UnwrapFailure as e:
             self.report({"ERROR"}, str(e))
-            return {"CANCELLED"}
-        except Exception as e:  # noqa: BLE001  (a report, never a traceback)
-            self.report({"ERROR"}, f"Intrinsic Unwrap failed: {type(e).__name__}: {e}")
             return {"CANCELLED"}
         finally:
             wm.progress_end()
         LAST_UVS.clear()
-        for item in work:
+        for item in work:  # only once every island of every object is solved
             write_object(*item)
-        n = sum(len(item[3].islands) for item in work)
+        n = sum(len(sel.islands) for _, sel, _ in work)
         self.report({"INFO"}, f"Intrinsic Unwrap: {n} island{'s' if n != 1 else ''}")
         return {"FINISHED"}

@@ -158,6 +158,13 @@ def stored_uvs(obj):
 
 # ---------------------------------------------------------------- comparisons
 
+def last_uvs(name="grid"):
+    """The operator's last double-precision UVs as {(face index, vertex): (u, v)}."""
+    from intrinsic_uv import op_unwrap
+    polys, verts, uv = op_unwrap.LAST_UVS[name]
+    return {(int(f), int(v)): (float(a), float(b)) for f, v, (a, b) in zip(polys, verts, uv)}
+
+
 def similarity_residual(expected, got):
     """Largest |a z + b - w| over the island / its extent: a similarity without reflection."""
     z = expected[:, 0] + 1j * expected[:, 1]
@@ -183,8 +190,7 @@ def island_arrays(isl, faces, cells, result):
 
 
 def compare_islands(lib, expected, faces, cells, options, label, result=None):
-    from intrinsic_uv import op_unwrap
-    result = result or op_unwrap.LAST_UVS["grid"]
+    result = result or last_uvs()
     scales = []
     for k, isl in enumerate(expected):
         got = island_arrays(isl, faces, cells, result)
@@ -198,9 +204,8 @@ def compare_islands(lib, expected, faces, cells, options, label, result=None):
 
 
 def check_single_precision(obj, label):
-    from intrinsic_uv import op_unwrap
     stored = stored_uvs(obj)
-    worst = max(np.abs(np.array(stored[k]) - np.array(uv)).max() for k, uv in op_unwrap.LAST_UVS["grid"].items())
+    worst = max(np.abs(np.array(stored[k]) - np.array(uv)).max() for k, uv in last_uvs().items())
     check(worst <= 2.0 ** -23, f"{label}: stored UVs are the double results rounded to single ({worst:.2e})")
 
 
@@ -233,7 +238,6 @@ def test_cli_equal(lib, obj, expected, faces, cells):
         return
     enter_edit(obj)
     bpy.ops.uv.intrinsic_unwrap(boundary="NATURAL")
-    from intrinsic_uv import op_unwrap
     isl = expected[0]
     tmp = os.environ.get("INTRINSIC_TEST_TMP", tempfile.gettempdir())
     src, out = os.path.join(tmp, "left.obj"), os.path.join(tmp, "left_uv.obj")
@@ -248,17 +252,16 @@ def test_cli_equal(lib, obj, expected, faces, cells):
         elif line.startswith("f "):
             corners += [tuple(int(x) for x in c.split("/")[:2]) for c in line.split()[1:]]
     check(all(a == b for a, b in corners), "CLI output: one vt per vertex")
-    got = island_arrays(isl, faces, cells, op_unwrap.LAST_UVS["grid"])
+    got = island_arrays(isl, faces, cells, last_uvs())
     res, _ = similarity_residual(np.array(vt), got)
     print(f"CLI: similarity residual {res:.2e}", flush=True)
     check(res < 1e-9, f"left island equals `intrinsic param` up to a similarity ({res:.2e})")
 
 
 def test_seams_cut_exactly(obj, faces, cells):
-    from intrinsic_uv import op_unwrap
     enter_edit(obj)
     bpy.ops.uv.intrinsic_unwrap()
-    uv = op_unwrap.LAST_UVS["grid"]
+    uv = last_uvs()
     by_edge = {}
     for f, face in enumerate(faces):
         for k in range(3):
@@ -281,7 +284,6 @@ def test_seams_cut_exactly(obj, faces, cells):
 
 
 def test_pins(lib, obj, expected, faces, cells):
-    from intrinsic_uv import op_unwrap
     enter_edit(obj)
     isl = expected[0]
     a, b = grid_vertex(0, 0), grid_vertex(NY - 1, SEAM_COL)  # two corners of the left island
@@ -293,10 +295,10 @@ def test_pins(lib, obj, expected, faces, cells):
     stored = stored_uvs(obj)
     for key, target in pins.items():
         check(stored[key] == target, f"pin {key} stays exactly: {stored[key]} vs {target}")
-        check(op_unwrap.LAST_UVS["grid"][key] == target, f"pin {key} exact in double precision")
+        check(last_uvs()[key] == target, f"pin {key} exact in double precision")
     ref = lib.parameterize(isl["V"], isl["F"], boundary="natural",
                            pins=[(isl["index"][(0, v, 0)], u, w) for v, (u, w) in targets.items()]).uv
-    got = island_arrays(isl, faces, cells, op_unwrap.LAST_UVS["grid"])
+    got = island_arrays(isl, faces, cells, last_uvs())
     err = np.abs(got - ref).max()
     check(err < 1e-9, f"pinned island equals the library's pinned natural map, no transform ({err:.2e})")
     # A circle with an interior pin: a point constraint, kept exactly.
@@ -308,7 +310,7 @@ def test_pins(lib, obj, expected, faces, cells):
     check(all(stored[k] == (0.375, 0.5) for k in pins), "circle: the interior pin stays exactly")
     ref = lib.parameterize(isl["V"], isl["F"], boundary="circle",
                            constraints={"points": [{"vertex": isl["index"][(0, c, 0)], "uv": [0.375, 0.5]}]}).uv
-    got = island_arrays(isl, faces, cells, op_unwrap.LAST_UVS["grid"])
+    got = island_arrays(isl, faces, cells, last_uvs())
     err = np.abs(got - ref).max()
     check(err < 1e-9, f"circle: the pinned island equals the library's constrained map ({err:.2e})")
     set_pins(obj, {})
