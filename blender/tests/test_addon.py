@@ -14,6 +14,8 @@ run_blender.py with the zip installed into a temporary user scripts folder):
   a pinned island equals the library's pinned map with no transform;
 - errors (nothing selected, a closed island, one pin, a library error) are
   reported as an operator error, and leave the UVs unchanged;
+- on Blender's quad grid with a seam and one face listed backwards, the
+  seam cuts exactly and every face keeps its orientation in UV;
 - `uv.intrinsic_atlas` on a scaled, rotated triangulated torus equals
   `intrinsic.atlas` on the world-scaled mesh read here; "new UV map" leaves
   the other map unchanged.
@@ -351,6 +353,57 @@ def test_errors(obj, faces):
     bpy.data.objects.remove(cube)
 
 
+def test_quads_and_winding():
+    """Blender's quad grid, bent, a seam down the middle and one face listed
+    backwards: the seam cuts exactly (checked on Blender's own topology),
+    the flipped face still joins its neighbours, and every face's UVs keep
+    its winding's orientation (the flipped one the opposite)."""
+    if bpy.context.mode != "OBJECT":
+        bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=8, y_subdivisions=6, size=2.0)
+    obj = bpy.context.active_object
+    for v in obj.data.vertices:
+        v.co.z = 0.3 * math.sin(2.0 * v.co.x) + 0.1 * v.co.y * v.co.y
+    enter_edit(obj)
+    bm = bmesh.from_edit_mesh(obj.data)
+    xs = sorted({round(v.co.x, 6) for v in bm.verts})
+    mid = xs[len(xs) // 2]
+    for e in bm.edges:
+        e.seam = all(abs(v.co.x - mid) < 1e-6 for v in e.verts)
+    bm.faces.ensure_lookup_table()
+    flipped = bm.faces[len(bm.faces) // 2 + 1]
+    check(not any(e.seam for e in flipped.edges), "the flipped face is away from the seam")
+    flipped_index = flipped.index
+    bmesh.ops.reverse_faces(bm, faces=[flipped])
+    bmesh.update_edit_mesh(obj.data)
+    check(bpy.ops.uv.intrinsic_unwrap() == {"FINISHED"}, "quads: finished")
+    bm = bmesh.from_edit_mesh(obj.data)
+    layer = bm.loops.layers.uv.verify()
+    bm.faces.ensure_lookup_table()
+    cut = joined = 0
+    for e in bm.edges:
+        if len(e.link_faces) != 2:
+            continue
+        f1, f2 = e.link_faces
+        for v in e.verts:
+            a = next(loop[layer].uv.copy() for loop in f1.loops if loop.vert == v)
+            b = next(loop[layer].uv.copy() for loop in f2.loops if loop.vert == v)
+            if e.seam:
+                cut += 1
+                check((a - b).length > 1e-6, f"quads: seam edge {e.index} cut at vertex {v.index}")
+            else:
+                joined += 1
+                check(a == b, f"quads: edge {e.index} joined at vertex {v.index}")
+    check(cut > 0 and joined > 0, f"quads: {cut} cut and {joined} joined corners")
+    for f in bm.faces:
+        uv = [loop[layer].uv for loop in f.loops]
+        area = sum(uv[k].x * uv[(k + 1) % len(uv)].y - uv[(k + 1) % len(uv)].x * uv[k].y for k in range(len(uv)))
+        want = -1 if f.index == flipped_index else 1
+        check(area * want > 0, f"quads: face {f.index} keeps its orientation in UV (area {area:.3g})")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.data.objects.remove(obj)
+
+
 def test_atlas(lib):
     from intrinsic_uv import op_atlas
     if bpy.context.mode != "OBJECT":
@@ -411,6 +464,7 @@ def main():
     test_seams_cut_exactly(obj, faces, cells)
     test_pins(lib, obj, expected, faces, cells)
     test_errors(obj, faces)
+    test_quads_and_winding()
     test_atlas(lib)
     if FAILURES:
         raise AssertionError(f"{len(FAILURES)} check(s) failed:\n" + "\n".join(FAILURES))
