@@ -101,12 +101,16 @@ def time_intrinsic(obj, runs, padding, resolution):
 def time_library(lib, obj, runs, padding, resolution):
     from intrinsic_uv import op_atlas
     V, F, _ = op_atlas.mesh_arrays(obj)
-    seconds, charts = [], None
+    seconds, reports = [], []
     for _ in range(runs):
         t0 = time.perf_counter()
         r = lib.atlas(V, F, padding=padding, resolution=resolution)
         seconds.append(time.perf_counter() - t0)
-        charts = r.report["charts"]
+        reports.append(r.report)
+    median_run = reports[sorted(range(runs), key=lambda k: seconds[k])[runs // 2]]
+    stages = ", ".join(f"{k} {v / 1000:.2f}" for k, v in median_run["timings_ms"].items())
+    print(f"intrinsic.atlas stages of the median run (s): {stages}", flush=True)
+    charts = median_run["charts"]
     return seconds, charts if not isinstance(charts, list) else len(charts)
 
 

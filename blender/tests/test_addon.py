@@ -23,9 +23,7 @@ Any failure raises (Blender exits 1).
 """
 import math
 import os
-import re
 import subprocess
-import sys
 import tempfile
 
 import bmesh
@@ -415,7 +413,6 @@ def test_atlas(lib):
     bpy.context.view_layer.update()
     enter_edit(torus)
     bpy.ops.mesh.quads_convert_to_tris()
-    before = None
     options = dict(max_stretch=1.2, hard_angle=80.0, padding=4.0, resolution=512)
     check(bpy.ops.uv.intrinsic_atlas(**options) == {"FINISHED"}, "atlas (edit mode): finished")
     check(bpy.context.mode == "EDIT_MESH", "atlas: back in edit mode")
