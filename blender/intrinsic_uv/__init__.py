@@ -32,13 +32,24 @@ def menu_entries(self, context):
     self.layout.operator(op_atlas.INTRINSIC_OT_atlas.bl_idname)
 
 
+# The 3D viewport's UV menu in edit mode, and the UV editor's Unwrap menu
+# where this Blender has one.
+MENUS = ("VIEW3D_MT_uv_map", "IMAGE_MT_uvs_unwrap")
+
+
 def register():
     for cls in CLASSES:
         bpy.utils.register_class(cls)
-    bpy.types.VIEW3D_MT_uv_map.append(menu_entries)
+    for name in MENUS:
+        menu = getattr(bpy.types, name, None)
+        if menu is not None:
+            menu.append(menu_entries)
 
 
 def unregister():
-    bpy.types.VIEW3D_MT_uv_map.remove(menu_entries)
+    for name in MENUS:
+        menu = getattr(bpy.types, name, None)
+        if menu is not None:
+            menu.remove(menu_entries)
     for cls in reversed(CLASSES):
         bpy.utils.unregister_class(cls)

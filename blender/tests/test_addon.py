@@ -55,6 +55,7 @@ def install():
     check(os.environ["BLENDER_USER_SCRIPTS"] in intrinsic_uv.__file__, "installed into the temporary scripts dir")
     draw_funcs = bpy.types.VIEW3D_MT_uv_map._dyn_ui_initialize()
     check(intrinsic_uv.menu_entries in draw_funcs, "entries in the UV menu")
+    check(intrinsic_uv.menu_entries in bpy.types.IMAGE_MT_uvs_unwrap._dyn_ui_initialize(), "entries in the UV editor")
     return lib
 
 
