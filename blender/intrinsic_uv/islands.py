@@ -25,15 +25,20 @@ class Island:
     def __init__(self, V, F, faces):
         self.V, self.F, self.faces, self.pins = V, F, faces, {}
 
-    def is_closed(self):
-        """True when every edge has two triangles: no boundary to open it."""
+    def boundary_vertices(self):
+        """The vertices on edges of one triangle only (the island's boundary)."""
         e = np.sort(self.F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2).astype(np.int64), axis=1)
         keys = np.sort(e[:, 0] * len(self.V) + e[:, 1])
-        alone = np.ones(len(keys), dtype=bool)  # an edge listed once is a boundary edge
+        alone = np.ones(len(keys), dtype=bool)
         same = keys[1:] == keys[:-1]
         alone[1:] &= ~same
         alone[:-1] &= ~same
-        return not alone.any()
+        edges = keys[alone]
+        return np.unique(np.concatenate([edges // len(self.V), edges % len(self.V)]))
+
+    def is_closed(self):
+        """True when every edge has two triangles: no boundary to open it."""
+        return len(self.boundary_vertices()) == 0
 
 
 class Selection:

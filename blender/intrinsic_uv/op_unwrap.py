@@ -70,9 +70,15 @@ def solve_island(lib, op, obj_name, k, island):
     if op.boundary == "NATURAL" and len(island.pins) == 1:
         raise UnwrapFailure(f"{obj_name}: island {k} ({island.faces} faces) has one pinned UV: the natural "
                             "map needs at least two pins per island (translation, rotation and scale), or none")
-    if island.is_closed():
+    boundary = island.boundary_vertices()
+    if len(boundary) == 0:
         raise UnwrapFailure(f"{obj_name}: island {k} ({island.faces} faces) is closed: mark seams that open it "
                             "into a disk, or use Intrinsic Atlas")
+    on_boundary = np.intersect1d(boundary, list(island.pins)) if island.pins else []
+    if op.boundary != "NATURAL" and len(on_boundary):
+        raise UnwrapFailure(f"{obj_name}: island {k} ({island.faces} faces) has {len(on_boundary)} pinned UV(s) on "
+                            f"its boundary, which the {op.boundary.lower()} places: pin interior UVs only, or use "
+                            "the natural boundary")
     try:
         return lib.parameterize(island.V, island.F, **island_options(op, island)).uv
     except lib.Error as e:

@@ -12,7 +12,8 @@ run_blender.py with the zip installed into a temporary user scripts folder):
   otherwise;
 - pinned UVs stay exactly (natural pins; a circle's point constraint), and
   a pinned island equals the library's pinned map with no transform;
-- errors (nothing selected, a closed island, one pin, a library error) are
+- errors (nothing selected, a closed island, one pin, a pin on a circle's
+  boundary, a library error) are
   reported as an operator error, and leave the UVs unchanged;
 - on Blender's quad grid with a seam and one face listed backwards, the
   seam cuts exactly and every face keeps its orientation in UV;
@@ -341,6 +342,7 @@ def test_errors(obj, faces):
     bm.faces[pin_face].loops[0][layer].pin_uv = True
     bmesh.update_edit_mesh(obj.data)
     expect_error("one pinned UV", "one pin on the natural map")
+    expect_error("on its boundary", "a pin on a circle's boundary", boundary="CIRCLE")
     set_pins(obj, {})
     check(stored_uvs(obj) == before, "failed runs leave the UVs unchanged")
     bpy.ops.object.mode_set(mode="OBJECT")
