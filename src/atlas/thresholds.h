@@ -74,4 +74,44 @@ constexpr long kMaxChartsBudgetFaces = 300000;
 // the utilization a finer grid would gain is recorded).
 constexpr int kMaxPackBitmap = 1024;
 
+// --- The scale search (packing/scale_search.cpp) ---
+// The first scale tried: the charts' area would fill kStartFill^2 (72%) of
+// the square, above the utilizations the packer reaches (at most about 70%
+// on the assets: docs/cli.md), so the bracket steps down toward the answer.
+constexpr double kStartFill = 0.85;
+// Down from it by this factor per packing until a scale fits, at most
+// kBracketTries packings (0.8^42: 1e-4 of the start) before the bitmap's
+// side doubles (more charts than it holds with their padding).
+constexpr double kBracketStep = 0.8;
+constexpr int kBracketTries = 42;
+// Then bisected until the largest fitting scale is known within kFineRatio
+// (0.5%), at most kBisectSteps packings.
+constexpr double kFineRatio = 1.005;
+constexpr int kBisectSteps = 12;
+// With the extra pose angles: two bisection steps up to this factor above
+// the largest scale the smallest-box poses reached.
+constexpr double kAnglesRange = 1.08;
+// Bitmaps of at least kHalfBitmapMinSide texels are searched on a bitmap of
+// half the side first (a quarter of the texels to place), to kCoarseRatio;
+// then the full bitmap is tried down from kGuessAbove times twice that scale
+// in steps of kGuessStep, at most kGuessTries packings, with no refinement
+// after: on the shared assets the refinement and the angle packings doubled
+// the packing time (truck 360 -> 770 ms, spot 120 -> 225 ms) for under 1%
+// of utilization on most of them.
+constexpr int kHalfBitmapMinSide = 256;
+constexpr double kCoarseRatio = 1.02;
+constexpr double kGuessAbove = 1.03;
+constexpr double kGuessStep = 1.015;
+constexpr int kGuessTries = 6;
+
+// --- Texel masks (packing/texel_mask.cpp, packing/scale_search.cpp) ---
+// Masks placed as their whole frame (BoxCursors in placement.cpp): frames
+// their dilated texels fill to at least kBoxFill, and small frames (at most
+// kBoxSide texels more than the padding on both sides), where the corners
+// given up are a few texels.
+constexpr double kBoxFill = 0.9;
+constexpr int kBoxSide = 6;
+// Masks with more frame texels than this get no inner box (Mask::inner).
+constexpr long kInnerBoxArea = 96 * 96;
+
 }  // namespace intrinsic::detail
