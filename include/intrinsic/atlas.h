@@ -291,8 +291,8 @@ AtlasCharts compute_charts(const MeshData& input, const ChartOptions& options = 
 // given chart, and a given chart that is a valid disk stays exactly one
 // chart. Options used: chart_map, degenerate_ratio, weld, reorient, seams,
 // hard_angle_deg (the segmentation, stretch, merge and max_charts fields are
-// not). Throws Error(Usage) naming the face for ids of the wrong length,
-// below -1, or -1 on a face that is not degenerate.
+// not). Throws Error(Usage) for ids of the wrong length, and naming the
+// face for an id below -1 or -1 on a face that is not degenerate.
 AtlasCharts charts_from_ids(const MeshData& input, const std::vector<int>& face_chart,
                             const ChartOptions& options = {});
 

@@ -60,7 +60,13 @@ std::vector<detail::FlatChart> unstore(const AtlasCharts& c) {
       chart.mesh.data.F.row(static_cast<int>(i)) = c.FUV.row(chart.mesh.faces[i]).array() - lo[k];
     next = hi[k] + 1;
   }
-  if (next != c.UV.rows()) throw_usage("the charts' UV has rows no chart uses");
+  // Every row used: an unused one would still count in its chart's box.
+  std::vector<char> used(c.UV.rows(), 0);
+  for (int f = 0; f < static_cast<int>(c.face_chart.size()); ++f)
+    if (c.face_chart[f] >= 0)
+      for (int j = 0; j < 3; ++j) used[c.FUV(f, j)] = 1;
+  if (next != c.UV.rows() || std::find(used.begin(), used.end(), 0) != used.end())
+    throw_usage("the charts' UV has rows no chart uses");
   return flat;
 }
 
