@@ -32,6 +32,7 @@ MeshData MeshBuilder::finish(const std::string& name) {
     m.TC = Eigen::Map<const RowX2d>(uv.data(), static_cast<Eigen::Index>(uv.size() / 2), 2);
     m.FTC = Eigen::Map<const RowX3i>(tri_uv.data(), nf, 3);
   }
+  m.had_texcoords = had_texcoords || !uv.empty();
   m.face_line = std::move(line);
   m.path = name;
   return m;

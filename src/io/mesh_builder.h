@@ -17,6 +17,7 @@ struct MeshBuilder {
   std::vector<int> tri;           // 3 per triangle
   std::vector<int> tri_uv;        // 3 per triangle, or empty
   std::vector<int> line;          // source line per triangle (0 for binary)
+  bool had_texcoords = false;     // texture coordinates were read, even if dropped since (MeshData::had_texcoords)
 
   std::int64_t vertex_count() const { return static_cast<std::int64_t>(xyz.size() / 3); }
   std::int64_t triangle_count() const { return static_cast<std::int64_t>(tri.size() / 3); }

@@ -1,11 +1,14 @@
 // Wavefront OBJ reader: positions, texture coordinates and polygonal faces
-// (fan-triangulated); everything else an OBJ may hold is ignored.
+// (fan-triangulated), and what the writers give back (obj_extras.h):
+// normals, material libraries, usemtl/g/o/s per face. Everything else an OBJ
+// may hold (vp, l, p, curves, ...) is ignored.
 #include <algorithm>
 #include <climits>
 #include <cmath>
 #include <vector>
 
 #include "io/mesh_builder.h"
+#include "io/obj_extras.h"
 #include "io/text_scan.h"
 
 namespace intrinsic::io {
@@ -15,6 +18,7 @@ namespace {
 struct Corner {
   std::int64_t v;
   std::int64_t vt;  // -1: none given
+  std::int64_t vn;  // -1: none given
 };
 
 // Turns an OBJ index (1-based, or negative counting back from the last
@@ -41,18 +45,21 @@ struct ObjState {
   std::int64_t n_tc = 0;              // texture coordinates so far
   bool every_face_has_vt = true;
   std::vector<Corner> poly;  // the current face, reused to avoid allocations
+  ObjExtras extras;
 };
 
-// Counting 'v' and 'f' lines first costs one memchr pass but spares the
-// repeated regrowth (and page faults) of the big arrays.
+// Counting 'v', 'vn' and 'f' lines first costs one memchr pass but spares
+// the repeated regrowth (and page faults) of the big arrays.
 void reserve_from_line_counts(const char* data, std::size_t size, ObjState& st) {
-  std::size_t nv_hint = 0, nf_hint = 0;
+  std::size_t nv_hint = 0, nf_hint = 0, nn_hint = 0;
   const char* q = data;
   const char* end = data + size;
   while (q < end) {
     if (end - q > 1 && q[1] == ' ') {
       if (q[0] == 'v') ++nv_hint;
       if (q[0] == 'f') ++nf_hint;
+    } else if (end - q > 2 && q[0] == 'v' && q[1] == 'n' && q[2] == ' ') {
+      ++nn_hint;
     }
     const void* nl = std::memchr(q, '\n', static_cast<std::size_t>(end - q));
     q = nl ? static_cast<const char*>(nl) + 1 : end;
@@ -62,6 +69,8 @@ void reserve_from_line_counts(const char* data, std::size_t size, ObjState& st) 
   st.b.xyz.reserve(nv_hint * 3);
   st.b.tri.reserve(nf_hint * 3);
   st.b.line.reserve(nf_hint);
+  st.extras.normal.reserve(std::min<std::size_t>(nn_hint, static_cast<std::size_t>(st.max_v)) * 3);
+  st.extras.triangle_hint = nf_hint;  // per-face arrays, if the file needs them
 }
 
 // Reads the x y z of a 'v' line (keyword already consumed).
@@ -102,7 +111,7 @@ void read_face(TextScanner& s, ObjState& st) {
   poly.clear();
   bool all_vt = true;
   while (!s.at_line_end()) {
-    Corner c{0, -1};
+    Corner c{0, -1, -1};
     std::int64_t written;
     if (!s.parse_int64_prefix(written)) {
       s.fail("expected a vertex index in face, found " + quote_token(s.word()));
@@ -116,8 +125,10 @@ void read_face(TextScanner& s, ObjState& st) {
       }
       if (s.consume('/')) {
         std::int64_t n;
-        // Normal indices are not used, but a malformed one is still malformed.
-        if (!s.at_token_end() && !s.parse_int64_prefix(n)) s.fail("expected a normal index after '/' in face");
+        if (!s.at_token_end()) {
+          if (!s.parse_int64_prefix(n)) s.fail("expected a normal index after '/' in face");
+          c.vn = resolve(s, n, st.extras.normal_count(), "normal");
+        }
       }
     }
     if (!s.at_token_end()) s.fail("unexpected " + quote_token(s.word()) + " in face");
@@ -128,14 +139,18 @@ void read_face(TextScanner& s, ObjState& st) {
   if (!all_vt) st.every_face_has_vt = false;
   if (b.triangle_count() + static_cast<std::int64_t>(poly.size()) - 2 > st.max_f)
     s.fail("more than " + std::to_string(st.max_f) + " faces (the limit)");
+  const std::size_t before = static_cast<std::size_t>(b.triangle_count());
   for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
     const Corner* t[3] = {&poly[0], &poly[k], &poly[k + 1]};
     for (const Corner* c : t) {
       b.tri.push_back(static_cast<int>(c->v));
       if (st.every_face_has_vt) b.tri_uv.push_back(static_cast<int>(c->vt));
     }
+    st.extras.add_triangle_normals(before + k - 1, static_cast<int>(t[0]->vn), static_cast<int>(t[1]->vn),
+                                   static_cast<int>(t[2]->vn));
     b.line.push_back(s.line());
   }
+  st.extras.tag_triangles(before, poly.size() - 2);
   if (!st.every_face_has_vt) b.tri_uv.clear();
 }
 
@@ -190,13 +205,23 @@ MeshData read_obj(const char* data, std::size_t size, const std::string& name, c
     } else if (keyword_is("f", 1)) {
       s.word();
       read_face(s, st);
+    } else if (keyword_is("vn", 2)) {
+      s.word();
+      st.extras.read_normal(s, st.max_v);
+    } else {
+      // mtllib, usemtl, g, o, s are kept; other statements (vp, l, comments)
+      // are skipped, like whatever follows the values we read.
+      const std::string_view keyword = s.word();
+      st.extras.read_statement(keyword, s);
     }
-    // Other statements (vn, vp, g, o, s, usemtl, mtllib, l, comments) and
-    // whatever follows the values we read are skipped.
     s.next_line();
   }
+  st.b.had_texcoords = st.n_tc > 0;
   check_face_indices(s, st);
-  return st.b.finish(name);
+  st.extras.check(s, st.b.line);
+  MeshData m = st.b.finish(name);
+  st.extras.move_into(m);
+  return m;
 }
 
 }  // namespace intrinsic::io
