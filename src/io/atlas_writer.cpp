@@ -1,5 +1,7 @@
 // Writing an atlas (io.h "Atlases"): the OBJ with one texture coordinate per
-// corner, or the .glb through write_glb, chosen by the output's extension.
+// corner and what the input OBJ carried besides (normals, materials, groups,
+// objects, smoothing groups; docs/formats.md "OBJ"), or the .glb through
+// write_glb, chosen by the output's extension.
 #include <charconv>
 
 #include "intrinsic/atlas.h"
@@ -21,34 +23,94 @@ void put(std::string& s, long x) {
 
 }  // namespace
 
-// The OBJ, streamed in blocks of lines.
+namespace {
+
+// What the input OBJ carried that the atlas OBJ gives back, checked against
+// the result before anything is written (a MeshData built by hand may be
+// inconsistent; one read from a file never is).
+void check_obj_extras(const std::string& path, const MeshData& m, const AtlasResult& r) {
+  auto fail = [&](const std::string& what) { throw_output("cannot write " + path + ": " + what); };
+  const Eigen::Index nf = r.F.rows();
+  if (m.FN.rows() > 0) {
+    if (m.FN.rows() != nf || m.F.rows() != nf) fail("the normal indices do not cover the faces");
+    if (m.FN.minCoeff() < -1 || m.FN.maxCoeff() >= m.N.rows()) fail("a normal index is out of range");
+    if (!m.N.allFinite()) fail("the normals are not all finite");
+  }
+  auto check_names = [&](const std::vector<std::string>& names, const char* what) {
+    for (const std::string& n : names)
+      if (n.find_first_of("\r\n") != std::string::npos) fail(std::string(what) + " '" + n + "' holds a line break");
+  };
+  check_names(m.material_libraries, "the material library");
+  for (const FaceLabels* l : {&m.materials, &m.groups, &m.objects, &m.smoothing}) {
+    if (l->empty()) continue;
+    if (static_cast<Eigen::Index>(l->of_face.size()) != nf) fail("a per-face label list does not cover the faces");
+    for (int i : l->of_face)
+      if (i < -1 || i >= static_cast<int>(l->names.size())) fail("a per-face label is out of range");
+    check_names(l->names, "the label");
+  }
+}
+
+// Emits the state statements whose label changes at face f, in the order
+// o, g, usemtl, s. A face without a label after one with a label gets no
+// statement: OBJ has no way to say "none" again.
+void put_statements(std::string& s, const MeshData& m, int f) {
+  static constexpr const char* kKeyword[] = {"o", "g", "usemtl", "s"};
+  const FaceLabels* labels[] = {&m.objects, &m.groups, &m.materials, &m.smoothing};
+  for (int k = 0; k < 4; ++k) {
+    const FaceLabels& l = *labels[k];
+    if (l.empty()) continue;
+    const int cur = l.of_face[static_cast<std::size_t>(f)];
+    const int prev = f > 0 ? l.of_face[static_cast<std::size_t>(f) - 1] : -1;
+    if (cur < 0 || cur == prev) continue;
+    s += kKeyword[k];
+    const std::string& name = l.names[static_cast<std::size_t>(cur)];
+    if (!name.empty()) s += ' ', s += name;
+    s += '\n';
+  }
+}
+
+// The input's corner of face f that the result's corner c is: the result
+// lists reversed faces 0, 2, 1 (AtlasOptions::reorient).
+int input_corner(const MeshData& m, const AtlasResult& r, int f, int c) {
+  if (c == 0 || r.F(f, c) == m.F(f, c)) return c;
+  return 3 - c;
+}
+
+}  // namespace
+
+// The OBJ, streamed in blocks of lines: mtllib lines, v, vt (the atlas), vn
+// (the input's), then the faces in input order with the input's state
+// statements where they change and `f v/vt/vn` where the corner had a normal.
 void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r) {
+  check_obj_extras(path, m, r);
+  const bool normals = m.FN.rows() > 0;
   write_file_atomically(path, [&](const ByteSink& sink) {
     std::string s = "# intrinsic atlas: " + std::to_string(r.charts.size()) + " charts\n";
     auto flush = [&](bool force) {
       if (force || s.size() > (1 << 20)) sink(s.data(), s.size()), s.clear();
     };
-    for (int v = 0; v < m.V.rows(); ++v) {
-      s += "v";
-      for (int c = 0; c < 3; ++c) s += ' ', put(s, m.V(v, c));
-      s += '\n';
-      flush(false);
-    }
-    for (int t = 0; t < r.UV.rows(); ++t) {
-      s += "vt ";
-      put(s, r.UV(t, 0));
-      s += ' ';
-      put(s, r.UV(t, 1));
-      s += '\n';
-      flush(false);
-    }
+    for (const std::string& lib : m.material_libraries) s += "mtllib " + lib + '\n';
+    auto put_rows = [&](const char* keyword, const auto& X) {
+      for (Eigen::Index i = 0; i < X.rows(); ++i) {
+        s += keyword;
+        for (Eigen::Index c = 0; c < X.cols(); ++c) s += ' ', put(s, X(i, c));
+        s += '\n';
+        flush(false);
+      }
+    };
+    put_rows("v", m.V);
+    put_rows("vt", r.UV);
+    if (normals) put_rows("vn", m.N);
     for (int f = 0; f < r.F.rows(); ++f) {
+      put_statements(s, m, f);
       s += "f";
       for (int c = 0; c < 3; ++c) {
         s += ' ';
         put(s, static_cast<long>(r.F(f, c)) + 1);
         s += '/';
         put(s, static_cast<long>(r.FUV(f, c)) + 1);
+        const int n = normals ? m.FN(f, input_corner(m, r, f, c)) : -1;
+        if (n >= 0) s += '/', put(s, static_cast<long>(n) + 1);
       }
       s += '\n';
       flush(false);
