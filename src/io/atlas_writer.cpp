@@ -21,10 +21,6 @@ void put(std::string& s, long x) {
   s.append(b, std::to_chars(b, b + sizeof b, x).ptr);
 }
 
-}  // namespace
-
-namespace {
-
 // What the input OBJ carried that the atlas OBJ gives back, checked against
 // the result before anything is written (a MeshData built by hand may be
 // inconsistent; one read from a file never is).
