@@ -124,6 +124,10 @@ def main():
         "huge_index.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n",
         "truncated.obj": obj(SQUARE_V, SQUARE_F)[:-7],
         "crlf.obj": obj(SQUARE_V, SQUARE_F).replace("\n", "\r\n"),
+        # What the reader keeps for the atlas OBJ: mtllib, usemtl/g/o/s, normals.
+        "materials.obj": "usemtl red\nmtllib a.mtl\no thing\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                         "vn 0 0 1\nvn 0 1 0\ng left right\ns off\nf 1//1 2//2 3//1 4//2\n"
+                         "mtllib b.mtl c.mtl\nusemtl Material #25\ns 1\nf 1 3//-1 4//-2\n",
     }
     f = {
         "square.off": off(SQUARE_V, SQUARE_F),
