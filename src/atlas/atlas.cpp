@@ -15,17 +15,6 @@
 
 namespace intrinsic {
 
-const char* chart_method_name(ChartMethod m) {
-  switch (m) {
-    case ChartMethod::Natural: return "natural";
-    case ChartMethod::Triangle: return "triangle";
-    case ChartMethod::FixedBoundary: return "fixed-boundary";
-    case ChartMethod::OptimalLambda: return "optimal-lambda";
-    case ChartMethod::OptimizedBoundary: return "optimized-boundary";
-  }
-  return "natural";
-}
-
 namespace {
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
