@@ -5,50 +5,64 @@
 // coordinates), and the report.
 #include <iostream>
 
+#include "choice_option.h"
 #include "command.h"
-#include "intrinsic/atlas.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
-#include "atlas_job.h"
-#include "pictures.h"
+#include "intrinsic/pictures.h"
+#include "intrinsic/pipeline.h"
+#include "weight_args.h"
 
 namespace intrinsic::app {
 namespace {
 
 struct AtlasArgs {
   std::string input, output, report, seams;
-  ChartMapArgs chart_map;
+  std::string boundary = choice_name(BoundaryShape::Natural), optimize_lambda, optimize_boundary;
+  std::shared_ptr<WeightArgs> weights = std::make_shared<WeightArgs>();
   AtlasOptions options;
   bool quiet = false;
   std::int64_t max_vertices = ReadOptions().max_vertices;
 };
 
-int run_atlas(AtlasArgs a) {
+// The chart map as `param` spells it: --boundary natural|circle|square,
+// --method/--lambda/--mu (fixed boundaries only), --optimize-lambda or
+// --optimize-boundary.
+void set_chart_map(const AtlasArgs& a, ChartMapOptions& m) {
+  m.boundary = parse_choice<BoundaryShape>(a.boundary, "--boundary");
+  if (m.boundary == BoundaryShape::Natural && a.weights->given())
+    throw_usage("--method applies to fixed chart boundaries: add --boundary circle or square");
+  m.weights = a.weights->options();
+  if (!a.optimize_lambda.empty() && !a.optimize_boundary.empty())
+    throw_usage("--optimize-lambda and --optimize-boundary: choose one");
+  if (!a.optimize_lambda.empty()) {
+    m.optimizer = ChartOptimizer::OptimalLambda;
+    m.lambda_energy = parse_choice<LambdaEnergy>(a.optimize_lambda, "--optimize-lambda");
+  } else if (!a.optimize_boundary.empty()) {
+    m.optimizer = ChartOptimizer::OptimizeBoundary;
+    m.boundary_energy = parse_choice<BoundaryEnergy>(a.optimize_boundary, "--optimize-boundary");
+  }
+}
+
+int run_atlas(const AtlasArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  const int isometric_iterations = a.options.chart_map.isometric_iterations;
-  a.options.chart_map = chart_map_options(a.chart_map);
-  a.options.chart_map.isometric_iterations = isometric_iterations;
+  AtlasRequest request;
+  request.options = a.options;
+  set_chart_map(a, request.options.chart_map);
   check_atlas_output(a.output);
-  ReadOptions ro;
-  ro.max_vertices = a.max_vertices;
-  ro.max_faces = faces_for_vertices(ro.max_vertices);
-  const MeshData data = read_mesh(a.input, ro);
-  AtlasOptions options = a.options;
-  if (!a.seams.empty()) options.seams = read_seams_file(a.seams, data);
-  const double read_ms = elapsed_ms(t0);
-  const AtlasResult r = atlas(data, options);
+  request.read.max_vertices = a.max_vertices;
+  request.read.max_faces = faces_for_vertices(a.max_vertices);
+  request.seams_file = a.seams;
+  const AtlasOutcome o = atlas_file(a.input, request);
   const auto t1 = std::chrono::steady_clock::now();
-  write_atlas_file(a.output, data, r);
-  const double write_ms = elapsed_ms(t1);
-  nlohmann::json j = atlas_report(data, options, r);
-  j["input"] = a.input;
-  j["output"] = a.output;
-  j["timings_ms"] = {{"read", read_ms},       {"clean", r.timings.clean_ms}, {"segment", r.timings.segment_ms},
-                     {"flatten", r.timings.flatten_ms}, {"merge", r.timings.merge_ms}, {"pack", r.timings.pack_ms}, {"write", write_ms},
-                     {"total", elapsed_ms(t0)}};
+  write_atlas_file(a.output, o.data, o.result);
+  nlohmann::json j = atlas_report_json(o, a.output);
+  j["timings_ms"]["write"] = elapsed_ms(t1);
+  j["timings_ms"]["total"] = elapsed_ms(t0);
   if (!a.report.empty()) write_all({{a.report, j.dump(2) + "\n"}}, {a.output});
+  const AtlasResult& r = o.result;
   if (!a.quiet)
-    std::cout << a.output << ": " << data.V.rows() << " vertices, " << r.components << " components, "
+    std::cout << a.output << ": " << o.data.V.rows() << " vertices, " << r.components << " components, "
               << r.charts.size() << " charts, utilization " << static_cast<int>(100 * r.utilization + 0.5) << "%, "
               << r.flipped << " flipped, " << r.overlapping << " overlapping, " << static_cast<long>(elapsed_ms(t0))
               << " ms\n";
@@ -69,15 +83,15 @@ void register_atlas(CLI::App& app, Runner& run) {
                   ".glb: glTF 2.0 binary, vertices split at seams)")
       ->required();
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
-  cmd->add_option("--boundary", a->chart_map.boundary,
+  cmd->add_option("--boundary", a->boundary,
                   "Each chart's map: natural (the natural conformal map, default) or a fixed circle or square "
                   "boundary with --method's weights")
-      ->check(CLI::IsMember({"natural", "circle", "square"}))
+      ->check(choice_check<BoundaryShape>())
       ->capture_default_str();
-  add_weight_options(*cmd, a->chart_map.weights);
-  cmd->add_option("--optimize-lambda", a->chart_map.optimize_lambda,
+  add_weight_options(*cmd, a->weights);
+  cmd->add_option("--optimize-lambda", a->optimize_lambda,
                   "Per chart, the mixed map at the optimal lambda for this energy (edge | area); fixed boundaries");
-  cmd->add_option("--optimize-boundary", a->chart_map.optimize_boundary,
+  cmd->add_option("--optimize-boundary", a->optimize_boundary,
                   "Per chart, optimize the fixed boundary for this energy (edge | area | dirichlet)");
   cmd->add_option("--padding", a->options.padding, "Texels between charts")->capture_default_str();
   cmd->add_option("--resolution", a->options.resolution, "Texture width the padding is measured in")

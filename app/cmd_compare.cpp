@@ -8,10 +8,11 @@
 
 #include "command.h"
 #include "intrinsic/error.h"
+#include "intrinsic/names.h"
 #include "intrinsic/io.h"
 #include "intrinsic/parameterize.h"
-#include "pictures.h"
-#include "report.h"
+#include "intrinsic/pictures.h"
+#include "intrinsic/report.h"
 
 namespace intrinsic::app {
 namespace {
@@ -26,11 +27,18 @@ std::vector<std::string> split_list(const std::string& text) {
 
 // The methods compare can run without further parameters; "natural" is the
 // conformal weights with the natural (free) boundary.
+bool is_natural(const std::string& name) { return name == choice_name(BoundaryShape::Natural); }
+
 Method compare_method(const std::string& name) {
-  if (name == "natural") return Method::Conformal;
-  if (name == "mixed") throw_usage("--methods: 'mixed' needs --lambda and --mu; run it with `intrinsic param`");
-  if (name != "tutte" && name != "floater" && name != "conformal" && name != "authalic")
-    throw_usage("--methods: unknown method '" + name + "' (use tutte, floater, conformal, authalic, natural)");
+  if (is_natural(name)) return Method::Conformal;
+  if (!is_choice<Method>(name) || parse_method(name) == Method::Mixed) {
+    std::string names;  // every method but mixed, then natural
+    for (const std::string& n : choice_names<Method>())
+      if (n != choice_name(Method::Mixed)) names += n + ", ";
+    if (name == choice_name(Method::Mixed))
+      throw_usage("--methods: 'mixed' needs --lambda and --mu; run it with `intrinsic param`");
+    throw_usage("--methods: unknown method '" + name + "' (use " + names + choice_name(BoundaryShape::Natural) + ")");
+  }
   return parse_method(name);
 }
 
@@ -68,7 +76,7 @@ void crop_common_background(std::vector<Image>& panels) {
 struct CompareArgs {
   std::string input, output, report;
   std::string methods = "tutte,floater,conformal,authalic,natural";
-  std::string boundary = "circle", size = "400,400", view = "auto";
+  std::string boundary = choice_name(BoundaryShape::Circle), size = "400,400", view = "auto";
   int columns = 0, squares = 16;
   bool quiet = false;
 };
@@ -83,9 +91,7 @@ struct Panel {
 Panel compare_panel(const CompareArgs& a, const Mesh& mesh, const std::string& name, const RenderOptions& ro) {
   ParamOptions o;
   o.weights.method = compare_method(name);
-  o.boundary = name == "natural"          ? BoundaryShape::Natural
-               : a.boundary == "square" ? BoundaryShape::Square
-                                        : BoundaryShape::Circle;
+  o.boundary = is_natural(name) ? BoundaryShape::Natural : parse_choice<BoundaryShape>(a.boundary, "--boundary");
   const auto t1 = std::chrono::steady_clock::now();
   const ParamResult r = parameterize(mesh, o);
   const double ms = elapsed_ms(t1);
@@ -149,7 +155,7 @@ void register_compare(CLI::App& app, Runner& run) {
   cmd->add_option("--methods", a->methods, "Comma-separated: tutte, floater, conformal, authalic, natural")
       ->capture_default_str();
   cmd->add_option("--boundary", a->boundary, "Fixed boundary shape: circle | square")
-      ->check(CLI::IsMember({"circle", "square"}))
+      ->check(CLI::IsMember({choice_name(BoundaryShape::Circle), choice_name(BoundaryShape::Square)}))
       ->capture_default_str();
   cmd->add_option("--size", a->size, "Size of each panel in pixels, W,H")->capture_default_str();
   cmd->add_option("--columns", a->columns, "Panels per row (default: one row of up to 5, else two rows)")

@@ -10,7 +10,8 @@
 #include "intrinsic/boundary_editor.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
-#include "report.h"
+#include "choice_option.h"
+#include "intrinsic/report.h"
 #include "weight_args.h"
 
 namespace intrinsic::app {
@@ -20,7 +21,8 @@ struct EditArgs {
   std::string input, output, boundary, report, constraints;
   std::vector<std::string> moves;
   std::shared_ptr<WeightArgs> weights = std::make_shared<WeightArgs>();
-  std::string basis = "lazy", holes = "fill", solver = "auto";
+  std::string basis = choice_name(BasisMode::Lazy), holes = choice_name(HoleRule::Fill),
+              solver = choice_name(SolverKind::Auto);
   double memory_budget_gib = 2.0;
   int resolve_above = 64;
   bool binary = false, quiet = false;
@@ -40,15 +42,15 @@ ParamOptions edit_options(const EditArgs& a) {
   if (!(a.memory_budget_gib > 0)) throw_usage("--memory-budget must be positive");
   ParamOptions options;
   options.weights = a.weights->options();
-  options.holes = a.holes == "free" ? HoleRule::Free : HoleRule::Fill;
-  options.solver = parse_solver(a.solver);
+  options.holes = parse_choice<HoleRule>(a.holes, "--holes");
+  options.solver = parse_solver(a.solver, "--solver");
   options.boundary = BoundaryShape::Given;
   return options;
 }
 
 EditOptions editor_options(const EditArgs& a) {
   EditOptions eo;
-  eo.basis = a.basis == "full" ? BasisMode::Full : BasisMode::Lazy;
+  eo.basis = parse_choice<BasisMode>(a.basis, "--basis");
   eo.memory_budget = static_cast<std::size_t>(a.memory_budget_gib * double(1 << 30));
   eo.resolve_above = a.resolve_above;
   return eo;
@@ -188,7 +190,7 @@ void register_edit(CLI::App& app, Runner& run) {
   cmd->add_option("--move", a->moves, "Move file(s), lines 'vertex u v' (new positions of base boundary vertices)")
       ->required();
   cmd->add_option("--basis", a->basis, "full: every response precomputed (paper) | lazy: on first move")
-      ->check(CLI::IsMember({"full", "lazy"}))
+      ->check(choice_check<BasisMode>())
       ->capture_default_str();
   cmd->add_option("--memory-budget", a->memory_budget_gib, "GiB the responses may take")->capture_default_str();
   cmd->add_option("--resolve-above", a->resolve_above,
@@ -196,7 +198,7 @@ void register_edit(CLI::App& app, Runner& run) {
       ->capture_default_str();
   add_weight_options(*cmd, a->weights);
   cmd->add_option("--holes", a->holes, "Holes without given positions: fill | free")
-      ->check(CLI::IsMember({"fill", "free"}))
+      ->check(CLI::IsMember({choice_name(HoleRule::Fill), choice_name(HoleRule::Free)}))
       ->capture_default_str();
   cmd->add_option("--constraints", a->constraints, "JSON file of point and line constraints, kept during the moves");
   cmd->add_option("--solver", a->solver, "auto | cholmod | umfpack | eigen-llt | eigen-lu")->capture_default_str();

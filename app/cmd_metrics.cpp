@@ -5,8 +5,8 @@
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
-#include "report.h"
-#include "uv_mesh.h"
+#include "intrinsic/report.h"
+#include "intrinsic/uv_mesh.h"
 
 namespace intrinsic::app {
 

@@ -1,20 +1,101 @@
-// `intrinsic param`: parse -> read -> solve -> emit. Read and validate the
-// mesh, parameterize it (one chart per component when it has several;
-// optionally optimal lambda, boundary optimization or constraints: the
-// pipeline of param_job.h, shared with the Python module), then write the
-// mesh with UVs, the pictures and the report built from the result.
+// `intrinsic param`: parse -> read -> solve -> emit. The flags map onto the
+// library's ParamRequest (pipeline.h), which reads and validates the mesh
+// and parameterizes it (one chart per component when it has several;
+// optionally optimal lambda, boundary optimization or constraints); this file
+// adds the pictures, writes the mesh, the pictures and the report, and prints.
+#include <unistd.h>
+
 #include <chrono>
 #include <iostream>
 
+#include "choice_option.h"
 #include "command.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
-#include "param_job.h"
-#include "pictures.h"
-#include "report.h"
+#include "intrinsic/pictures.h"
+#include "intrinsic/pipeline.h"
+#include "intrinsic/report.h"
+#include "weight_args.h"
 
 namespace intrinsic::app {
 namespace {
+
+struct ParamArgs {
+  std::string input, output, report, constraints;
+  std::string render, render_all, render_size = "1024,1024", view = "auto";
+  std::shared_ptr<WeightArgs> weights = std::make_shared<WeightArgs>();
+  std::string boundary = choice_name(BoundaryShape::Circle), spacing = choice_name(Spacing::ArcLength),
+              scale = choice_name(ScaleMode::Unit), holes = choice_name(HoleRule::Fill),
+              solver = choice_name(SolverKind::Auto);
+  std::vector<std::string> pins;  // "V:U,V"
+  bool binary = false, quiet = false, largest_component = false;
+  std::int64_t max_vertices = ReadOptions().max_vertices;
+  double max_residual = 1e-8;
+  std::string optimize_lambda, optimize_boundary;  // "" when not given
+  std::vector<double> lambda_range{0, 1};
+  int iterations = 200;
+  double tolerance = 1e-6;
+  std::string gradient = choice_name(GradientRoute::Adjoint), descent = choice_name(Descent::LBFGS);
+};
+
+// Boundary optimization's progress, on stderr (the library never prints).
+void add_progress(const ParamArgs& a, BoundaryOptimizationOptions& bo) {
+  const bool tty = isatty(fileno(stderr));
+  if (!a.quiet)
+    bo.progress = [tty](int it, double e) {
+      std::cerr << (tty ? "\r" : "") << "boundary optimization: iteration " << it << ", energy " << e
+                << (tty ? "   " : "\n") << std::flush;
+    };
+}
+
+void set_optimizer(const ParamArgs& a, ParamRequest& r) {
+  if (!a.optimize_lambda.empty() && !a.optimize_boundary.empty())
+    throw_usage("--optimize-lambda and --optimize-boundary cannot be combined");
+  if (!a.optimize_lambda.empty()) {
+    r.optimizer = ChartOptimizer::OptimalLambda;
+    r.optimal_lambda.energy = parse_choice<LambdaEnergy>(a.optimize_lambda, "--optimize-lambda");
+  } else if (!a.optimize_boundary.empty()) {
+    r.optimizer = ChartOptimizer::OptimizeBoundary;
+    r.boundary_optimization.energy = parse_choice<BoundaryEnergy>(a.optimize_boundary, "--optimize-boundary");
+  }
+  r.optimal_lambda.lo = a.lambda_range.at(0);
+  r.optimal_lambda.hi = a.lambda_range.at(1);
+  BoundaryOptimizationOptions& bo = r.boundary_optimization;
+  bo.route = parse_choice<GradientRoute>(a.gradient, "--gradient");
+  bo.descent = parse_choice<Descent>(a.descent, "--descent");
+  bo.max_iterations = a.iterations;
+  bo.tolerance = a.tolerance;
+  add_progress(a, bo);
+}
+
+// The flags as the library's request; usage errors before any file is read.
+ParamRequest to_request(const ParamArgs& a) {
+  ParamRequest r;
+  r.spelling = OptionSpelling::Flag;
+  ParamOptions& o = r.options;
+  o.solver = parse_solver(a.solver, "--solver");
+  for (const std::string& p : a.pins) o.pins.push_back(parse_pin(p, OptionSpelling::Flag));  // syntax first: a usage error whatever the file
+  if (!a.optimize_lambda.empty() && a.optimize_boundary.empty() && a.weights->given())
+    throw_usage("--optimize-lambda chooses the blend itself; do not give --method, --lambda or --mu");
+  o.weights = a.weights->options();
+  if (is_choice<BoundaryShape>(a.boundary)) {
+    o.boundary = parse_choice<BoundaryShape>(a.boundary, "--boundary");
+  } else {
+    o.boundary = BoundaryShape::Given;  // a file of positions, read once the mesh is known
+    r.boundary_file = a.boundary;
+  }
+  o.spacing = parse_choice<Spacing>(a.spacing, "--spacing");
+  o.scale = parse_choice<ScaleMode>(a.scale, "--scale");
+  o.holes = parse_choice<HoleRule>(a.holes, "--holes");
+  o.max_residual = a.max_residual;
+  r.constraints_file = a.constraints;
+  set_optimizer(a, r);
+  r.largest_component = a.largest_component;
+  r.read.max_vertices = a.max_vertices;
+  r.read.max_faces = faces_for_vertices(a.max_vertices);
+  check_param_request(r);
+  return r;
+}
 
 // Picture requests (mode, path), checked before any work is done.
 std::vector<std::pair<PictureMode, std::string>> picture_requests(const ParamArgs& a, PictureSettings& ps) {
@@ -31,30 +112,26 @@ std::vector<std::pair<PictureMode, std::string>> picture_requests(const ParamArg
   return pictures;
 }
 
-struct StageMs {
-  double read = 0, validate = 0, render = 0, write = 0;
-};
-
 // Pictures are made before anything is written, so a failure leaves no file.
 std::vector<std::pair<std::string, std::string>> make_pictures(
-    const std::vector<std::pair<PictureMode, std::string>>& pictures, const PictureSettings& ps, const Mesh& mesh,
-    const ParamResult& r, const DistortionSummary& d) {
+    const std::vector<std::pair<PictureMode, std::string>>& pictures, const PictureSettings& ps,
+    const ParamOutcome& o) {
   std::vector<std::pair<std::string, std::string>> files;
   if (pictures.empty()) return files;
   Distortion dist;
-  dist.faces = face_distortion(mesh.V, mesh.F, r.UV);
-  dist.summary = d;
+  dist.faces = face_distortion(o.mesh.V, o.mesh.F, o.map.UV);
+  dist.summary = o.distortion;
   for (const auto& [mode, path] : pictures)
-    files.emplace_back(path, encode_png(make_picture(mode, mesh.V, mesh.F, r.UV, ps, &dist).image));
+    files.emplace_back(path, encode_png(make_picture(mode, o.mesh.V, o.mesh.F, o.map.UV, ps, &dist).image));
   return files;
 }
 
-void print_summary(const ParamArgs& a, const Mesh& mesh, const nlohmann::json& report, const ParamResult& r,
-                   const DistortionSummary& d, double total_ms) {
-  std::cout << a.output << ": " << mesh.V.rows() << " vertices, " << report["method"].get<std::string>();
+void print_summary(const ParamArgs& a, const ParamOutcome& o, const nlohmann::json& report, double total_ms) {
+  const DistortionSummary& d = o.distortion;
+  std::cout << a.output << ": " << o.mesh.V.rows() << " vertices, " << report["method"].get<std::string>();
   if (report.contains("optimal_lambda")) std::cout << " lambda=" << std::to_string(report["lambda"].get<double>());
   std::cout << ", " << report["boundary"].get<std::string>()
-            << (r.charts.empty() ? "" : ", " + std::to_string(r.charts.size()) + " charts") << ", "
+            << (o.map.charts.empty() ? "" : ", " + std::to_string(o.map.charts.size()) + " charts") << ", "
             << d.flipped_triangles << " flipped, angle distortion mean " << d.angle_distortion.mean << ", "
             << static_cast<long>(total_ms) << " ms\n";
 }
@@ -62,36 +139,27 @@ void print_summary(const ParamArgs& a, const Mesh& mesh, const nlohmann::json& r
 int run_param(const ParamArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   check_output_mesh_path(a.output);
-  check_args(a);
+  const ParamRequest request = to_request(a);
   PictureSettings ps;
   const auto pictures = picture_requests(a, ps);
-  StageMs ms;
-  ReadOptions ro;
-  ro.max_vertices = a.max_vertices;
-  ro.max_faces = faces_for_vertices(ro.max_vertices);
-  const MeshData data = read_mesh(a.input, ro);
-  ms.read = elapsed_ms(t0);
-  const auto t1 = std::chrono::steady_clock::now();
-  const Mesh mesh = validated_mesh(a, data);
-  ms.validate = elapsed_ms(t1);
-  const Solved solved = solve(a, mesh, data, to_options(a, static_cast<int>(mesh.V.rows())));
-  const ParamResult& r = solved.map;
-  const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, r.UV);
+  const ParamOutcome o = parameterize_file(a.input, request);
+  if (!a.quiet && request.optimizer == ChartOptimizer::OptimizeBoundary && isatty(fileno(stderr)) &&
+      o.boundary_optimization && o.boundary_optimization->iterations > 0)
+    std::cerr << "\n";
   const auto t_pic = std::chrono::steady_clock::now();
-  std::vector<std::pair<std::string, std::string>> files = make_pictures(pictures, ps, mesh, r, d);
-  ms.render = elapsed_ms(t_pic);
+  std::vector<std::pair<std::string, std::string>> files = make_pictures(pictures, ps, o);
+  const double render_ms = elapsed_ms(t_pic);
   const auto t2 = std::chrono::steady_clock::now();
   WriteOptions wo;
   wo.binary = a.binary;
-  write_mesh(a.output, mesh.V, mesh.F, r.UV, wo);
-  ms.write = elapsed_ms(t2);
-  nlohmann::json report = build_report(a, mesh, solved, d);
-  report["timings_ms"] = {{"read", ms.read},         {"validate", ms.validate}, {"assemble", r.timings.assemble_ms},
-                          {"factor", r.timings.factor_ms}, {"solve", r.timings.solve_ms}, {"render", ms.render},
-                          {"write", ms.write},       {"total", elapsed_ms(t0)}};
+  write_mesh(a.output, o.mesh.V, o.mesh.F, o.map.UV, wo);
+  nlohmann::json report = param_report_json(request, o, a.output);
+  report["timings_ms"]["render"] = render_ms;
+  report["timings_ms"]["write"] = elapsed_ms(t2);
+  report["timings_ms"]["total"] = elapsed_ms(t0);
   if (!a.report.empty()) files.insert(files.begin(), {a.report, report.dump(2) + "\n"});
   write_all(files, {a.output});  // on failure the mesh goes too: no partial set of outputs
-  if (!a.quiet) print_summary(a, mesh, report, r, d, elapsed_ms(t0));
+  if (!a.quiet) print_summary(a, o, report, elapsed_ms(t0));
   return 0;
 }
 
@@ -110,16 +178,16 @@ void add_solve_options(CLI::App& cmd, const std::shared_ptr<ParamArgs>& a) {
       ->allow_extra_args(false)  // one value per --pin, so "--pin 1:0,0 in.obj" leaves the input alone
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd.add_option("--spacing", a->spacing, "Boundary spacing: arclength | uniform")
-      ->check(CLI::IsMember({"arclength", "uniform"}))
+      ->check(choice_check<Spacing>())
       ->capture_default_str();
   cmd.add_option("--scale", a->scale,
                  "unit: fit [0,1]^2 | surface: parameter area = 3D area (natural: pins at their 3D distance)")
-      ->check(CLI::IsMember({"unit", "surface"}))
+      ->check(choice_check<ScaleMode>())
       ->capture_default_str();
   cmd.add_option("--holes", a->holes,
                  "Holes without given positions, fixed-boundary modes: fill (temporary fan) | free | natural "
                  "(natural conformal condition on hole loops; see docs/holes.md). Natural boundary: every loop is natural")
-      ->check(CLI::IsMember({"fill", "free", "natural"}))
+      ->check(choice_check<HoleRule>())
       ->capture_default_str();
   cmd.add_option("--solver", a->solver, "auto | cholmod | umfpack | eigen-llt | eigen-lu | cg | bicgstab")
       ->capture_default_str();
@@ -138,14 +206,14 @@ void add_solve_options(CLI::App& cmd, const std::shared_ptr<ParamArgs>& a) {
 void add_optimizer_options(CLI::App& cmd, const std::shared_ptr<ParamArgs>& a) {
   cmd.add_option("--optimize-lambda", a->optimize_lambda,
                  "Blend lambda*conformal + (1-lambda)*authalic with the lambda minimising edge or area distortion")
-      ->check(CLI::IsMember({"edge", "area"}));
+      ->check(choice_check<LambdaEnergy>());
   cmd.add_option("--lambda-range", a->lambda_range, "Interval searched by --optimize-lambda, as LO,HI")
       ->delimiter(',')
       ->expected(2)
       ->capture_default_str();
   cmd.add_option("--optimize-boundary", a->optimize_boundary,
                  "Move the boundary to minimise edge, area or (symmetric) dirichlet distortion")
-      ->check(CLI::IsMember({"edge", "area", "dirichlet"}));
+      ->check(choice_check<BoundaryEnergy>());
   cmd.add_option("--iterations", a->iterations, "Boundary optimization: iteration limit")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
@@ -153,10 +221,10 @@ void add_optimizer_options(CLI::App& cmd, const std::shared_ptr<ParamArgs>& a) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd.add_option("--gradient", a->gradient, "Boundary optimization gradient: adjoint | responses")
-      ->check(CLI::IsMember({"adjoint", "responses"}))
+      ->check(choice_check<GradientRoute>())
       ->capture_default_str();
   cmd.add_option("--descent", a->descent, "Boundary optimization descent: lbfgs | gradient")
-      ->check(CLI::IsMember({"lbfgs", "gradient"}))
+      ->check(choice_check<Descent>())
       ->capture_default_str();
 }
 

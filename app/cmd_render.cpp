@@ -6,9 +6,10 @@
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
 #include "intrinsic/render.h"
-#include "pictures.h"
-#include "report.h"
-#include "uv_mesh.h"
+#include "choice_option.h"
+#include "intrinsic/pictures.h"
+#include "intrinsic/report.h"
+#include "intrinsic/uv_mesh.h"
 
 namespace intrinsic::app {
 
@@ -16,7 +17,7 @@ namespace {
 
 struct RenderArgs {
   std::string input, output, report, texture;
-  std::string mode = "checker", size = "1024,1024", view = "auto";
+  std::string mode = choice_name(PictureMode::Checker), size = "1024,1024", view = "auto";
   int squares = 16, supersample = 3;
   bool on_surface = false, log_scale = false, quiet = false;
 };
@@ -65,7 +66,7 @@ nlohmann::json render_report(const RenderArgs& a, PictureMode mode, const UvMesh
 int run_render(const RenderArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   check_png_path(a.output, "--output");
-  const PictureMode mode = parse_mode(a.mode);
+  const PictureMode mode = parse_mode(a.mode, "--mode");
   Image texture;
   const PictureSettings s = render_settings(a, mode, texture);
   const UvMesh m = split_by_texcoord(read_mesh(a.input));
@@ -121,7 +122,7 @@ void register_render(CLI::App& app, Runner& run) {
                   "checker: textured 3D surface | layout: the flattened mesh, flipped triangles red (an atlas: "
                   "one colour per chart, folded or overlapping triangles red) | "
                   "angle, area, stretch: distortion per triangle with a colour bar")
-      ->check(CLI::IsMember({"checker", "layout", "angle", "area", "stretch"}))
+      ->check(choice_check<PictureMode>())
       ->capture_default_str();
   cmd->add_option("--size", a->size, "Picture size in pixels, W,H")->capture_default_str();
   cmd->add_option("--view", a->view, "3D view: auto (along the mean normal) | top | front | AZIMUTH,ELEVATION")

@@ -139,8 +139,8 @@ Body handle_solve(ServeState& s, const httplib::Request& req, httplib::Response&
 // positions in output coordinates, used exactly).
 ParamOptions start_options(Session& session, const SolveRequest& r) {
   ParamOptions o;
-  o.weights = r.weights.options();
-  o.boundary = r.boundary == "square" ? BoundaryShape::Square : BoundaryShape::Circle;
+  o.weights = r.weights;
+  o.boundary = r.boundary == BoundaryShape::Square ? BoundaryShape::Square : BoundaryShape::Circle;
   if (!r.moves.empty()) {
     std::lock_guard<std::mutex> lock(session.mutex);
     o.given = session.state.boundary_after(r);

@@ -1,30 +1,24 @@
+// The registration and mapping of --method, --lambda and --mu (weight_args.h).
 #include "weight_args.h"
 
-#include "intrinsic/error.h"
+#include "choice_option.h"
+#include "intrinsic/pipeline.h"
 
 namespace intrinsic::app {
 
+Method WeightArgs::parsed_method() const { return parse_choice<Method>(method, "--method"); }
+
 WeightOptions WeightArgs::options() const {
-  WeightOptions w;
-  w.method = parse_method(method);
-  if ((lambda_set || mu_set) && w.method != Method::Mixed) throw_usage("--lambda and --mu apply to --method mixed only");
-  if (w.method == Method::Mixed) {
-    if (!lambda_set && !mu_set) throw_usage("--method mixed needs --lambda and/or --mu");
-    w.lambda = lambda_set ? lambda : 0.0;
-    w.mu = mu_set ? mu : 0.0;
-    if (w.lambda == 0 && w.mu == 0) throw_usage("--lambda and --mu cannot both be zero");
-  }
-  return w;
+  return weight_options(parsed_method(), lambda, mu, OptionSpelling::Flag);
 }
 
 void add_weight_options(CLI::App& cmd, const std::shared_ptr<WeightArgs>& args) {
   cmd.add_option("--method", args->method, "conformal | authalic | mixed | tutte | floater")
-      ->check(CLI::IsMember({"conformal", "authalic", "mixed", "tutte", "floater"}))
+      ->check(choice_check<Method>())
       ->capture_default_str();
-  cmd.add_option_function<double>("--lambda", [args](double v) { args->lambda = v; args->lambda_set = true; },
+  cmd.add_option_function<double>("--lambda", [args](double v) { args->lambda = v; },
                                   "Weight of the conformal energy (mixed)");
-  cmd.add_option_function<double>("--mu", [args](double v) { args->mu = v; args->mu_set = true; },
-                                  "Weight of the authalic energy (mixed)");
+  cmd.add_option_function<double>("--mu", [args](double v) { args->mu = v; }, "Weight of the authalic energy (mixed)");
 }
 
 }  // namespace intrinsic::app

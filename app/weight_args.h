@@ -1,23 +1,26 @@
-// --method, --lambda and --mu, which `param` and `edit` take alike: one
-// registration, so their spelling, help and checks cannot drift apart.
+// --method, --lambda and --mu, which `param`, `atlas` and `edit` take alike:
+// one registration, so their spelling, help and checks cannot drift apart.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "intrinsic/names.h"
 #include "intrinsic/weights.h"
 
 namespace intrinsic::app {
 
 struct WeightArgs {
-  std::string method = "conformal";
-  double lambda = 1, mu = 0;
-  // Whether each was given: mixed needs at least one, other methods none.
-  bool lambda_set = false, mu_set = false;
+  std::string method = choice_name(Method::Conformal);
+  std::optional<double> lambda, mu;  // as given: mixed needs at least one, other methods none
 
-  // Throws Error(Usage) for inconsistent combinations.
+  Method parsed_method() const;
+  // The library's checks (pipeline.h weight_options), messages naming the flags.
   WeightOptions options() const;
+  // Whether anything but the default conformal map was asked for.
+  bool given() const { return parsed_method() != Method::Conformal || lambda || mu; }
 };
 
 // `args` stays alive as long as the options refer to it (CLI11 keeps the

@@ -8,7 +8,7 @@
 // 5 x 5 vertex grid (vertex y * 5 + x; two faces per quad).
 #include "fuzz_support.h"
 #include "intrinsic/mesh.h"
-#include "serve/edit_session.h"
+#include "intrinsic/edit_session.h"
 #include "serve/optimize_request.h"
 #include "serve/solve_request.h"
 

@@ -86,7 +86,7 @@ TEST(Cli, ErrorsGiveCodeMessageAndNoOutput) {
       {"mixed zero", square, "--method mixed --lambda 0 --mu 0", 1, "both be zero"},
       {"bad output format", square, "-o {dir}/out.xyz", 1, "unknown format"},
       {"cg on authalic", square, "--method authalic --solver cg", 1, "symmetric"},
-      {"unknown solver", square, "--solver magic", 1, "unknown solver"},
+      {"unknown solver", square, "--solver magic", 1, "--solver: 'magic' is not one of auto, cholmod"},
       {"missing boundary file", square, "--boundary {dir}/nothing.txt", 2, "cannot open boundary file"},
       {"residual too large", "GENERATE", "--solver bicgstab --max-residual 1e-300", 3, "residual"},
   };

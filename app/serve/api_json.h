@@ -7,7 +7,7 @@
 
 #include "intrinsic/mesh.h"
 #include "intrinsic/metrics.h"
-#include "serve/edit_session.h"
+#include "serve/solve_request.h"
 
 namespace intrinsic::app {
 

@@ -2,6 +2,7 @@
 #include "serve/optimize_request.h"
 
 #include "intrinsic/error.h"
+#include "intrinsic/names.h"
 
 namespace intrinsic::app {
 namespace {
@@ -9,13 +10,13 @@ namespace {
 using nlohmann::json;
 
 std::string energy_name(const json& body) {
-  if (!body.contains("energy")) return "edge";
+  if (!body.contains("energy")) return choice_name(LambdaEnergy::EdgeLength);  // edge, for either energy
   if (!body["energy"].is_string()) throw_usage("energy: expected a string");
   return body["energy"].get<std::string>();
 }
 
 void check_fixed_unconstrained(const SolveRequest& r, const std::string& what) {
-  if (r.boundary == "natural") throw_usage(what + " starts from a fixed boundary (circle or square), not natural");
+  if (r.boundary == BoundaryShape::Natural) throw_usage(what + " starts from a fixed boundary (circle or square), not natural");
   if (!r.constraints.empty()) throw_usage(what + " takes no constraints");
 }
 
@@ -28,8 +29,7 @@ OptimalLambdaRequest parse_optimal_lambda_request(const std::string& text, const
   r.solve = solve_request_from(body, mesh, file_faces, {"energy"});
   check_fixed_unconstrained(r.solve, "optimal lambda");
   const std::string e = energy_name(body);
-  if (e != "edge" && e != "area") throw_usage("energy: expected edge or area, not '" + e + "'");
-  r.energy = parse_lambda_energy(e);
+  r.energy = parse_choice<LambdaEnergy>(e, "energy");
   return r;
 }
 
@@ -40,9 +40,7 @@ OptimizeBoundaryRequest parse_optimize_boundary_request(const std::string& text,
   r.solve = solve_request_from(body, mesh, file_faces, {"energy", "max_iterations"});
   check_fixed_unconstrained(r.solve, "boundary optimization");
   const std::string e = energy_name(body);
-  if (e != "edge" && e != "area" && e != "dirichlet")
-    throw_usage("energy: expected edge, area or dirichlet, not '" + e + "'");
-  r.energy = parse_boundary_energy(e);
+  r.energy = parse_choice<BoundaryEnergy>(e, "energy");
   if (body.contains("max_iterations")) {
     const json& m = body["max_iterations"];
     if (!m.is_number_integer()) throw_usage("max_iterations: expected an integer");

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "serve/edit_session.h"
+#include "intrinsic/edit_session.h"
 
 namespace intrinsic::app {
 

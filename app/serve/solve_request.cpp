@@ -7,6 +7,8 @@
 
 #include "intrinsic/io.h"
 #include "intrinsic/error.h"
+#include "intrinsic/names.h"
+#include "weight_args.h"
 
 namespace intrinsic::app {
 namespace {
@@ -47,12 +49,14 @@ std::vector<FixedVertex> vertex_positions(const json& j, const std::string& key,
   return out;
 }
 
-void read_weights(const json& body, WeightArgs& w) {
+// The command line's consistency checks (and messages) for the blend.
+WeightOptions read_weights(const json& body) {
+  WeightArgs w;
   if (body.contains("method")) w.method = text(body["method"], "method");
-  parse_method(w.method);  // Error(Usage) for an unknown method
-  if (body.contains("lambda")) { w.lambda = finite_number(body["lambda"], "lambda"); w.lambda_set = true; }
-  if (body.contains("mu")) { w.mu = finite_number(body["mu"], "mu"); w.mu_set = true; }
-  w.options();  // the command line's consistency checks
+  parse_choice<Method>(w.method, "method");  // Error(Usage) for an unknown method
+  if (body.contains("lambda")) w.lambda = finite_number(body["lambda"], "lambda");
+  if (body.contains("mu")) w.mu = finite_number(body["mu"], "mu");
+  return w.options();
 }
 
 // Nesting deeper than any valid request is refused before parsing, so no
@@ -93,16 +97,14 @@ SolveRequest solve_request_from(const nlohmann::json& body, const Mesh& mesh, co
         std::find(extra_keys.begin(), extra_keys.end(), item.key()) == extra_keys.end())
       throw_usage("unknown key '" + item.key() + "'");
   SolveRequest r;
-  read_weights(body, r.weights);
-  if (body.contains("boundary")) r.boundary = text(body["boundary"], "boundary");
-  if (r.boundary != "circle" && r.boundary != "square" && r.boundary != "natural")
-    throw_usage("boundary: expected circle, square or natural, not '" + r.boundary + "'");
+  r.weights = read_weights(body);
+  if (body.contains("boundary")) r.boundary = parse_choice<BoundaryShape>(text(body["boundary"], "boundary"), "boundary");
   const int n = static_cast<int>(mesh.V.rows());
   if (body.contains("pins")) r.pins = vertex_positions(body["pins"], "pins", n);
   if (body.contains("moves")) r.moves = vertex_positions(body["moves"], "moves", n);
-  if (!r.pins.empty() && r.boundary != "natural") throw_usage("pins apply to boundary natural only (use moves)");
+  if (!r.pins.empty() && r.boundary != BoundaryShape::Natural) throw_usage("pins apply to boundary natural only (use moves)");
   if (r.pins.size() == 1) throw_usage("pins: at least two are needed");
-  if (!r.moves.empty() && r.boundary == "natural") throw_usage("moves apply to a fixed boundary (use pins)");
+  if (!r.moves.empty() && r.boundary == BoundaryShape::Natural) throw_usage("moves apply to a fixed boundary (use pins)");
   if (body.contains("constraints") && !body["constraints"].is_null()) {
     r.constraints_key = body["constraints"].dump();
     r.constraints = parse_constraints_json(r.constraints_key, "constraints");

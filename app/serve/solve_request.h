@@ -9,21 +9,16 @@
 #include <string>
 #include <vector>
 
-#include "intrinsic/boundary.h"
-#include "intrinsic/constraints.h"
+#include "intrinsic/edit_session.h"
 #include "intrinsic/mesh.h"
-#include "weight_args.h"
 
 namespace intrinsic::app {
 
-struct SolveRequest {
-  WeightArgs weights;              // method, lambda, mu as `intrinsic param` takes them
-  std::string boundary = "circle";  // circle | square | natural
-  std::vector<FixedVertex> pins;   // natural only; empty: the default pins
-  Constraints constraints;         // face points already in mesh.F corner order
-  std::string constraints_key;     // canonical JSON of the constraints ("" when none)
-  std::vector<FixedVertex> moves;  // fixed boundary only: new positions of base boundary vertices
-};
+// The library's session request and answer (intrinsic/edit_session.h), as
+// the server names them.
+using SolveRequest = EditRequest;
+using SolveAnswer = EditAnswer;
+using EditSession = intrinsic::EditSession;
 
 // `file_faces` are the faces as the mesh file lists them (constraint
 // barycentrics refer to their corners).

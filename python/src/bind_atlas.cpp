@@ -1,6 +1,6 @@
 // intrinsic.atlas and intrinsic.write_atlas: `intrinsic atlas` on arrays or a
-// file, with the same report and the same OBJ bytes (app/atlas_job.h).
-#include "atlas_job.h"
+// file through the library's atlas job (pipeline.h), with the same report and
+// the same OBJ bytes.
 #include "common.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
@@ -29,22 +29,35 @@ std::vector<SeamEdge> to_seams(const py::handle& obj) {
   return seams;
 }
 
+// The chart map as parameterize() spells it: boundary natural|circle|square,
+// method/lambda/mu (fixed boundaries only), optimize_lambda or optimize_boundary.
+void set_chart_map(ChartMapOptions& m, py::dict& o) {
+  const auto given = [&](const char* key) { return o.contains(key) && !o[key].is_none(); };
+  const py::object boundary = o.attr("pop")("boundary", py::none());
+  if (!boundary.is_none()) m.boundary = to_choice<BoundaryShape>(boundary, "boundary");
+  if (m.boundary == BoundaryShape::Natural &&
+      ((given("method") && to_choice<Method>(o["method"], "method") != Method::Conformal) || given("lambda") ||
+       given("lambda_") || given("lam") || given("mu")))
+    throw_usage("method applies to fixed chart boundaries: add boundary='circle' or 'square'");
+  m.weights = pop_weights(o);
+  const py::object lambda = o.attr("pop")("optimize_lambda", py::none());
+  const py::object energy = o.attr("pop")("optimize_boundary", py::none());
+  if (!lambda.is_none() && !energy.is_none()) throw_usage("optimize_lambda and optimize_boundary: choose one");
+  if (!lambda.is_none()) {
+    m.optimizer = ChartOptimizer::OptimalLambda;
+    m.lambda_energy = to_choice<LambdaEnergy>(lambda, "optimize_lambda");
+  } else if (!energy.is_none()) {
+    m.optimizer = ChartOptimizer::OptimizeBoundary;
+    m.boundary_energy = to_choice<BoundaryEnergy>(energy, "optimize_boundary");
+  }
+}
+
 // Range checks are atlas()'s own (Error(Usage)), as for the command line.
 AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices, SeamsArg& seams) {
   AtlasOptions o;
   // The chart map first, spelled as parameterize()'s options.
-  py::dict rest(kwargs);
-  app::ChartMapArgs map;
-  set_weights(*map.weights, rest);
-  for (const char* key : {"boundary", "optimize_lambda", "optimize_boundary"}) {
-    const py::object v = rest.attr("pop")(key, py::none());
-    if (v.is_none()) continue;
-    std::string& field = std::string(key) == "boundary"          ? map.boundary
-                         : std::string(key) == "optimize_lambda" ? map.optimize_lambda
-                                                                 : map.optimize_boundary;
-    field = py::str(v).cast<std::string>();
-  }
-  o.chart_map = app::chart_map_options(map);
+  py::dict rest = py::dict(kwargs).attr("copy")();
+  set_chart_map(o.chart_map, rest);
   for (const auto& [key, value] : rest) {
     const std::string k = py::str(key);
     if (k == "padding") o.padding = value.cast<double>();
@@ -68,34 +81,30 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices,
 }
 
 AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs& kwargs) {
-  std::int64_t max_vertices = ReadOptions().max_vertices;
+  AtlasRequest request;
   SeamsArg seams;
-  AtlasOptions o = atlas_options(kwargs, max_vertices, seams);
-  const std::string seams_path = seams.is_path() ? to_path(seams.value) : "";
+  request.options = atlas_options(kwargs, request.read.max_vertices, seams);
+  request.read.max_faces = faces_for_vertices(request.read.max_vertices);
+  if (seams.is_path()) request.seams_file = to_path(seams.value);
   AtlasOutput out;
   const bool from_file = F.is_none();
   const std::string path = from_file ? to_path(V) : "";
+  MeshData data;
   if (!from_file) {
-    out.data.V = to_V(V);
-    out.data.F = to_F(F);
+    data.V = to_V(V);
+    data.F = to_F(F);
   }
+  AtlasOutcome o;
   {
     py::gil_scoped_release release;
-    if (from_file) {
-      ReadOptions ro;
-      ro.max_vertices = max_vertices;
-      ro.max_faces = faces_for_vertices(max_vertices);
-      out.data = read_mesh(path, ro);
-    }
-    if (!seams_path.empty()) o.seams = read_seams_file(seams_path, out.data);
-    out.result = atlas(out.data, o);
+    o = from_file ? atlas_file(path, request) : atlas_data(std::move(data), request);
   }
-  nlohmann::json report = app::atlas_report(out.data, o, out.result);
-  report["input"] = from_file ? nlohmann::json(path) : nlohmann::json(nullptr);
-  report["output"] = nullptr;
-  const AtlasTimings& t = out.result.timings;
+  nlohmann::json report = atlas_report_json(o, "");
+  const AtlasTimings& t = o.result.timings;
   report["timings_ms"] = {{"clean", t.clean_ms},     {"segment", t.segment_ms}, {"flatten", t.flatten_ms},
                           {"merge", t.merge_ms},     {"pack", t.pack_ms},       {"total", t.total_ms}};
+  out.data = std::move(o.data);
+  out.result = std::move(o.result);
   out.uv = from_UV(out.result.UV);
   out.uv_index = from_F(out.result.FUV);
   py::array_t<std::int32_t> chart(static_cast<py::ssize_t>(out.result.face_chart.size()));

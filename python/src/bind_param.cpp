@@ -1,19 +1,18 @@
-// parameterize(), Result, Parameterizer and BoundaryEditor: the `param`
-// pipeline of app/param_job.h (the command line's own option mapping, solve
-// and report), with the GIL released while reading, validating, assembling,
-// factoring and solving.
+// parameterize(), Result, Parameterizer and BoundaryEditor over the
+// library's pipeline (pipeline.h: the same job, checks and report as
+// `intrinsic param`), with the GIL released while reading, validating,
+// assembling, factoring and solving.
 #include <chrono>
 #include <memory>
 #include <mutex>
 #include <optional>
 
 #include "common.h"
-#include "intrinsic/io.h"
 #include "intrinsic/boundary_editor.h"
 #include "intrinsic/error.h"
+#include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
 #include "intrinsic/parameterizer.h"
-#include "report.h"
 
 namespace intrinsic::python {
 namespace {
@@ -48,14 +47,6 @@ Source to_source(const py::object& V, const py::object& F) {
   return s;
 }
 
-void read_source(Source& s, const app::ParamArgs& a) {
-  if (s.path.empty()) return;
-  ReadOptions ro;
-  ro.max_vertices = a.max_vertices;
-  ro.max_faces = faces_for_vertices(ro.max_vertices);
-  s.data = read_mesh(s.path, ro);
-}
-
 // What a solve hands back to Python, computed without the GIL.
 struct Outcome {
   MatrixX2d UV;
@@ -65,19 +56,19 @@ struct Outcome {
   std::shared_ptr<const Mesh> mesh;
 };
 
-Outcome outcome(const app::ParamArgs& a, const std::shared_ptr<const Mesh>& mesh_ptr, const app::Solved& s,
-                nlohmann::json timings, Clock::time_point t0) {
-  const Mesh& mesh = *mesh_ptr;
-  const DistortionSummary d = summarize_distortion(mesh.V, mesh.F, s.map.UV);
-  Outcome o{s.map.UV, s.map.residual, d.flipped_triangles, app::build_report(a, mesh, s, d), mesh_ptr};
-  if (mesh.path.empty()) o.report["input"] = nullptr;
-  o.report["output"] = nullptr;  // nothing written
-  timings["assemble"] = s.map.timings.assemble_ms;
-  timings["factor"] = s.map.timings.factor_ms;
-  timings["solve"] = s.map.timings.solve_ms;
-  timings["total"] = ms_since(t0);
-  o.report["timings_ms"] = timings;
-  return o;
+// The report of the pipeline (output null: nothing written), timings
+// replaced by `timings` when given, plus the total.
+Outcome outcome(const ParamRequest& request, ParamOutcome&& o, const nlohmann::json& timings,
+                Clock::time_point t0) {
+  Outcome out{o.map.UV, o.map.residual, o.distortion.flipped_triangles, param_report_json(request, o, ""), nullptr};
+  if (!timings.is_null()) {
+    nlohmann::json t = timings;
+    for (const char* k : {"assemble", "factor", "solve"}) t[k] = out.report["timings_ms"][k];
+    out.report["timings_ms"] = t;
+  }
+  out.report["timings_ms"]["total"] = ms_since(t0);
+  out.mesh = std::make_shared<const Mesh>(std::move(o.mesh));
+  return out;
 }
 
 Result to_result(const Outcome& o) {
@@ -87,20 +78,14 @@ Result to_result(const Outcome& o) {
 }
 
 Result parameterize(const py::object& V, const py::object& F, const py::kwargs& kwargs) {
-  const app::ParamArgs a = to_args(kwargs, true);
-  Source src = to_source(V, F);
+  const ParamRequest request = to_request(kwargs, true);
+  const Source src = to_source(V, F);
   Outcome o;
   {
     py::gil_scoped_release release;
     const auto t0 = Clock::now();
-    read_source(src, a);
-    nlohmann::json timings = {{"read", ms_since(t0)}};
-    const auto t1 = Clock::now();
-    const auto mesh = std::make_shared<const Mesh>(app::validated_mesh(a, src.data));
-    timings["validate"] = ms_since(t1);
-    const app::Solved solved =
-        app::solve(a, *mesh, src.data, app::to_options(a, static_cast<int>(mesh->V.rows())));
-    o = outcome(a, mesh, solved, timings, t0);
+    ParamOutcome po = src.path.empty() ? parameterize_data(src.data, request) : parameterize_file(src.path, request);
+    o = outcome(request, std::move(po), nullptr, t0);
   }
   return to_result(o);
 }
@@ -119,15 +104,15 @@ Constraints to_constraints(const py::object& c) {
 class PyParameterizer {
  public:
   PyParameterizer(const py::object& V, const py::object& F, const py::kwargs& kwargs)
-      : args_(to_args(kwargs, false)), src_(to_source(V, F)) {
+      : request_(to_request(kwargs, false)), src_(to_source(V, F)) {
     py::gil_scoped_release release;
     const auto t0 = Clock::now();
-    read_source(src_, args_);
-    mesh_ = std::make_shared<const Mesh>(app::validated_mesh(args_, src_.data));
+    if (!src_.path.empty()) src_.data = read_mesh(src_.path, request_.read);
+    mesh_ = std::make_shared<const Mesh>(validated_mesh(src_.data, request_));
     if (mesh_->topology.num_components > 1)
       throw_usage("Parameterizer takes a single component; use largest_component=True, or parameterize() for charts");
-    p_ = std::make_unique<Parameterizer>(*mesh_, app::to_options(args_, static_cast<int>(mesh_->V.rows())));
-    if (args_.has_constraints()) p_->set_constraints(app::load_constraints(args_, src_.data, *mesh_));
+    p_ = std::make_unique<Parameterizer>(*mesh_, resolved_options(request_, *mesh_));
+    if (request_.has_constraints()) p_->set_constraints(resolved_constraints(request_, src_.data.F, *mesh_));
     setup_ms_ = ms_since(t0);
   }
 
@@ -138,9 +123,12 @@ class PyParameterizer {
       std::lock_guard<std::mutex> lock(mutex_);
       const auto t0 = Clock::now();
       if (fixed) pending_ = fixed;
-      app::Solved s{pending_ ? p_->solve_with_boundary(*pending_) : p_->solve(), nullptr, nullptr};
+      ParamOutcome po;
+      po.map = pending_ ? p_->solve_with_boundary(*pending_) : p_->solve();
       pending_.reset();
-      o = outcome(args_, mesh_, s, {{"setup", setup_ms_}}, t0);
+      po.mesh = *mesh_;
+      po.distortion = summarize_distortion(mesh_->V, mesh_->F, po.map.UV);
+      o = outcome(request_, std::move(po), {{"setup", setup_ms_}}, t0);
     }
     return to_result(o);
   }
@@ -175,7 +163,7 @@ class PyParameterizer {
   std::mutex& mutex() { return mutex_; }
 
  private:
-  app::ParamArgs args_;
+  ParamRequest request_;
   Source src_;
   std::shared_ptr<const Mesh> mesh_;
   std::unique_ptr<Parameterizer> p_;
@@ -187,10 +175,9 @@ class PyParameterizer {
 // intrinsic::BoundaryEditor on a PyParameterizer (kept alive by pybind11).
 class PyEditor {
  public:
-  PyEditor(PyParameterizer& p, const std::string& basis, double memory_budget_gib, int resolve_above) : p_(p) {
-    if (basis != "full" && basis != "lazy") throw_usage("--basis: " + basis + " not in {full,lazy}");
+  PyEditor(PyParameterizer& p, const py::object& basis, double memory_budget_gib, int resolve_above) : p_(p) {
     EditOptions o;
-    o.basis = basis == "full" ? BasisMode::Full : BasisMode::Lazy;
+    o.basis = to_choice<BasisMode>(basis, "basis");
     o.memory_budget = static_cast<std::size_t>(memory_budget_gib * double(std::size_t(1) << 30));
     o.resolve_above = resolve_above;
     py::gil_scoped_release release;
@@ -220,8 +207,8 @@ void register_editor(py::module_& m) {
                        "as `intrinsic edit`: basis 'full' precomputes every response, 'lazy' computes one on a\n"
                        "vertex's first move; memory_budget in GiB; more than resolve_above moved vertices re-solve\n"
                        "with the kept factorization. Each move updates the Parameterizer's boundary.")
-      .def(py::init<PyParameterizer&, const std::string&, double, int>(), py::arg("parameterizer"),
-           py::arg("basis") = "lazy", py::arg("memory_budget") = 2.0, py::arg("resolve_above") = 64,
+      .def(py::init<PyParameterizer&, const py::object&, double, int>(), py::arg("parameterizer"),
+           py::arg("basis") = choice_name(BasisMode::Lazy), py::arg("memory_budget") = 2.0, py::arg("resolve_above") = 64,
            py::keep_alive<1, 2>())
       .def("move", &PyEditor::move, py::arg("positions"),
            "Moves fixed vertices [(vertex, u, v), ...] (others stay where they are) -> the new n x 2 UVs.")

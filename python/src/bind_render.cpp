@@ -4,8 +4,8 @@
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
-#include "pictures.h"
-#include "report.h"
+#include "intrinsic/pictures.h"
+#include "intrinsic/report.h"
 
 namespace intrinsic::python {
 namespace {
@@ -23,24 +23,24 @@ py::dict metrics(const py::object& V, const py::object& F, const py::object& uv)
     vo.allow_several_components = true;
     vo.allow_closed = true;
     const Mesh mesh = make_mesh(data, vo);
-    report = app::mesh_json(mesh);
+    report = mesh_json(mesh);
     report.erase("input");
-    app::add_distortion(report, summarize_distortion(data.V, data.F, UV));
-    report["stretch"] = app::stretch_json(summarize_stretch(data.V, data.F, UV));
+    add_distortion(report, summarize_distortion(data.V, data.F, UV));
+    report["stretch"] = stretch_json(summarize_stretch(data.V, data.F, UV));
   }
   return to_python(report);
 }
 
-app::PictureSettings settings(const py::object& size, const py::object& view, bool on_surface, bool log_scale) {
-  app::PictureSettings s;
+PictureSettings settings(const py::object& size, const py::object& view, bool on_surface, bool log_scale) {
+  PictureSettings s;
   const auto wh = size.cast<std::pair<int, int>>();
-  app::parse_size(std::to_string(wh.first) + "," + std::to_string(wh.second), "size", s.render.width,
+  parse_size(std::to_string(wh.first) + "," + std::to_string(wh.second), "size", s.render.width,
                   s.render.height);
   const std::string v = py::isinstance<py::str>(view)
                             ? view.cast<std::string>()
                             : py::str(",").attr("join")(py::module_::import("builtins").attr("map")(
                                   py::module_::import("builtins").attr("repr"), view)).cast<std::string>();
-  app::parse_view(v, s.render);
+  parse_view(v, s.render);
   s.render.fit_uv = true;
   s.on_surface = on_surface;
   s.log_scale = log_scale;
@@ -50,12 +50,12 @@ app::PictureSettings settings(const py::object& size, const py::object& view, bo
 py::object render(const py::object& V, const py::object& F, const py::object& uv, const std::string& mode,
                   const py::object& size, const py::object& view, const py::object& path, bool on_surface,
                   bool log_scale) {
-  const app::PictureMode pm = app::parse_mode(mode);
-  if ((on_surface || log_scale) && (pm == app::PictureMode::Checker || pm == app::PictureMode::Layout))
+  const PictureMode pm = parse_mode(mode, "mode");
+  if ((on_surface || log_scale) && (pm == PictureMode::Checker || pm == PictureMode::Layout))
     throw_usage("--on-surface and --log apply to the angle, area and stretch modes only");
-  const app::PictureSettings s = settings(size, view, on_surface, log_scale);
+  const PictureSettings s = settings(size, view, on_surface, log_scale);
   const std::string out = path.is_none() ? "" : to_path(path);
-  if (!out.empty()) app::check_png_path(out, "path");
+  if (!out.empty()) check_png_path(out, "path");
   const MatrixX3d v = to_V(V);
   const MatrixX3i f = to_F(F);
   const MatrixX2d t = to_UV(uv);
@@ -63,12 +63,12 @@ py::object render(const py::object& V, const py::object& F, const py::object& uv
   Image image;
   {
     py::gil_scoped_release release;
-    app::Distortion d;
-    if (pm != app::PictureMode::Checker && pm != app::PictureMode::Layout) {
+    Distortion d;
+    if (pm != PictureMode::Checker && pm != PictureMode::Layout) {
       d.faces = face_distortion(v, f, t);
       d.summary = summarize_distortion(v, f, t);
     }
-    image = app::make_picture(pm, v, f, t, s, &d).image;
+    image = make_picture(pm, v, f, t, s, &d).image;
     if (!out.empty()) write_file_atomically(out, encode_png(image));
   }
   if (!out.empty()) return py::none();
@@ -88,7 +88,7 @@ void register_render(py::module_& m) {
         "edge_length_energy, area_energy, distortion_normalisation, stretch (Sander's L2 and per-face\n"
         "stretch percentiles, docs/maths.md 9.8; docs/formats.md 'Report'). Faces are taken as\n"
         "listed (not reoriented) so flipped triangles are counted.");
-  m.def("render", &render, py::arg("V"), py::arg("F"), py::arg("uv"), py::arg("mode") = "checker",
+  m.def("render", &render, py::arg("V"), py::arg("F"), py::arg("uv"), py::arg("mode") = choice_name(PictureMode::Checker),
         py::arg("size") = py::make_tuple(1024, 1024), py::arg("view") = "auto", py::arg("path") = py::none(),
         py::arg("on_surface") = false, py::arg("log") = false,
         "render(V, F, uv, mode='checker', size=(1024, 1024), view='auto', path=None, on_surface=False, log=False)\n\n"

@@ -1,7 +1,7 @@
 // Shared declarations of the Python module intrinsic._intrinsic: array
 // conversion (numpy <-> the library's Eigen matrices), the conversion of
-// Python option dictionaries to the command line's ParamArgs, and one
-// register function per binding file.
+// Python keyword options to the library's typed requests (pipeline.h), and
+// one register function per binding file.
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -14,7 +14,8 @@
 
 #include "intrinsic/boundary.h"
 #include "intrinsic/mesh_data.h"
-#include "param_job.h"
+#include "intrinsic/names.h"
+#include "intrinsic/pipeline.h"
 
 namespace intrinsic::python {
 
@@ -44,12 +45,27 @@ py::list from_fixed(const std::vector<FixedVertex>& fixed);
 // A JSON document as Python objects (through the json module: exact numbers).
 py::object to_python(const nlohmann::json& j);
 
+// A choice keyword: a name (the table's parse, `keyword` in the message) or
+// the bound enum value (intrinsic.Method.CONFORMAL).
+template <class E>
+E to_choice(const py::handle& value, const char* keyword) {
+  if (py::isinstance<py::str>(value)) return parse_choice<E>(value.cast<std::string>(), keyword);
+  try {
+    return value.cast<E>();
+  } catch (const py::cast_error&) {
+    throw_usage(std::string(keyword) + ": expected one of " + choice_list<E>() + ", got " +
+                py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+  }
+}
+
 // The keyword options of parameterize() (the CLI's long options, dashes as
-// underscores) -> ParamArgs; Error(Usage) with the CLI's messages for unknown
-// values. `optimizers` false refuses the optimize_* options (Parameterizer).
-app::ParamArgs to_args(const py::dict& options, bool optimizers);
-// Pops method, lambda (lambda_, lam) and mu from `options` into `w`.
-void set_weights(app::WeightArgs& w, py::dict& options);
+// underscores) -> the library's request; Error(Usage) naming the keyword.
+// `optimizers` false refuses the optimize_* options (Parameterizer).
+ParamRequest to_request(const py::dict& options, bool optimizers);
+// Pops method, lambda (lambda_, lam) and mu from `options`; checked.
+WeightOptions pop_weights(py::dict& options);
+// Error(Usage) "unknown option 'k'" when a keyword is left.
+void check_no_options_left(const py::dict& options);
 
 void register_errors(py::module_& m);
 void register_io(py::module_& m);

@@ -1,123 +1,152 @@
-// Python keyword options -> the command line's ParamArgs (app/param_job.h),
-// so that parameterize(V, F, **options) maps options exactly as
-// `intrinsic param` does. Values the command line checks with CLI11 before
-// running (IsMember) are checked here with CLI11's message.
-#include <cmath>
-#include <cstdio>
-#include <set>
+// Python keyword options -> the library's typed requests (pipeline.h):
+// parameterize(V, F, **options) and Parameterizer(...) fill a ParamRequest,
+// atlas() an AtlasRequest's chart map. Choices go through the name tables
+// (names.h) with the keyword as the label, so a bad value reads
+// "method: 'foo' is not one of conformal, ...", and the library's own checks
+// name keywords (OptionSpelling::Keyword), never command-line flags.
+#include <iostream>
 
 #include "common.h"
-#include "intrinsic/io.h"
-#include "intrinsic/constraints.h"
 #include "intrinsic/error.h"
+#include "intrinsic/io.h"
+#include "intrinsic/names.h"
 
 namespace intrinsic::python {
 namespace {
 
-// CLI11's IsMember message: "--spacing: foo not in {arclength,uniform}".
-void check_member(const std::string& option, const std::string& value, const std::vector<std::string>& allowed) {
-  for (const std::string& a : allowed)
-    if (a == value) return;
-  std::string set;
-  for (const std::string& a : allowed) set += (set.empty() ? "" : ",") + a;
-  throw_usage("--" + option + ": " + value + " not in {" + set + "}");
+py::object pop(py::dict& o, const char* key) { return o.attr("pop")(key, py::none()); }
+
+template <class T>
+T pop_number(py::dict& o, const char* key, T fallback) {
+  const py::object v = pop(o, key);
+  if (v.is_none()) return fallback;
+  try {
+    return v.cast<T>();
+  } catch (const py::cast_error&) {
+    throw_usage(std::string(key) + ": expected a number, got " + py::str(py::type::of(v).attr("__name__")).cast<std::string>());
+  }
 }
 
-std::string pin_text(const py::handle& pin) {
-  if (py::isinstance<py::str>(pin)) return pin.cast<std::string>();
-  const std::vector<FixedVertex> one = to_fixed(py::make_tuple(pin), "pins");
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "%d:%.17g,%.17g", one[0].vertex, one[0].uv.x(), one[0].uv.y());
-  return buf;
+// (vertex, u, v) triples, or "V:U,V" text as batch runs pass --pin.
+std::vector<FixedVertex> to_pins(const py::handle& pins) {
+  std::vector<FixedVertex> out;
+  for (const py::handle p : pins) {
+    if (py::isinstance<py::str>(p)) out.push_back(parse_pin(p.cast<std::string>(), OptionSpelling::Keyword));
+    else out.push_back(to_fixed(py::make_tuple(p), "pins").front());
+  }
+  return out;
 }
 
-void set_constraints(app::ParamArgs& a, const py::handle& c) {
+void set_constraints(ParamRequest& r, const py::handle& c) {
   if (c.is_none()) return;
   if (py::isinstance<py::dict>(c)) {
     const std::string text = py::str(py::module_::import("json").attr("dumps")(c)).cast<std::string>();
-    a.given_constraints = std::make_shared<const Constraints>(parse_constraints_json(text, "constraints"));
+    r.constraints = parse_constraints_json(text, "constraints");
   } else {
-    a.constraints = to_path(c);  // read by the pipeline, as --constraints FILE
+    r.constraints_file = to_path(c);  // read by the pipeline, as --constraints FILE
+  }
+}
+
+// Boundary optimization's progress lines on stderr when verbose=True (the
+// library never prints).
+void set_progress(BoundaryOptimizationOptions& bo) {
+  bo.progress = [](int it, double e) {
+    std::cerr << "boundary optimization: iteration " << it << ", energy " << e << "\n" << std::flush;
+  };
+}
+
+void set_optimizers(ParamRequest& r, py::dict& o, bool verbose) {
+  const py::object lambda = pop(o, "optimize_lambda"), boundary = pop(o, "optimize_boundary");
+  if (!lambda.is_none() && !boundary.is_none()) throw_usage("optimize_lambda and optimize_boundary cannot be combined");
+  if (!lambda.is_none()) {
+    r.optimizer = ChartOptimizer::OptimalLambda;
+    r.optimal_lambda.energy = to_choice<LambdaEnergy>(lambda, "optimize_lambda");
+  } else if (!boundary.is_none()) {
+    r.optimizer = ChartOptimizer::OptimizeBoundary;
+    r.boundary_optimization.energy = to_choice<BoundaryEnergy>(boundary, "optimize_boundary");
+  }
+  const py::object range = pop(o, "lambda_range");
+  if (!range.is_none()) {
+    const auto lohi = range.cast<std::vector<double>>();
+    if (lohi.size() != 2) throw_usage("lambda_range: expected (lo, hi)");
+    r.optimal_lambda.lo = lohi[0];
+    r.optimal_lambda.hi = lohi[1];
+  }
+  BoundaryOptimizationOptions& bo = r.boundary_optimization;
+  bo.max_iterations = pop_number<int>(o, "iterations", 200);
+  if (bo.max_iterations < 0) throw_usage("iterations: must be >= 0, got " + std::to_string(bo.max_iterations));
+  bo.tolerance = pop_number<double>(o, "tolerance", 1e-6);
+  if (!(bo.tolerance >= 0)) throw_usage("tolerance: must be >= 0, got " + short_number(bo.tolerance));
+  const py::object route = pop(o, "gradient"), descent = pop(o, "descent");
+  if (!route.is_none()) bo.route = to_choice<GradientRoute>(route, "gradient");
+  if (!descent.is_none()) bo.descent = to_choice<Descent>(descent, "descent");
+  if (verbose) set_progress(bo);
+}
+
+void set_boundary(ParamRequest& r, const py::object& b) {
+  if (b.is_none()) return;
+  if (!py::isinstance<py::str>(b) && !py::hasattr(b, "__fspath__")) {
+    r.options.boundary = to_choice<BoundaryShape>(b, "boundary");
+    return;
+  }
+  const std::string text = to_path(b);
+  if (is_choice<BoundaryShape>(text)) {
+    r.options.boundary = parse_choice<BoundaryShape>(text, "boundary");
+  } else {
+    r.options.boundary = BoundaryShape::Given;  // a file of positions
+    r.boundary_file = text;
   }
 }
 
 }  // namespace
 
-void set_weights(app::WeightArgs& w, py::dict& o) {
-  if (o.contains("method")) w.method = py::str(o.attr("pop")("method")).cast<std::string>();
-  check_member("method", w.method, {"conformal", "authalic", "mixed", "tutte", "floater"});
-  int lambdas = 0;
+WeightOptions pop_weights(py::dict& o) {
+  const py::object m = pop(o, "method");
+  const Method method = m.is_none() ? Method::Conformal : to_choice<Method>(m, "method");
+  std::optional<double> lambda, mu;
   for (const char* key : {"lambda", "lambda_", "lam"}) {
-    const py::object v = o.attr("pop")(key, py::none());
+    const py::object v = pop(o, key);
     if (v.is_none()) continue;
-    if (++lambdas > 1) throw_usage("give lambda once (lam, lambda_ or 'lambda')");
-    w.lambda = v.cast<double>();
-    w.lambda_set = true;
+    if (lambda) throw_usage("give lambda once (lam, lambda_ or 'lambda')");
+    lambda = v.cast<double>();
   }
-  const py::object mu = o.attr("pop")("mu", py::none());
-  if (!mu.is_none()) {
-    w.mu = mu.cast<double>();
-    w.mu_set = true;
-  }
+  const py::object u = pop(o, "mu");
+  if (!u.is_none()) mu = u.cast<double>();
+  return weight_options(method, lambda, mu, OptionSpelling::Keyword);
 }
 
-namespace {
-
-std::string pop_str(py::dict& o, const char* key, const std::string& fallback) {
-  const py::object v = o.attr("pop")(key, py::none());
-  return v.is_none() ? fallback : py::str(v).cast<std::string>();
+void check_no_options_left(const py::dict& o) {
+  if (!o.empty()) throw_usage("unknown option '" + py::str(py::list(o.attr("keys")())[0]).cast<std::string>() + "'");
 }
 
-void set_optimizers(app::ParamArgs& a, py::dict& o) {
-  a.optimize_lambda = pop_str(o, "optimize_lambda", "");
-  if (!a.optimize_lambda.empty()) check_member("optimize-lambda", a.optimize_lambda, {"edge", "area"});
-  const py::object range = o.attr("pop")("lambda_range", py::none());
-  if (!range.is_none()) a.lambda_range = range.cast<std::vector<double>>();
-  if (a.lambda_range.size() != 2) throw_usage("--lambda-range: expected LO,HI");
-  a.optimize_boundary = pop_str(o, "optimize_boundary", "");
-  if (!a.optimize_boundary.empty())
-    check_member("optimize-boundary", a.optimize_boundary, {"edge", "area", "dirichlet"});
-  a.iterations = o.attr("pop")("iterations", a.iterations).cast<int>();
-  if (a.iterations < 0) throw_usage("--iterations: Value " + std::to_string(a.iterations) + " should not be negative");
-  a.tolerance = o.attr("pop")("tolerance", a.tolerance).cast<double>();
-  a.gradient = pop_str(o, "gradient", a.gradient);
-  check_member("gradient", a.gradient, {"adjoint", "responses"});
-  a.descent = pop_str(o, "descent", a.descent);
-  check_member("descent", a.descent, {"lbfgs", "gradient"});
-}
-
-}  // namespace
-
-app::ParamArgs to_args(const py::dict& options, bool optimizers) {
+ParamRequest to_request(const py::dict& options, bool optimizers) {
   py::dict o = options.attr("copy")();
-  app::ParamArgs a;
-  a.quiet = true;  // the library never prints; boundary optimization's progress lines are the CLI's
-  set_weights(*a.weights, o);
-  const py::object boundary = o.attr("pop")("boundary", py::none());
-  if (!boundary.is_none()) a.boundary = to_path(boundary);
-  a.spacing = pop_str(o, "spacing", a.spacing);
-  check_member("spacing", a.spacing, {"arclength", "uniform"});
-  a.scale = pop_str(o, "scale", a.scale);
-  check_member("scale", a.scale, {"unit", "surface"});
-  a.holes = pop_str(o, "holes", a.holes);
-  check_member("holes", a.holes, {"fill", "free", "natural"});
-  a.solver = pop_str(o, "solver", a.solver);
-  const py::object pins = o.attr("pop")("pins", o.attr("pop")("pin", py::none()));
-  if (!pins.is_none())
-    for (const py::handle p : pins) a.pins.push_back(pin_text(p));
-  a.max_residual = o.attr("pop")("max_residual", a.max_residual).cast<double>();
-  set_constraints(a, o.attr("pop")("constraints", py::none()));
-  a.largest_component = o.attr("pop")("largest_component", false).cast<bool>();
-  a.max_vertices = o.attr("pop")("max_vertices", a.max_vertices).cast<std::int64_t>();
-  if (a.max_vertices <= 0) throw_usage("--max-vertices: Value " + std::to_string(a.max_vertices) + " should be positive");
-  a.quiet = !o.attr("pop")("verbose", false).cast<bool>();
-  if (optimizers) set_optimizers(a, o);
-  if (!o.empty()) {
-    const std::string key = py::str(py::list(o.attr("keys")())[0]).cast<std::string>();
-    throw_usage("unknown option '" + key + "'");
+  ParamRequest r;
+  r.spelling = OptionSpelling::Keyword;
+  ParamOptions& p = r.options;
+  p.weights = pop_weights(o);
+  set_boundary(r, pop(o, "boundary"));
+  if (const py::object v = pop(o, "spacing"); !v.is_none()) p.spacing = to_choice<Spacing>(v, "spacing");
+  if (const py::object v = pop(o, "scale"); !v.is_none()) p.scale = to_choice<ScaleMode>(v, "scale");
+  if (const py::object v = pop(o, "holes"); !v.is_none()) p.holes = to_choice<HoleRule>(v, "holes");
+  if (const py::object v = pop(o, "solver"); !v.is_none()) {
+    // A name is also checked against this build's solvers.
+    p.solver = py::isinstance<py::str>(v) ? parse_solver(v.cast<std::string>(), "solver") : to_choice<SolverKind>(v, "solver");
   }
-  app::check_args(a);
-  return a;
+  const py::object pins = o.attr("pop")("pins", pop(o, "pin"));
+  if (!pins.is_none()) p.pins = to_pins(pins);
+  p.max_residual = pop_number<double>(o, "max_residual", p.max_residual);
+  set_constraints(r, pop(o, "constraints"));
+  r.largest_component = o.attr("pop")("largest_component", false).cast<bool>();
+  r.read.max_vertices = pop_number<std::int64_t>(o, "max_vertices", r.read.max_vertices);
+  if (r.read.max_vertices <= 0)
+    throw_usage("max_vertices: must be > 0, got " + std::to_string(r.read.max_vertices));
+  r.read.max_faces = faces_for_vertices(r.read.max_vertices);
+  const bool verbose = o.attr("pop")("verbose", false).cast<bool>();
+  if (optimizers) set_optimizers(r, o, verbose);
+  check_no_options_left(o);
+  check_param_request(r);
+  return r;
 }
 
 }  // namespace intrinsic::python

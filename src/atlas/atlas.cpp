@@ -5,17 +5,6 @@
 
 namespace intrinsic {
 
-const char* chart_method_name(ChartMethod m) {
-  switch (m) {
-    case ChartMethod::Natural: return "natural";
-    case ChartMethod::Triangle: return "triangle";
-    case ChartMethod::FixedBoundary: return "fixed-boundary";
-    case ChartMethod::OptimalLambda: return "optimal-lambda";
-    case ChartMethod::OptimizedBoundary: return "optimized-boundary";
-  }
-  return "natural";
-}
-
 AtlasResult atlas(const MeshData& input, const AtlasOptions& options) {
   const ChartOptions chart = chart_options(options);
   const PackOptions pack = pack_options(options);

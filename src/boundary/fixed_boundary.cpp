@@ -3,20 +3,13 @@
 
 #include "intrinsic/boundary.h"
 #include "intrinsic/error.h"
+#include "intrinsic/names.h"
 
 namespace intrinsic {
 
-std::string boundary_shape_name(BoundaryShape s) {
-  switch (s) {
-    case BoundaryShape::Circle: return "circle";
-    case BoundaryShape::Square: return "square";
-    case BoundaryShape::Given: return "given";
-    case BoundaryShape::Natural: return "natural";
-  }
-  return "?";
-}
+std::string boundary_shape_name(BoundaryShape s) { return choice_name(s); }
 
-std::string spacing_name(Spacing s) { return s == Spacing::Uniform ? "uniform" : "arclength"; }
+std::string spacing_name(Spacing s) { return choice_name(s); }
 
 std::vector<double> loop_parameters(const MatrixX3d& V, const std::vector<int>& loop, Spacing spacing) {
   const size_t n = loop.size();

@@ -10,6 +10,7 @@
 
 #include "core/placement.h"
 #include "intrinsic/error.h"
+#include "intrinsic/names.h"
 #include "intrinsic/parameterizer.h"
 
 namespace intrinsic {
@@ -63,34 +64,11 @@ std::vector<FixedVertex> boundary_positions(const Mesh& mesh, const ParamOptions
   return o.given;
 }
 
-std::string hole_rule_name(HoleRule r) {
-  switch (r) {
-    case HoleRule::Fill: return "fill";
-    case HoleRule::Free: return "free";
-    case HoleRule::Natural: return "natural";
-  }
-  return "?";
-}
+std::string hole_rule_name(HoleRule r) { return choice_name(r); }
 
-std::string holes_applied_name(HolesApplied h) {
-  switch (h) {
-    case HolesApplied::None: return "none";
-    case HolesApplied::Fill: return "fill";
-    case HolesApplied::Free: return "free";
-    case HolesApplied::Natural: return "natural";
-    case HolesApplied::FreeNoConformalTerm: return "free (method has no conformal term)";
-  }
-  return "?";
-}
+std::string holes_applied_name(HolesApplied h) { return choice_name(h); }
 
-std::string placement_name(Placement p) {
-  switch (p) {
-    case Placement::Unit: return "unit";
-    case Placement::Surface: return "surface";
-    case Placement::Given: return "given";
-  }
-  return "?";
-}
+std::string placement_name(Placement p) { return choice_name(p); }
 
 std::string chart_fallback_name(ChartFallback f) {
   switch (f) {

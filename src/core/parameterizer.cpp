@@ -144,7 +144,7 @@ void Parameterizer::set_boundary_shape(BoundaryShape shape) {
   try {
     s.o.boundary = shape;
     const std::vector<FixedVertex> fixed = boundary_positions(*s.mesh, s.o);
-    if (fixed.size() != s.fixed.size()) throw_usage("the " + std::string(shape == BoundaryShape::Square ? "square" : "circle") + " fixes other vertices");
+    if (fixed.size() != s.fixed.size()) throw_usage("the " + boundary_shape_name(shape) + " fixes other vertices");
     for (const FixedVertex& fv : fixed) {
       if (s.p().fixed_index[fv.vertex] < 0) throw_usage("the new boundary fixes other vertices");
       s.UB.row(s.p().fixed_index[fv.vertex]) = fv.uv.transpose();

@@ -7,41 +7,24 @@
 
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/error.h"
+#include "intrinsic/names.h"
 #include "intrinsic/metrics.h"
 
 namespace intrinsic {
 
 BoundaryEnergy parse_boundary_energy(const std::string& name) {
-  if (name == "edge") return BoundaryEnergy::EdgeLength;
-  if (name == "area") return BoundaryEnergy::Area;
-  if (name == "dirichlet") return BoundaryEnergy::SymmetricDirichlet;
-  throw_usage("unknown boundary energy '" + name + "' (use edge, area or dirichlet)");
+  return parse_choice<BoundaryEnergy>(name, "optimize-boundary");
 }
 
-GradientRoute parse_gradient_route(const std::string& name) {
-  if (name == "adjoint") return GradientRoute::Adjoint;
-  if (name == "responses") return GradientRoute::Responses;
-  throw_usage("unknown gradient route '" + name + "' (use adjoint or responses)");
-}
+GradientRoute parse_gradient_route(const std::string& name) { return parse_choice<GradientRoute>(name, "gradient"); }
 
-Descent parse_descent(const std::string& name) {
-  if (name == "lbfgs") return Descent::LBFGS;
-  if (name == "gradient") return Descent::GradientDescent;
-  throw_usage("unknown descent '" + name + "' (use lbfgs or gradient)");
-}
+Descent parse_descent(const std::string& name) { return parse_choice<Descent>(name, "descent"); }
 
-std::string boundary_energy_name(BoundaryEnergy e) {
-  switch (e) {
-    case BoundaryEnergy::EdgeLength: return "edge";
-    case BoundaryEnergy::Area: return "area";
-    case BoundaryEnergy::SymmetricDirichlet: return "dirichlet";
-  }
-  return "?";
-}
+std::string boundary_energy_name(BoundaryEnergy e) { return choice_name(e); }
 
-std::string gradient_route_name(GradientRoute r) { return r == GradientRoute::Adjoint ? "adjoint" : "responses"; }
+std::string gradient_route_name(GradientRoute r) { return choice_name(r); }
 
-std::string descent_name(Descent d) { return d == Descent::LBFGS ? "lbfgs" : "gradient"; }
+std::string descent_name(Descent d) { return choice_name(d); }
 
 namespace {
 

@@ -11,6 +11,7 @@
 
 #include "core/placement.h"
 #include "intrinsic/error.h"
+#include "intrinsic/names.h"
 #include "intrinsic/metrics.h"
 
 namespace intrinsic {
@@ -106,12 +107,10 @@ ParamResult blended_map(const Mesh& mesh, const OptimalLambdaOptions& o, const P
 double evaluate(const Quartic& c, double x) { return (((c[4] * x + c[3]) * x + c[2]) * x + c[1]) * x + c[0]; }
 
 LambdaEnergy parse_lambda_energy(const std::string& name) {
-  if (name == "edge") return LambdaEnergy::EdgeLength;
-  if (name == "area") return LambdaEnergy::Area;
-  throw_usage("unknown energy '" + name + "' for --optimize-lambda (use edge or area)");
+  return parse_choice<LambdaEnergy>(name, "optimize-lambda");
 }
 
-std::string lambda_energy_name(LambdaEnergy e) { return e == LambdaEnergy::EdgeLength ? "edge" : "area"; }
+std::string lambda_energy_name(LambdaEnergy e) { return choice_name(e); }
 
 Quartic lambda_energy_polynomial(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UA, const MatrixX2d& UX,
                                  LambdaEnergy energy) {

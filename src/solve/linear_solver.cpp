@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "intrinsic/error.h"
+#include "intrinsic/names.h"
 
 #ifdef INTRINSIC_HAVE_SUITESPARSE
 #include "solve/suitesparse.h"
@@ -17,28 +18,15 @@
 
 namespace intrinsic {
 
-std::string solver_name(SolverKind k) {
-  switch (k) {
-    case SolverKind::Auto: return "auto";
-    case SolverKind::Cholmod: return "cholmod";
-    case SolverKind::Umfpack: return "umfpack";
-    case SolverKind::EigenLLT: return "eigen-llt";
-    case SolverKind::EigenLU: return "eigen-lu";
-    case SolverKind::CG: return "cg";
-    case SolverKind::BiCGSTAB: return "bicgstab";
-  }
-  return "?";
-}
+std::string solver_name(SolverKind k) { return choice_name(k); }
 
-SolverKind parse_solver(const std::string& name) {
-  for (SolverKind k : {SolverKind::Auto, SolverKind::Cholmod, SolverKind::Umfpack, SolverKind::EigenLLT,
-                       SolverKind::EigenLU, SolverKind::CG, SolverKind::BiCGSTAB})
-    if (solver_name(k) == name) {
-      if (!solver_available(k))
-        throw_usage("solver '" + name + "' is not available in this build (SuiteSparse was not found)");
-      return k;
-    }
-  throw_usage("unknown solver '" + name + "' (use auto, cholmod, umfpack, eigen-llt, eigen-lu, cg or bicgstab)");
+SolverKind parse_solver(const std::string& name) { return parse_solver(name, "solver"); }
+
+SolverKind parse_solver(const std::string& name, std::string_view label) {
+  const SolverKind k = parse_choice<SolverKind>(name, label);
+  if (!solver_available(k))
+    throw_usage("solver '" + name + "' is not available in this build (SuiteSparse was not found)");
+  return k;
 }
 
 bool solver_available(SolverKind k) {

@@ -6,25 +6,13 @@
 #include <cmath>
 
 #include "intrinsic/error.h"
+#include "intrinsic/names.h"
 
 namespace intrinsic {
 
-std::string method_name(Method m) {
-  switch (m) {
-    case Method::Conformal: return "conformal";
-    case Method::Authalic: return "authalic";
-    case Method::Mixed: return "mixed";
-    case Method::Tutte: return "tutte";
-    case Method::Floater: return "floater";
-  }
-  return "?";
-}
+std::string method_name(Method m) { return choice_name(m); }
 
-Method parse_method(const std::string& name) {
-  for (Method m : {Method::Conformal, Method::Authalic, Method::Mixed, Method::Tutte, Method::Floater})
-    if (method_name(m) == name) return m;
-  throw_usage("unknown method '" + name + "' (use conformal, authalic, mixed, tutte or floater)");
-}
+Method parse_method(const std::string& name) { return parse_choice<Method>(name, "method"); }
 
 void check_weights(const WeightOptions& w) {
   if (w.method == Method::Mixed && w.lambda == 0 && w.mu == 0)

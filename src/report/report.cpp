@@ -1,9 +1,9 @@
 // JSON report construction and writing (docs/formats.md "Report").
-#include "report.h"
+#include "intrinsic/report.h"
 
 #include "intrinsic/io.h"
 
-namespace intrinsic::app {
+namespace intrinsic {
 namespace {
 
 nlohmann::json chart_json(const ChartSummary& c) {
@@ -157,4 +157,4 @@ nlohmann::json boundary_optimization_json(const BoundaryOptimizationResult& best
           {"timings_ms", {{"setup", best.setup_ms}, {"optimize", best.optimize_ms}}}};
 }
 
-}  // namespace intrinsic::app
+}  // namespace intrinsic

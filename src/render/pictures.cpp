@@ -1,5 +1,5 @@
 // Picture modes and their option parsing.
-#include "pictures.h"
+#include "intrinsic/pictures.h"
 
 #include <algorithm>
 #include <cctype>
@@ -13,7 +13,7 @@
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
 
-namespace intrinsic::app {
+namespace intrinsic {
 
 namespace {
 
@@ -33,22 +33,9 @@ bool parse_pair(const std::string& text, double& a, double& b) {
 
 }  // namespace
 
-const char* mode_name(PictureMode m) {
-  switch (m) {
-    case PictureMode::Checker: return "checker";
-    case PictureMode::Layout: return "layout";
-    case PictureMode::Angle: return "angle";
-    case PictureMode::Area: return "area";
-    case PictureMode::Stretch: return "stretch";
-  }
-  return "?";
-}
+std::string mode_name(PictureMode m) { return choice_name(m); }
 
-PictureMode parse_mode(const std::string& name) {
-  for (PictureMode m : kAllPictureModes)
-    if (name == mode_name(m)) return m;
-  throw_usage("unknown picture mode '" + name + "' (use checker, layout, angle, area or stretch)");
-}
+PictureMode parse_mode(const std::string& name, std::string_view label) { return parse_choice<PictureMode>(name, label); }
 
 void parse_size(const std::string& text, const std::string& option, int& width, int& height) {
   double w = 0, h = 0;
@@ -166,4 +153,4 @@ void write_all(const std::vector<std::pair<std::string, std::string>>& files,
   }
 }
 
-}  // namespace intrinsic::app
+}  // namespace intrinsic

@@ -12,7 +12,7 @@
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
 
-namespace intrinsic::app {
+namespace intrinsic {
 
 nlohmann::json stat_json(const Stat& s);
 // Mesh facts: vertices, faces, boundary_loops, components, validation fixes.
@@ -39,4 +39,4 @@ nlohmann::json optimal_lambda_json(const OptimalLambdaResult& best, const Optima
 nlohmann::json boundary_optimization_json(const BoundaryOptimizationResult& best,
                                           const BoundaryOptimizationOptions& options);
 
-}  // namespace intrinsic::app
+}  // namespace intrinsic

@@ -1,4 +1,4 @@
-// One browser tab's state in `intrinsic serve`: its Parameterizer, the
+// An interactive editing session (one browser tab of `intrinsic serve`): its Parameterizer, the
 // BoundaryEditor on it (fixed boundary or natural pins) and the options they
 // were built with (paper section 4.2; docs/maths.md §5, §6). A request is
 // answered from the kept factorization whenever the system matrix is
@@ -23,12 +23,22 @@
 #include <vector>
 
 #include "intrinsic/boundary_editor.h"
+#include "intrinsic/constraints.h"
 #include "intrinsic/parameterizer.h"
-#include "serve/solve_request.h"
 
-namespace intrinsic::app {
+namespace intrinsic {
 
-struct SolveAnswer {
+// One request to a session (the server reads it from `POST /api/solve`).
+struct EditRequest {
+  WeightOptions weights;                            // checked (pipeline.h weight_options)
+  BoundaryShape boundary = BoundaryShape::Circle;   // Circle, Square or Natural
+  std::vector<FixedVertex> pins;                    // natural only; empty: the default pins
+  Constraints constraints;                          // face points already in mesh.F corner order
+  std::string constraints_key;                      // canonical JSON of the constraints ("" when none)
+  std::vector<FixedVertex> moves;                   // fixed boundary only: new positions of base boundary vertices
+};
+
+struct EditAnswer {
   MatrixX2d uv;
   double update_ms = 0;             // the solve or update only (not parsing, metrics, JSON)
   std::string path;                 // "responses" | "resolve" | "constraints" | "factor"
@@ -42,16 +52,16 @@ class EditSession {
   ~EditSession();
   // Throws intrinsic::Error as the library does; the session then keeps no
   // half-built state (the next request builds anew).
-  SolveAnswer solve(const SolveRequest& request);
+  EditAnswer solve(const EditRequest& request);
   // Fixed boundary: the positions of the outer loop (output coordinates)
   // after `request` (solved first). Error(Usage) for the natural map.
-  std::vector<FixedVertex> boundary_after(const SolveRequest& request);
+  std::vector<FixedVertex> boundary_after(const EditRequest& request);
 
  private:
-  SolveAnswer rebuild(const SolveRequest& r, const std::string& key);
-  std::string update_constraints(const SolveRequest& r);
-  SolveAnswer move_fixed(const SolveRequest& r);
-  SolveAnswer move_pins(const SolveRequest& r);
+  EditAnswer rebuild(const EditRequest& r, const std::string& key);
+  std::string update_constraints(const EditRequest& r);
+  EditAnswer move_fixed(const EditRequest& r);
+  EditAnswer move_pins(const EditRequest& r);
   void set_base();
   void prepare_pins();
   void reset();
@@ -61,11 +71,12 @@ class EditSession {
   std::unique_ptr<BoundaryEditor> editor_;  // destroyed before the parameterizer
   std::string key_;                         // options the parameterizer was built with (constraints aside)
   std::string constraints_key_;             // the constraints it holds now
-  std::string shape_;                       // "circle" | "square" | "natural": the boundary it holds now
+  BoundaryShape shape_ = BoundaryShape::Circle;  // the boundary it holds now
+  bool has_shape_ = false;                        // false until built (and after a failure)
   std::vector<FixedVertex> base_;           // fixed boundary: the base positions (output coordinates)
   std::vector<int> base_index_;             // vertex -> index in base_, -1 when not fixed
   std::vector<int> moved_;                  // vertices the last request moved away from base_
   std::vector<FixedVertex> default_pins_;   // natural map: the default pins as placed (kept across rebuilds)
 };
 
-}  // namespace intrinsic::app
+}  // namespace intrinsic

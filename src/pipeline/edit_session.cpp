@@ -1,5 +1,6 @@
-// The per-tab solve engine of `intrinsic serve` (edit_session.h).
-#include "serve/edit_session.h"
+// An interactive editing session, the per-tab solve engine of `intrinsic
+// serve` (edit_session.h).
+#include "intrinsic/edit_session.h"
 
 #include <chrono>
 
@@ -7,7 +8,7 @@
 
 #include "intrinsic/error.h"
 
-namespace intrinsic::app {
+namespace intrinsic {
 namespace {
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
@@ -18,17 +19,13 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 // everything but the moves, the constraints, the pin positions and whether
 // the fixed boundary is a circle or a square (the same fixed vertices: only
 // their positions differ).
-std::string options_key(const SolveRequest& r, const std::vector<FixedVertex>& pin_list) {
-  const WeightOptions w = r.weights.options();
+std::string options_key(const EditRequest& r, const std::vector<FixedVertex>& pin_list) {
+  const WeightOptions& w = r.weights;
   nlohmann::json pins = nlohmann::json::array();
   for (const FixedVertex& p : pin_list) pins.push_back(p.vertex);
   return nlohmann::json{{"method", static_cast<int>(w.method)}, {"lambda", w.lambda}, {"mu", w.mu},
-                        {"natural", r.boundary == "natural"}, {"pins", pins}}
+                        {"natural", r.boundary == BoundaryShape::Natural}, {"pins", pins}}
       .dump();
-}
-
-BoundaryShape shape_of(const std::string& boundary) {
-  return boundary == "square" ? BoundaryShape::Square : boundary == "natural" ? BoundaryShape::Natural : BoundaryShape::Circle;
 }
 
 // The answer's path when one request takes several steps: the costliest.
@@ -45,10 +42,10 @@ bool same_rows(const std::vector<LinearConstraint>& a, const std::vector<LinearC
   return true;
 }
 
-ParamOptions to_param_options(const SolveRequest& r) {
+ParamOptions to_param_options(const EditRequest& r) {
   ParamOptions o;
-  o.weights = r.weights.options();
-  o.boundary = shape_of(r.boundary);
+  o.weights = r.weights;
+  o.boundary = r.boundary;
   o.pins = r.pins;
   return o;
 }
@@ -62,32 +59,32 @@ void EditSession::reset() {
   parameterizer_.reset();
   key_.clear();
   constraints_key_.clear();
-  shape_.clear();
+  has_shape_ = false;
   base_.clear();
   base_index_.clear();
   moved_.clear();
 }
 
-SolveAnswer EditSession::solve(const SolveRequest& request) {
+EditAnswer EditSession::solve(const EditRequest& request) {
   // Natural map without pins: the default pins where the library placed
   // them, once known. The same map (it is unique for given pin positions),
   // and the session's editor then serves requests with and without pins.
-  SolveRequest with_pins;
-  const bool fill = request.boundary == "natural" && request.pins.empty() && !default_pins_.empty();
+  EditRequest with_pins;
+  const bool fill = request.boundary == BoundaryShape::Natural && request.pins.empty() && !default_pins_.empty();
   if (fill) {
     with_pins = request;
     with_pins.pins = default_pins_;
   }
-  const SolveRequest& r = fill ? with_pins : request;
+  const EditRequest& r = fill ? with_pins : request;
   const std::string key = options_key(r, r.pins);
   try {
-    SolveAnswer a;
+    EditAnswer a;
     if (key != key_ || !parameterizer_) {
       a = rebuild(r, key);
     } else {
       const auto t0 = std::chrono::steady_clock::now();
       const std::string path = r.constraints_key == constraints_key_ ? "" : update_constraints(r);
-      a = r.boundary == "natural" ? move_pins(r) : move_fixed(r);
+      a = r.boundary == BoundaryShape::Natural ? move_pins(r) : move_fixed(r);
       if (!path.empty()) {
         a.path = costlier(path, a.path);
         a.update_ms = ms_since(t0);
@@ -101,8 +98,8 @@ SolveAnswer EditSession::solve(const SolveRequest& request) {
   }
 }
 
-std::vector<FixedVertex> EditSession::boundary_after(const SolveRequest& r) {
-  if (r.boundary == "natural") throw_usage("the natural map has no fixed boundary");
+std::vector<FixedVertex> EditSession::boundary_after(const EditRequest& r) {
+  if (r.boundary == BoundaryShape::Natural) throw_usage("the natural map has no fixed boundary");
   solve(r);
   return editor_->boundary();
 }
@@ -112,7 +109,7 @@ std::vector<FixedVertex> EditSession::boundary_after(const SolveRequest& r) {
 // many move at once). Other rows: the editor's responses depend on the rows
 // (they keep them met), so it starts again from the Parameterizer's current
 // boundary ("constraints"): the moves carry over.
-std::string EditSession::update_constraints(const SolveRequest& r) {
+std::string EditSession::update_constraints(const EditRequest& r) {
   std::vector<LinearConstraint> rows;
   if (!r.constraints.empty()) rows = resolve_constraints(mesh_, r.constraints);
   if (same_rows(rows, parameterizer_->constraints())) {
@@ -126,7 +123,7 @@ std::string EditSession::update_constraints(const SolveRequest& r) {
   parameterizer_->set_constraints(std::move(rows));
   constraints_key_ = r.constraints_key;
   editor_ = std::make_unique<BoundaryEditor>(*parameterizer_);
-  if (r.boundary == "natural") prepare_pins();
+  if (r.boundary == BoundaryShape::Natural) prepare_pins();
   return "constraints";
 }
 
@@ -139,7 +136,7 @@ void EditSession::prepare_pins() {
   editor_->prepare(pins);
 }
 
-SolveAnswer EditSession::rebuild(const SolveRequest& r, const std::string& key) {
+EditAnswer EditSession::rebuild(const EditRequest& r, const std::string& key) {
   reset();
   const auto t0 = std::chrono::steady_clock::now();
   auto p = std::make_unique<Parameterizer>(mesh_, to_param_options(r));
@@ -149,9 +146,10 @@ SolveAnswer EditSession::rebuild(const SolveRequest& r, const std::string& key) 
   key_ = key;
   constraints_key_ = r.constraints_key;
   shape_ = r.boundary;
-  SolveAnswer a;
+  has_shape_ = true;
+  EditAnswer a;
   a.path = "factor";
-  if (r.boundary == "natural") {
+  if (r.boundary == BoundaryShape::Natural) {
     prepare_pins();
     a.pins = parameterizer_->boundary();
     if (r.pins.empty()) {
@@ -183,12 +181,13 @@ void EditSession::set_base() {
 // Circle <-> square: the Parameterizer places the other shape on the kept
 // factorization, and every fixed vertex moves (a re-solve in the editor,
 // whose responses stay valid: they do not depend on the positions).
-SolveAnswer EditSession::move_fixed(const SolveRequest& r) {
+EditAnswer EditSession::move_fixed(const EditRequest& r) {
   const auto t0 = std::chrono::steady_clock::now();
-  const bool reshape = r.boundary != shape_;
+  const bool reshape = !has_shape_ || r.boundary != shape_;
   if (reshape) {
-    parameterizer_->set_boundary_shape(shape_of(r.boundary));
+    parameterizer_->set_boundary_shape(r.boundary);
     shape_ = r.boundary;
+    has_shape_ = true;
     set_base();
   }
   std::vector<FixedVertex> positions = r.moves;
@@ -201,7 +200,7 @@ SolveAnswer EditSession::move_fixed(const SolveRequest& r) {
     for (const int v : moved_)
       if (!listed[v]) positions.push_back(base_[base_index_[v]]);
   }
-  SolveAnswer a;
+  EditAnswer a;
   if (!positions.empty()) editor_->move(positions);
   moved_.clear();
   for (const FixedVertex& m : r.moves) moved_.push_back(m.vertex);
@@ -214,8 +213,8 @@ SolveAnswer EditSession::move_fixed(const SolveRequest& r) {
 // Same pins (the key holds their vertices): the natural map is linear in
 // the pin positions, so the editor superposes two responses per moved pin.
 // No pins given: the map as built.
-SolveAnswer EditSession::move_pins(const SolveRequest& r) {
-  SolveAnswer a;
+EditAnswer EditSession::move_pins(const EditRequest& r) {
+  EditAnswer a;
   if (!r.pins.empty()) editor_->move(r.pins);
   a.uv = editor_->uv();
   a.update_ms = r.pins.empty() ? 0.0 : editor_->last_update().ms;
@@ -224,4 +223,4 @@ SolveAnswer EditSession::move_pins(const SolveRequest& r) {
   return a;
 }
 
-}  // namespace intrinsic::app
+}  // namespace intrinsic

@@ -1,4 +1,4 @@
-// What `render`, `param --render` and `compare` share: option parsing for
+// What `render`, `param --render`, `compare` and the Python module share: option parsing for
 // pictures, the five picture modes, and writing a set of outputs so that
 // either all of them appear or none does.
 #pragma once
@@ -9,17 +9,18 @@
 #include <vector>
 
 #include "intrinsic/metrics.h"
+#include "intrinsic/names.h"
 #include "intrinsic/render.h"
 
-namespace intrinsic::app {
+namespace intrinsic {
 
-enum class PictureMode { Checker, Layout, Angle, Area, Stretch };
 inline constexpr std::array<PictureMode, 5> kAllPictureModes = {PictureMode::Checker, PictureMode::Layout,
                                                                 PictureMode::Angle, PictureMode::Area,
                                                                 PictureMode::Stretch};
 
-const char* mode_name(PictureMode m);  // "checker", "layout", "angle", "area", "stretch"
-PictureMode parse_mode(const std::string& name);  // throws Error(Usage)
+// PictureMode's names (names.h): "checker", "layout", "angle", "area", "stretch".
+std::string mode_name(PictureMode m);
+PictureMode parse_mode(const std::string& name, std::string_view label = "mode");  // throws Error(Usage)
 
 // "W,H", each 1..16384; throws Error(Usage) naming the option.
 void parse_size(const std::string& text, const std::string& option, int& width, int& height);
@@ -73,4 +74,4 @@ Picture make_picture(PictureMode mode, const MatrixX3d& V, const MatrixX3i& F, c
 void write_all(const std::vector<std::pair<std::string, std::string>>& files,
                const std::vector<std::string>& written_before = {});
 
-}  // namespace intrinsic::app
+}  // namespace intrinsic

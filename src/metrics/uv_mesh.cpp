@@ -1,5 +1,5 @@
 // Re-indexing a mesh by texture coordinate.
-#include "uv_mesh.h"
+#include "intrinsic/uv_mesh.h"
 
 #include <algorithm>
 #include <array>
@@ -10,7 +10,7 @@
 
 #include "intrinsic/error.h"
 
-namespace intrinsic::app {
+namespace intrinsic {
 
 UvMesh split_by_texcoord(const MeshData& data) {
   if (!data.has_uv()) throw_input(data.path + ": the mesh has no texture coordinates (OBJ vt or PLY u, v)");
@@ -131,4 +131,4 @@ nlohmann::json atlas_metrics_json(const UvAtlasMetrics& a) {
           {"chart_list", list}};
 }
 
-}  // namespace intrinsic::app
+}  // namespace intrinsic

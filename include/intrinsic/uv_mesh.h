@@ -11,7 +11,7 @@
 #include "intrinsic/mesh.h"
 #include "intrinsic/metrics.h"
 
-namespace intrinsic::app {
+namespace intrinsic {
 
 struct UvMesh {
   MatrixX3d V;   // the position of each texture coordinate's corners (#TC rows, then the extra ones)
@@ -46,4 +46,4 @@ int small_charts(const UvMesh& m, const UvAtlasMetrics& atlas, int resolution, d
 // charts, flipped, collapsed and overlapping triangles, per-chart list.
 nlohmann::json atlas_metrics_json(const UvAtlasMetrics& atlas);
 
-}  // namespace intrinsic::app
+}  // namespace intrinsic

@@ -1,0 +1,34 @@
+// The atlas job of pipeline.h (`intrinsic atlas` without its command line):
+// read or take the mesh, read the seams file against it, build the atlas
+// (atlas.h).
+#include <chrono>
+
+#include "intrinsic/pipeline.h"
+
+namespace intrinsic {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+AtlasOutcome run(MeshData data, const AtlasRequest& request, Clock::time_point t0) {
+  AtlasOutcome out;
+  out.data = std::move(data);
+  out.options = request.options;
+  if (!request.seams_file.empty()) out.options.seams = read_seams_file(request.seams_file, out.data);
+  out.read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  out.result = atlas(out.data, out.options);
+  return out;
+}
+
+}  // namespace
+
+AtlasOutcome atlas_file(const std::string& path, const AtlasRequest& request) {
+  const auto t0 = Clock::now();
+  return run(read_mesh(path, request.read), request, t0);
+}
+
+AtlasOutcome atlas_data(MeshData data, const AtlasRequest& request) {
+  return run(std::move(data), request, Clock::now());
+}
+
+}  // namespace intrinsic

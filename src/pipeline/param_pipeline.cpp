@@ -1,0 +1,152 @@
+// The parameterize job of pipeline.h (`intrinsic param` without its command
+// line): request checks, reading and validating the mesh, the solve (charts
+// for several components, optimal lambda (paper section 5.1), boundary
+// optimization (section 5.2), constraints) and the distortion summary.
+#include <chrono>
+
+#include "intrinsic/charts.h"
+#include "intrinsic/error.h"
+#include "intrinsic/parameterizer.h"
+#include "intrinsic/pipeline.h"
+
+namespace intrinsic {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+// Several components allowed (charts), or only the largest kept.
+Mesh validated_mesh(const MeshData& data, const ParamRequest& r) {
+  ValidateOptions vo;
+  vo.allow_several_components = true;
+  vo.allow_closed = r.largest_component;  // a closed small piece may be dropped; the kept one is checked later
+  Mesh mesh = make_mesh(data, vo);
+  if (r.largest_component && mesh.topology.num_components > 1) {
+    const int reoriented = mesh.validation.reoriented_faces;
+    mesh = make_mesh(component_data(mesh, largest_component(mesh)));
+    mesh.validation.reoriented_faces = reoriented;
+  }
+  return mesh;
+}
+
+ParamOptions resolved_options(const ParamRequest& r, const Mesh& mesh) {
+  ParamOptions options = r.options;
+  if (options.boundary == BoundaryShape::Given && !r.boundary_file.empty())
+    options.given = read_boundary_file(r.boundary_file, static_cast<int>(mesh.V.rows()));
+  return options;
+}
+
+Constraints resolved_constraints(const ParamRequest& r, const MatrixX3i& file_faces, const Mesh& mesh) {
+  Constraints c = r.constraints ? *r.constraints : read_constraints_file(r.constraints_file);
+  match_face_corners(c, file_faces, mesh);
+  return c;
+}
+
+namespace {
+
+void solve_optimal_lambda(const ParamRequest& r, const ParamOptions& options, ParamOutcome& out) {
+  OptimalLambdaOptions lo = r.optimal_lambda;
+  lo.base = options;
+  OptimalLambdaResult best = optimal_lambda(out.mesh, lo);
+  out.map = std::move(best.map);
+  best.map = ParamResult();
+  out.optimal_lambda = std::move(best);
+}
+
+void solve_boundary_optimization(const ParamRequest& r, const ParamOptions& options, ParamOutcome& out) {
+  BoundaryOptimizationOptions bo = r.boundary_optimization;
+  bo.base = options;
+  BoundaryOptimizationResult best = optimize_boundary(out.mesh, bo);
+  out.map = std::move(best.map);
+  best.map = ParamResult();
+  out.boundary_optimization = std::move(best);
+}
+
+void solve(const ParamRequest& r, const MeshData& data, const ParamOptions& options, ParamOutcome& out) {
+  const auto label = [&](std::string_view key) { return option_label(key, r.spelling); };
+  if (out.mesh.topology.num_components > 1) {
+    if (r.optimizer != ChartOptimizer::None || r.has_constraints())
+      throw_usage(label("optimize_lambda") + ", " + label("optimize_boundary") + " and " + label("constraints") +
+                  " take a single component; use " + label("largest_component"));
+    out.map = parameterize_charts(out.mesh, options);
+    return;
+  }
+  if (r.optimizer == ChartOptimizer::OptimalLambda) return solve_optimal_lambda(r, options, out);
+  if (r.optimizer == ChartOptimizer::OptimizeBoundary) return solve_boundary_optimization(r, options, out);
+  Parameterizer parameterizer(out.mesh, options);
+  if (r.has_constraints()) parameterizer.set_constraints(resolved_constraints(r, data.F, out.mesh));
+  out.map = parameterizer.solve();
+}
+
+ParamOutcome run(const MeshData& data, const ParamRequest& r, double read_ms) {
+  ParamOutcome out;
+  out.read_ms = read_ms;
+  const auto t0 = Clock::now();
+  out.mesh = validated_mesh(data, r);
+  out.validate_ms = ms_since(t0);
+  solve(r, data, resolved_options(r, out.mesh), out);
+  out.distortion = summarize_distortion(out.mesh.V, out.mesh.F, out.map.UV);
+  return out;
+}
+
+}  // namespace
+
+std::string option_label(std::string_view key, OptionSpelling spelling) {
+  if (spelling == OptionSpelling::Keyword) return std::string(key);
+  if (key == "pins") return "--pin";  // repeated once per pin on the command line
+  std::string flag = "--" + std::string(key);
+  for (char& c : flag)
+    if (c == '_') c = '-';
+  return flag;
+}
+
+void check_param_request(const ParamRequest& r) {
+  const auto label = [&](std::string_view key) { return option_label(key, r.spelling); };
+  if (!(r.options.max_residual > 0)) throw_usage(label("max_residual") + " must be a positive number");
+  const bool lambda = r.optimizer == ChartOptimizer::OptimalLambda;
+  const bool boundary = r.optimizer == ChartOptimizer::OptimizeBoundary;
+  if (r.has_constraints() && (lambda || boundary))
+    throw_usage(label("constraints") + " cannot be combined with " + label("optimize_lambda") + " or " +
+                label("optimize_boundary"));
+  if (lambda && r.options.weights.method != Method::Conformal)
+    throw_usage(label("optimize_lambda") + " chooses the blend itself; do not give " + label("method") + ", " +
+                label("lambda") + " or " + label("mu"));
+  if (!r.options.pins.empty() && r.options.boundary != BoundaryShape::Natural)
+    throw_usage(label("pins") + " applies to " + label("boundary") + " natural only");
+  if (r.options.pins.size() == 1)
+    throw_usage(label("pins") + " needs at least two pins (translation, rotation and scale)");
+  if (boundary && r.boundary_optimization.max_iterations < 0)
+    throw_usage(label("iterations") + ": must be >= 0, got " + std::to_string(r.boundary_optimization.max_iterations));
+}
+
+WeightOptions weight_options(Method method, std::optional<double> lambda, std::optional<double> mu,
+                             OptionSpelling spelling) {
+  const auto label = [&](std::string_view key) { return option_label(key, spelling); };
+  WeightOptions w;
+  w.method = method;
+  if ((lambda || mu) && method != Method::Mixed)
+    throw_usage(label("lambda") + " and " + label("mu") + " apply to " + label("method") + " mixed only");
+  if (method == Method::Mixed) {
+    if (!lambda && !mu) throw_usage(label("method") + " mixed needs " + label("lambda") + " and/or " + label("mu"));
+    w.lambda = lambda.value_or(0.0);
+    w.mu = mu.value_or(0.0);
+    if (w.lambda == 0 && w.mu == 0) throw_usage(label("lambda") + " and " + label("mu") + " cannot both be zero");
+  }
+  return w;
+}
+
+ParamOutcome parameterize_file(const std::string& path, const ParamRequest& request) {
+  check_param_request(request);
+  const auto t0 = Clock::now();
+  const MeshData data = read_mesh(path, request.read);
+  return run(data, request, ms_since(t0));
+}
+
+ParamOutcome parameterize_data(const MeshData& data, const ParamRequest& request) {
+  check_param_request(request);
+  return run(data, request, 0.0);
+}
+
+}  // namespace intrinsic

@@ -1,0 +1,36 @@
+// Pins written as text, "VERTEX:U,V" (`--pin 12:0.5,0` on the command line,
+// pins=["12:0.5,0"] in Python and in batch runs): pipeline.h parse_pin.
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+
+#include "intrinsic/error.h"
+#include "intrinsic/pipeline.h"
+
+namespace intrinsic {
+
+FixedVertex parse_pin(const std::string& text, OptionSpelling spelling) {
+  const auto bad = [&]() -> FixedVertex {
+    const std::string example = spelling == OptionSpelling::Flag ? "--pin 12:0.5,0" : "'12:0.5,0' or (12, 0.5, 0)";
+    throw_usage(option_label("pins", spelling) + " '" + text + "': expected VERTEX:U,V, e.g. " + example);
+  };
+  const size_t colon = text.find(':'), comma = text.find(',', colon == std::string::npos ? 0 : colon);
+  if (colon == std::string::npos || comma == std::string::npos) return bad();
+  FixedVertex p{};
+  const char* b = text.data();
+  auto [end, ec] = std::from_chars(b, b + colon, p.vertex);
+  if (ec != std::errc() || end != b + colon || colon == 0) return bad();
+  auto number = [&](size_t from, size_t to, double& x) {
+    // strtod, not from_chars<double>: the latter is missing from older libstdc++
+    const std::string part = text.substr(from, to - from);
+    char* stop = nullptr;
+    x = std::strtod(part.c_str(), &stop);
+    return !part.empty() && !std::isspace(static_cast<unsigned char>(part[0])) && stop == part.c_str() + part.size() &&
+           std::isfinite(x);
+  };
+  if (!number(colon + 1, comma, p.uv.x()) || !number(comma + 1, text.size(), p.uv.y())) return bad();
+  return p;
+}
+
+}  // namespace intrinsic
