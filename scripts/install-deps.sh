@@ -42,4 +42,7 @@ if command -v npm >/dev/null; then
   # xatlasjs for bench/atlas_compare.py and the test atlas_vs_xatlasjs (bench/package-lock.json).
   (cd "$(dirname "$0")/../bench" && npm ci --no-audit --no-fund) ||
     echo "install-deps: npm ci failed in bench: the test atlas_vs_xatlasjs will fail" >&2
+  # The Khronos glTF validator for the glTF tests (tests/gltf_validator/package-lock.json).
+  (cd "$(dirname "$0")/../tests/gltf_validator" && npm ci --no-audit --no-fund) ||
+    echo "install-deps: npm ci failed in tests/gltf_validator: the glTF validator checks will skip" >&2
 fi

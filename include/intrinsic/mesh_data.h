@@ -7,10 +7,13 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products, 2x2 inverses
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace intrinsic {
+
+struct GltfDocument;  // src/io/gltf_document.h (intrinsic/gltf.h)
 
 using Eigen::MatrixX2d;
 using Eigen::MatrixX3d;
@@ -25,6 +28,9 @@ struct MeshData {
   // (several triangles share the line of their polygon), or 0 for binary files.
   std::vector<int> face_line;
   std::string path;  // the file it came from, for messages
+  // Set when the mesh was read from a .gltf/.glb: the whole document, so that
+  // write_atlas_file can write the atlas back into it (intrinsic/gltf.h).
+  std::shared_ptr<const GltfDocument> gltf;
   bool has_uv() const { return TC.rows() > 0 && FTC.rows() == F.rows(); }
 };
 
