@@ -15,6 +15,7 @@ PACKAGES=(
   libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
   libstb-dev               # stb_easy_font for picture labels
   libtinygltf-dev          # glTF 2.0 binary (.glb) output of `intrinsic atlas`
+  assimp-testmodels        # Khronos glTF sample models for tests/test_gltf.cpp (GltfSamples; skipped without)
   libgtest-dev libbenchmark-dev
   libcpp-httplib-dev       # `intrinsic serve` (the browser editor)
   chromium                 # the editor's browser test (headless; node + npm from the system)

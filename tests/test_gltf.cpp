@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <functional>
 #include <filesystem>
@@ -574,5 +576,106 @@ TEST(Gltf, InvalidJsonAndGlbRefused) {
   EXPECT_THROW(read_gltf_from_memory(glb, "a.glb"), Error);
 }
 
+
+// The Khronos sample models and glTF-Asset-Generator files that Debian's
+// assimp-testmodels ships (scripts/install-deps.sh installs it); skipped
+// without it.
+namespace samples {
+
+const std::string kDir = "/usr/share/assimp/models/glTF2/";
+
+#define REQUIRE_SAMPLES()                                                                  \
+  if (!std::filesystem::exists(kDir + "glTF-Sample-Models"))                              \
+  GTEST_SKIP() << kDir << " is missing: install Debian's assimp-testmodels (scripts/install-deps.sh)"
+
+// The triangles as position triples, rotated to start at the smallest
+// corner (orientation kept), sorted: the drawn surface, however stored.
+std::vector<std::array<double, 9>> drawn(const MeshData& m) {
+  std::vector<std::array<double, 9>> out;
+  for (int f = 0; f < m.F.rows(); ++f) {
+    std::array<std::array<double, 3>, 3> c;
+    for (int k = 0; k < 3; ++k) c[k] = {m.V(m.F(f, k), 0), m.V(m.F(f, k), 1), m.V(m.F(f, k), 2)};
+    const int s = static_cast<int>(std::min_element(c.begin(), c.end()) - c.begin());
+    std::array<double, 9> t;
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d) t[3 * k + d] = c[(s + k) % 3][d];
+    out.push_back(t);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(GltfSamples, AssetGeneratorStripsAndFansDrawTheirList) {
+  REQUIRE_SAMPLES();
+  const std::string d = kDir + "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_";
+  // 04/05/06: one quad as strip, fan, list, not indexed; 11/12/13 indexed.
+  const auto list = drawn(read_mesh(d + "06.gltf"));
+  ASSERT_EQ(list.size(), 2u);
+  EXPECT_EQ(drawn(read_mesh(d + "04.gltf")), list);
+  EXPECT_EQ(drawn(read_mesh(d + "05.gltf")), list);
+  EXPECT_EQ(drawn(read_mesh(d + "11.gltf")), list);
+  EXPECT_EQ(drawn(read_mesh(d + "12.gltf")), list);
+  EXPECT_EQ(drawn(read_mesh(d + "13.gltf")), list);
+}
+
+// Real assets (textured box, morph targets with an animation, a skin with
+// its animation, cameras, many nodes and meshes) written back with a real
+// atlas: valid, everything outside the meshes unchanged, one more TEXCOORD.
+TEST(GltfSamples, AtlasWrittenBackIntoSampleModels) {
+  REQUIRE_SAMPLES();
+  test::TempDir dir;
+  int k = 0;
+  for (const std::string f : {"BoxTextured-glTF-Binary/BoxTextured.glb",
+                              "glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf",
+                              "simple_skin/simple_skin.gltf", "cameras/Cameras.gltf",
+                              "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"}) {
+    SCOPED_TRACE(f);
+    const MeshData data = read_mesh(kDir + f);
+    const AtlasResult r = atlas(data);
+    const std::string out = dir / ("out" + std::to_string(k++) + (f.back() == 'b' ? ".glb" : ".gltf"));
+    write_atlas_file(out, data, r);
+    expect_valid(out);
+    const tinygltf::Model in = load(kDir + f), got = load(out);
+    ASSERT_EQ(got.meshes.size(), in.meshes.size());
+    EXPECT_EQ(got.nodes, in.nodes);
+    EXPECT_EQ(got.materials, in.materials);
+    EXPECT_EQ(got.animations, in.animations);
+    EXPECT_EQ(got.skins, in.skins);
+    EXPECT_EQ(got.cameras, in.cameras);
+    EXPECT_EQ(got.textures, in.textures);
+    std::size_t faces = 0;
+    for (std::size_t m = 0; m < in.meshes.size(); ++m)
+      for (std::size_t p = 0; p < in.meshes[m].primitives.size(); ++p) {
+        const auto& a = in.meshes[m].primitives[p].attributes;
+        const auto& b = got.meshes[m].primitives[p].attributes;
+        EXPECT_EQ(b.size(), a.size() + 1);
+        for (const auto& [name, unused] : a) EXPECT_TRUE(b.count(name)) << name;
+        faces += got.accessors.at(static_cast<std::size_t>(got.meshes[m].primitives[p].indices)).count / 3;
+      }
+    EXPECT_EQ(faces, static_cast<std::size_t>(data.F.rows()));
+  }
+}
+
+TEST(GltfSamples, InvalidSamplesRefused) {
+  REQUIRE_SAMPLES();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"IndexOutOfRange/IndexOutOfRange.gltf", "/meshes/0/primitives/0/indices: index 255 out of range (24 vertices)"},
+      {"RecursiveNodes/RecursiveNodes.gltf", "node loop"},
+      {"MissingBin/BoxTextured.gltf", "/buffers/0/uri: cannot open buffer file"},
+      {"draco/2CylinderEngine.gltf", "/extensionsRequired/0: KHR_draco_mesh_compression is not supported"},
+      {"BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "/meshes/0/primitives/0/attributes/POSITION: vertex 0 is not finite"},
+  };
+  for (const auto& [f, message] : cases) {
+    try {
+      read_mesh(kDir + f);
+      ADD_FAILURE() << f << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Input);
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace samples
 }  // namespace
 }  // namespace intrinsic
