@@ -289,10 +289,9 @@ TEST(Gltf, RoundTripKeepsEveryAttributePerCorner) {
         const std::uint32_t o = index_of(m, p.indices, static_cast<std::size_t>(3 * f + c));
         split = std::max<std::size_t>(split, o + 1);
         const std::string pos = element(m, p.attributes.at("POSITION"), o);
-        int src = -1;
-        for (int k = 0; k < 3; ++k)
-          if (bytes_of(input_positions, static_cast<std::size_t>(a.m.F(f, k)), 3) == pos) src = a.m.F(f, k);
-        ASSERT_GE(src, 0) << "face " << f << " corner " << c << ": no input corner with its position";
+        // Corner c of the output face is corner c of the input face.
+        const int src = a.m.F(f, c);
+        ASSERT_EQ(bytes_of(input_positions, static_cast<std::size_t>(src), 3), pos) << "face " << f << " corner " << c;
         const auto s = static_cast<std::size_t>(src);
         EXPECT_EQ(element(m, p.attributes.at("NORMAL"), o), bytes_of(a.normal, s, 3));
         EXPECT_EQ(element(m, p.attributes.at("TEXCOORD_0"), o), bytes_of(a.texcoord, s, 2));
@@ -325,6 +324,38 @@ TEST(Gltf, RoundTripKeepsEveryAttributePerCorner) {
       EXPECT_EQ(got["meshes"][0]["primitives"][0]["material"], 0);
     }
   }
+}
+
+// Faces the atlas reorients (a disk with every fifth face flipped) keep the
+// document's winding, each corner with its own atlas coordinate.
+TEST(Gltf, ReorientedFacesKeepTheirWinding) {
+  GenerateOptions g;
+  g.rings = 6;
+  MeshData disk = generate_flat_disk(g);
+  for (int f = 0; f < disk.F.rows(); f += 5) std::swap(disk.F(f, 1), disk.F(f, 2));
+  test::TempDir dir;
+  test::write_text(dir / "in.glb", simple_doc(disk).glb());
+  const MeshData data = read_mesh(dir / "in.glb");
+  ASSERT_EQ(data.F, disk.F);
+  const AtlasResult r = atlas(data);
+  int reversed = 0;
+  for (int f = 0; f < r.F.rows(); ++f) reversed += r.F.row(f) != data.F.row(f);
+  ASSERT_GT(reversed, 0);  // the case is what it means to be
+  write_atlas_file(dir / "out.glb", data, r);
+  expect_valid(dir / "out.glb");
+  const tinygltf::Model m = load(dir / "out.glb");
+  const tinygltf::Primitive& p = m.meshes.at(0).primitives.at(0);
+  const std::vector<float> in = positions(disk);
+  for (int f = 0; f < disk.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t o = index_of(m, p.indices, static_cast<std::size_t>(3 * f + c));
+      ASSERT_EQ(element(m, p.attributes.at("POSITION"), o), bytes_of(in, static_cast<std::size_t>(disk.F(f, c)), 3));
+      int rc = 0;
+      while (rc < 3 && r.F(f, rc) != disk.F(f, c)) ++rc;
+      ASSERT_LT(rc, 3);
+      const float uv[2] = {static_cast<float>(r.UV(r.FUV(f, rc), 0)), static_cast<float>(1 - r.UV(r.FUV(f, rc), 1))};
+      EXPECT_EQ(element(m, p.attributes.at("TEXCOORD_0"), o), std::string(reinterpret_cast<const char*>(uv), 8));
+    }
 }
 
 // A mesh drawn twice gets one set of coordinates, sized by its first

@@ -50,7 +50,8 @@ struct GltfWriteOptions {
 // Writes `data`'s glTF document back with the atlas `result` (computed on
 // `data`) as a new TEXCOORD set: .glb or .gltf (buffer embedded as a data URI)
 // by the extension of `path`. Every triangle primitive becomes an indexed
-// TRIANGLES list whose vertices are split where the atlas has a seam, every
+// TRIANGLES list (faces in order, each with the document's winding even where
+// the atlas reoriented it) whose vertices are split where the atlas has a seam, every
 // other attribute and morph target copied per vertex; all buffers are merged
 // into one. Atomic: nothing is written when anything is refused.
 void write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& result,

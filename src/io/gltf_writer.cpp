@@ -4,8 +4,9 @@
 // split: each (source vertex, atlas coordinate) pair becomes one output
 // vertex carrying a byte-exact copy of every attribute and morph target
 // delta of its source vertex, plus the atlas as one more TEXCOORD set. Each
-// rewritten primitive is an indexed TRIANGLES list; its old accessors stay
-// in the file unused. Everything outside the triangle primitives (nodes,
+// rewritten primitive is an indexed TRIANGLES list, faces in their order and
+// winding (faces the atlas reoriented keep the document's); its old
+// accessors stay in the file unused. Everything outside the triangle primitives (nodes,
 // materials, textures, images, animations, skins, cameras, extras,
 // extensions) is copied as it was; all buffers become one (the GLB binary
 // chunk, or a base64 data URI in a .gltf).
@@ -117,11 +118,22 @@ struct Split {
   std::vector<std::uint32_t> index;
 };
 
-Split split_primitive(const GltfDocument& doc, const GltfDocument::Primitive& p, const AtlasResult& r) {
+// The atlas corner of input corner k of face f: the atlas lists a face it
+// reoriented as 0, 2, 1; the document keeps its own winding (what it draws,
+// with back faces culled, must not change).
+int atlas_corner(const MeshData& data, const AtlasResult& r, int f, int k, const std::string& name) {
+  if (r.F.row(f) == data.F.row(f)) return k;
+  if (r.F(f, 0) == data.F(f, 0) && r.F(f, 1) == data.F(f, 2) && r.F(f, 2) == data.F(f, 1)) return k == 0 ? 0 : 3 - k;
+  throw_input(name + ": the atlas does not belong to this document (face " + std::to_string(f) + ")");
+}
+
+Split split_primitive(const GltfDocument& doc, const GltfDocument::Primitive& p, const MeshData& data,
+                      const AtlasResult& r) {
   Split s;
   std::unordered_map<std::uint64_t, std::uint32_t> seen;
   for (int f = p.first_face; f < p.first_face + p.face_count; ++f)
-    for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < 3; ++k) {
+      const int c = atlas_corner(data, r, f, k, doc.name);
       const int v = r.F(f, c), t = r.FUV(f, c);
       if (v < p.first_vertex || v >= p.first_vertex + p.vertex_count || t < 0 || t >= r.UV.rows())
         throw_input(doc.name + ": the atlas does not belong to this document (face " + std::to_string(f) + ")");
@@ -165,10 +177,10 @@ using AccessorCache = std::map<int, gltf::Accessor>;
 
 // The primitive rewritten: the same JSON object with new accessors for
 // indices, attributes, morph targets and the atlas set.
-json rewrite_primitive(Output& out, const GltfDocument& doc, const GltfDocument::Primitive& p, const AtlasResult& r,
-                       int set, AccessorCache& cache) {
+json rewrite_primitive(Output& out, const GltfDocument& doc, const GltfDocument::Primitive& p, const MeshData& data,
+                       const AtlasResult& r, int set, AccessorCache& cache) {
   const json& prim = doc.json["meshes"][static_cast<std::size_t>(p.mesh)]["primitives"][static_cast<std::size_t>(p.primitive)];
-  const Split s = split_primitive(doc, p, r);
+  const Split s = split_primitive(doc, p, data, r);
   auto accessor = [&](int i) -> const gltf::Accessor& {
     auto it = cache.find(i);
     if (it == cache.end()) it = cache.emplace(i, gltf::read_accessor(doc, i, INT64_MAX)).first;
@@ -239,6 +251,7 @@ void write_gltf_atlas(const std::string& path, const MeshData& data, const Atlas
   if (!data.gltf) throw_usage("output '" + path + "': " + data.path + " was not read from a glTF document");
   const GltfDocument& doc = *data.gltf;
   if (r.F.rows() != static_cast<Eigen::Index>(doc.face_primitive.size()) || r.FUV.rows() != r.F.rows() ||
+      data.F.rows() != r.F.rows() ||
       data.V.rows() != static_cast<Eigen::Index>(doc.vertex_source.size()))
     throw_input(doc.name + ": the atlas does not belong to this document (face or vertex counts differ)");
   Output out = merge_buffers(doc);
@@ -249,7 +262,7 @@ void write_gltf_atlas(const std::string& path, const MeshData& data, const Atlas
     const json& prim = doc.json["meshes"][static_cast<std::size_t>(p.mesh)]["primitives"][static_cast<std::size_t>(p.primitive)];
     const int set = choose_set(doc, prim, where, o);
     out.j["meshes"][static_cast<std::size_t>(p.mesh)]["primitives"][static_cast<std::size_t>(p.primitive)] =
-        rewrite_primitive(out, doc, p, r, set, cache);
+        rewrite_primitive(out, doc, p, data, r, set, cache);
   }
   if (out.bin.size() > 0xFFFFFFF0u) throw_output(path + ": more than 4 GiB of buffer data (GLB's limit)");
   json buffer = {{"byteLength", out.bin.size()}};
