@@ -147,7 +147,8 @@ void expect_valid(const std::string& path) {
   const std::string text = test::slurp(out);
   std::filesystem::remove(out);
   if (code == 77 || code == 127) {
-    std::printf("glTF validator not run (%s): install node and run npm ci in tests/gltf_validator\n", text.c_str());
+    // Only this check is left out; the test's own checks still count.
+    std::printf("glTF validator not run on %s: needs node and `npm ci` in tests/gltf_validator\n", path.c_str());
     return;
   }
   EXPECT_EQ(code, 0) << path << ":\n" << text;

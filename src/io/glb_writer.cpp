@@ -191,7 +191,8 @@ void write_glb(const std::string& path, const MatrixX3d& V, const MatrixX3i& F, 
   std::ostringstream out;
   tinygltf::TinyGLTF gltf;
   // .gltf: the same document as JSON, the buffer embedded as a data URI.
-  if (!gltf.WriteGltfSceneToStream(&model, out, false, mesh_extension(path) != ".gltf")) throw_output(path + ": could not format the glTF file");
+  const bool binary = mesh_extension(path) != ".gltf";
+  if (!gltf.WriteGltfSceneToStream(&model, out, false, binary)) throw_output(path + ": could not format the glTF file");
   write_file_atomically(path, out.str());
 }
 
