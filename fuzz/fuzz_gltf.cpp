@@ -34,6 +34,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         r.FUV(f, c) = static_cast<int>(3 * f + c);
         r.UV.row(3 * f + c) << (f % 7) / 7.0, c / 3.0;
       }
-    write_gltf_atlas(output_path(), m, r);
+    // The input's size picks the set options, so that choosing and refusing
+    // a set (the material walk) is fuzzed too.
+    GltfWriteOptions o;
+    if (size % 3 == 1) o.texcoord_set = 0;
+    if (size % 3 == 2) o.texcoord_set = 1, o.replace_used_set = size % 2 == 0;
+    write_gltf_atlas(output_path(), m, r, o);
   });
 }

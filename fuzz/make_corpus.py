@@ -102,7 +102,7 @@ def stl_seeds():
     }
 
 
-def gltf_doc(V, F, mode=4, extra=None, glb=False, sparse=False):
+def gltf_doc(V, F, mode=4, extra=None, glb=False, sparse=False, material=False):
     """A one-primitive glTF document (float positions, uint16 indices): JSON
     with a base64 data URI, or the GLB container."""
     import base64
@@ -127,11 +127,20 @@ def gltf_doc(V, F, mode=4, extra=None, glb=False, sparse=False):
                             "values": {"bufferView": 3}}
         acc[0]["max"] = [max(hi[0], 1), hi[1], max(hi[2], 0.5)]
     prim = {"attributes": {"POSITION": 0}, "indices": 1, "mode": mode}
+    if material:
+        prim["attributes"]["TEXCOORD_0"] = 0
+        prim["material"] = 0
     doc = {"asset": {"version": "2.0"}, "buffers": [{"byteLength": len(binary)}], "bufferViews": views,
            "accessors": acc, "meshes": [{"primitives": [prim]}],
            "nodes": [{"mesh": 0, "children": [1], "translation": [1, 0, 0]},
                      {"mesh": 0, "scale": [2, 2, 2], "rotation": [0, 0, 0.6, 0.8]}],
            "scenes": [{"nodes": [0]}], "scene": 0}
+    if material:
+        doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}},
+                             "normalTexture": {"index": 0, "texCoord": 1,
+                                               "extensions": {"KHR_texture_transform": {"texCoord": 0}}}}]
+        doc["textures"] = [{"source": 0}]
+        doc["images"] = [{"uri": "none.png"}]
     doc.update(extra or {})
     if not glb:
         doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(binary).decode()
@@ -154,6 +163,9 @@ def gltf_seeds():
         "loop.gltf": gltf_doc(SQUARE_V, SQUARE_F, extra={"nodes": [{"children": [1]}, {"children": [0], "mesh": 0}]}),
         "draco.gltf": gltf_doc(SQUARE_V, SQUARE_F, extra={"extensionsRequired": ["KHR_draco_mesh_compression"]}),
         "truncated.glb": gltf_doc(GRID_V, GRID_F, glb=True)[:-9],
+        # A material whose textures read TEXCOORD_0 (here the positions'
+        # accessor: only the set's use matters to the writer's check).
+        "textured.gltf": gltf_doc(SQUARE_V, SQUARE_F, material=True),
     }
 
 

@@ -179,7 +179,13 @@ namespace io {
 // From read_mesh: the bytes of `name` (already un-gzipped), external buffer
 // files beside it when `files_allowed`.
 MeshData read_gltf(const std::string& bytes, const std::string& name, const ReadOptions& options, bool files_allowed) {
-  return read_document(gltf::load_document(bytes, name, folder_of(name), files_allowed), options);
+  // Every JSON access checks its type first; should one have been missed,
+  // the file is refused, not the program ended.
+  try {
+    return read_document(gltf::load_document(bytes, name, folder_of(name), files_allowed), options);
+  } catch (const nlohmann::json::exception& e) {
+    throw_input(name + ": unexpected JSON: " + e.what());
+  }
 }
 
 }  // namespace io

@@ -80,11 +80,16 @@ void used_sets(const json& j, std::set<int>& sets) {
     const json& v = it.value();
     const std::string& k = it.key();
     if (v.is_object() && v.contains("index") && k.size() >= 7 && k.compare(k.size() - 7, 7, "Texture") == 0) {
-      int set = v.value("texCoord", 0);
-      const json* tt = v.contains("extensions") ? &v["extensions"] : nullptr;
-      if (tt && tt->is_object() && tt->contains("KHR_texture_transform") &&
-          (*tt)["KHR_texture_transform"].is_object() && (*tt)["KHR_texture_transform"].contains("texCoord"))
-        set = (*tt)["KHR_texture_transform"].value("texCoord", set);
+      auto set_of = [](const json& o, int fallback) {
+        const auto t = o.find("texCoord");
+        return t != o.end() && t->is_number_integer() ? t->get<int>() : fallback;
+      };
+      int set = set_of(v, 0);
+      const auto ext = v.find("extensions");
+      if (ext != v.end() && ext->is_object()) {
+        const auto tt = ext->find("KHR_texture_transform");
+        if (tt != ext->end() && tt->is_object()) set = set_of(*tt, set);
+      }
       sets.insert(set);
     }
     used_sets(v, sets);
@@ -243,9 +248,7 @@ std::string glb_bytes(const json& j, const std::string& bin) {
   return out;
 }
 
-}  // namespace
-
-void write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& r, const GltfWriteOptions& o) {
+void write_document(const std::string& path, const MeshData& data, const AtlasResult& r, const GltfWriteOptions& o) {
   const std::string ext = mesh_extension(path);
   if (ext != ".glb" && ext != ".gltf") throw_usage("output '" + path + "': a glTF document is written as .glb or .gltf");
   if (!data.gltf) throw_usage("output '" + path + "': " + data.path + " was not read from a glTF document");
@@ -273,6 +276,18 @@ void write_gltf_atlas(const std::string& path, const MeshData& data, const Atlas
   } else {
     out.j["buffers"] = json::array({buffer});
     write_file_atomically(path, glb_bytes(out.j, out.bin));
+  }
+}
+
+}  // namespace
+
+void write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& r, const GltfWriteOptions& o) {
+  // Every JSON access above checks its type first; should one have been
+  // missed, the document is refused, not the program ended.
+  try {
+    write_document(path, data, r, o);
+  } catch (const nlohmann::json::exception& e) {
+    throw_input((data.gltf ? data.gltf->name : path) + ": unexpected JSON in the document: " + e.what());
   }
 }
 
