@@ -492,6 +492,13 @@ TEST(Gltf, NormalizedIntegerPositions) {
   EXPECT_DOUBLE_EQ(m.V(4, 0), -2.0);  // -32768 clamps to -1
   EXPECT_DOUBLE_EQ(m.V(5, 0), 2.0);
   EXPECT_DOUBLE_EQ(m.V(5, 1), 2 * 16384.0 / 32767.0);
+  // Where each merged vertex and face came from.
+  const GltfProvenance from = gltf_provenance(m);
+  EXPECT_EQ(from.vertex_mesh, std::vector<int>(6, 0));
+  EXPECT_EQ(from.vertex_primitive, (std::vector<int>{0, 0, 0, 1, 1, 1}));
+  EXPECT_EQ(from.vertex_index, (std::vector<int>{0, 1, 2, 0, 1, 2}));
+  EXPECT_EQ(from.face_primitive, (std::vector<int>{0, 1}));
+  EXPECT_EQ(from.face_mesh, (std::vector<int>{0, 0}));
   const AtlasResult r = atlas(m);
   write_atlas_file(dir / "q_out.glb", m, r);
   expect_valid(dir / "q_out.glb");
