@@ -102,6 +102,73 @@ def stl_seeds():
     }
 
 
+def gltf_doc(V, F, mode=4, extra=None, glb=False, sparse=False, material=False):
+    """A one-primitive glTF document (float positions, uint16 indices): JSON
+    with a base64 data URI, or the GLB container."""
+    import base64
+    import json
+    pos = b"".join(struct.pack("<3f", *v) for v in V)
+    idx = b"".join(struct.pack("<3H", *f) for f in F)
+    while len(idx) % 4:
+        idx += b"\0"
+    binary = pos + idx
+    views = [{"buffer": 0, "byteLength": len(pos), "target": 34962},
+             {"buffer": 0, "byteOffset": len(pos), "byteLength": 6 * len(F), "target": 34963}]
+    lo = [min(v[k] for v in V) for k in range(3)]
+    hi = [max(v[k] for v in V) for k in range(3)]
+    acc = [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": len(V), "min": lo, "max": hi},
+           {"bufferView": 1, "componentType": 5123, "type": "SCALAR", "count": 3 * len(F)}]
+    if sparse:
+        sp_at = len(binary)
+        binary += struct.pack("<H", 1) + b"\0\0" + struct.pack("<3f", 1, 0, 0.5)
+        views += [{"buffer": 0, "byteOffset": sp_at, "byteLength": 2},
+                  {"buffer": 0, "byteOffset": sp_at + 4, "byteLength": 12}]
+        acc[0]["sparse"] = {"count": 1, "indices": {"bufferView": 2, "componentType": 5123},
+                            "values": {"bufferView": 3}}
+        acc[0]["max"] = [max(hi[0], 1), hi[1], max(hi[2], 0.5)]
+    prim = {"attributes": {"POSITION": 0}, "indices": 1, "mode": mode}
+    if material:
+        prim["attributes"]["TEXCOORD_0"] = 0
+        prim["material"] = 0
+    doc = {"asset": {"version": "2.0"}, "buffers": [{"byteLength": len(binary)}], "bufferViews": views,
+           "accessors": acc, "meshes": [{"primitives": [prim]}],
+           "nodes": [{"mesh": 0, "children": [1], "translation": [1, 0, 0]},
+                     {"mesh": 0, "scale": [2, 2, 2], "rotation": [0, 0, 0.6, 0.8]}],
+           "scenes": [{"nodes": [0]}], "scene": 0}
+    if material:
+        doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}},
+                             "normalTexture": {"index": 0, "texCoord": 1,
+                                               "extensions": {"KHR_texture_transform": {"texCoord": 0}}}}]
+        doc["textures"] = [{"source": 0}]
+        doc["images"] = [{"uri": "none.png"}]
+    doc.update(extra or {})
+    if not glb:
+        doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(binary).decode()
+        return json.dumps(doc)
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    binary += b"\0" * (-len(binary) % 4)
+    body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(binary), 0x004E4942) + binary
+    return b"glTF" + struct.pack("<II", 2, 12 + len(body)) + body
+
+
+def gltf_seeds():
+    strip = [(0, 1, 2), (3, 4, 5)]  # read as 6 strip indices
+    return {
+        "square.gltf": gltf_doc(SQUARE_V, SQUARE_F),
+        "grid.glb": gltf_doc(GRID_V, GRID_F, glb=True),
+        "ring_sparse.gltf": gltf_doc(RING_V, RING_F, sparse=True),
+        "strip.gltf": gltf_doc([(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0), (0, 2, 0), (1, 2, 0)], strip, mode=5),
+        "fan.glb": gltf_doc(SQUARE_V, SQUARE_F, mode=6, glb=True),
+        "loop.gltf": gltf_doc(SQUARE_V, SQUARE_F, extra={"nodes": [{"children": [1]}, {"children": [0], "mesh": 0}]}),
+        "draco.gltf": gltf_doc(SQUARE_V, SQUARE_F, extra={"extensionsRequired": ["KHR_draco_mesh_compression"]}),
+        "truncated.glb": gltf_doc(GRID_V, GRID_F, glb=True)[:-9],
+        # A material whose textures read TEXCOORD_0 (here the positions'
+        # accessor: only the set's use matters to the writer's check).
+        "textured.gltf": gltf_doc(SQUARE_V, SQUARE_F, material=True),
+    }
+
+
 def write(target, name, data):
     d = os.path.join(HERE, "corpus", target)
     os.makedirs(d, exist_ok=True)
@@ -160,6 +227,8 @@ def main():
         write("ply", k, v)
     for k, v in stl_seeds().items():
         write("stl", k, v)
+    for k, v in gltf_seeds().items():
+        write("gltf", k, v)
     write("gzip", "square.obj.gz", gz(o["square.obj"]))
     write("gzip", "ring.off.gz", gz(f["ring.off"]))
     write("gzip", "square_le.ply.gz", gz(p["square_le.ply"]))

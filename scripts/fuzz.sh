@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets with clang (AddressSanitizer + UBSan + coverage)
 # in build-fuzz/ and runs each for SECONDS (default 60), one after the other on
 # one core:
-#   scripts/fuzz.sh [SECONDS] [TARGET...]     targets: obj off ply stl gzip boundary constraints pipeline atlas seams solve_request
+#   scripts/fuzz.sh [SECONDS] [TARGET...]     targets: obj off ply stl gzip boundary constraints pipeline atlas seams gltf solve_request
 # Seeds come from fuzz/corpus/<target>/ (read only); inputs the fuzzer finds go
 # to build-fuzz/corpus/<target>/, crashes to build-fuzz/findings/<target>/, and
 # the log to build-fuzz/logs/<target>.log. Exits non-zero if any target found
@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-60}
 shift || true
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(obj off ply stl gzip boundary constraints pipeline atlas seams solve_request)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(obj off ply stl gzip boundary constraints pipeline atlas seams gltf solve_request)
 BUILD=${FUZZ_BUILD_DIR:-build-fuzz}
 
 CC=clang CXX=clang++ cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DINTRINSIC_FUZZ=ON \

@@ -15,6 +15,7 @@ PACKAGES=(
   libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
   libstb-dev               # stb_easy_font for picture labels
   libtinygltf-dev          # glTF 2.0 binary (.glb) output of `intrinsic atlas`
+  assimp-testmodels        # Khronos glTF sample models for tests/test_gltf.cpp (GltfSamples; skipped without)
   libgtest-dev libbenchmark-dev
   libcpp-httplib-dev       # `intrinsic serve` (the browser editor)
   chromium                 # the editor's browser test (headless; node + npm from the system)
@@ -43,4 +44,7 @@ if command -v npm >/dev/null; then
   # xatlasjs for bench/atlas_compare.py and the test atlas_vs_xatlasjs (bench/package-lock.json).
   (cd "$(dirname "$0")/../bench" && npm ci --no-audit --no-fund) ||
     echo "install-deps: npm ci failed in bench: the test atlas_vs_xatlasjs will fail" >&2
+  # The Khronos glTF validator for the glTF tests (tests/gltf_validator/package-lock.json).
+  (cd "$(dirname "$0")/../tests/gltf_validator" && npm ci --no-audit --no-fund) ||
+    echo "install-deps: npm ci failed in tests/gltf_validator: the glTF validator checks will skip" >&2
 fi

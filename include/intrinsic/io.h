@@ -1,5 +1,6 @@
 // Every file format of the project. Reading and writing meshes: OBJ, OFF, PLY (ASCII and binary, either
-// endianness) and STL (read only, ASCII and binary, equal corners welded), each
+// endianness), STL (read only, ASCII and binary, equal corners welded) and glTF 2.0 (read_mesh of
+// .gltf/.glb: every triangle primitive merged at world scale, the document kept; intrinsic/gltf.h), each
 // optionally gzip-compressed (detected from the bytes, not the name). Writers
 // never leave a partial file: temporary file in the target directory, renamed.
 // Then the side files (boundary positions, constraints, seams) and the atlas
@@ -30,7 +31,8 @@ struct ReadOptions {
 MeshData read_mesh(const std::string& path, const ReadOptions& options = {});
 // Same, from bytes already in memory (used by fuzz targets and tests); the
 // format is taken from `name`'s extension (".obj", ".off", ".ply", ".stl",
-// optionally ".gz") and gzip is also recognised from the magic bytes.
+// ".gltf", ".glb", optionally ".gz") and gzip is also recognised from the
+// magic bytes. A glTF document given in memory may not name buffer files.
 MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name,
                                const ReadOptions& options = {});
 
@@ -99,8 +101,10 @@ std::vector<SeamEdge> read_seams_file(const std::string& path, const MeshData& m
 // ones reversed) `f v/vt` (seams only through the per-corner texture
 // coordinates); atomically.
 void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r);
-// The atlas in the format the extension names: .obj (write_atlas_obj) or .glb
-// (write_glb, vertices split at seams). check_atlas_output throws
+// The atlas in the format the extension names: .obj (write_atlas_obj), or
+// .glb/.gltf: the input's own glTF document with the atlas added when `m` was
+// read from glTF (write_gltf_atlas, intrinsic/gltf.h), else write_glb's
+// one-mesh file (vertices split at seams). check_atlas_output throws
 // Error(Usage) for any other extension, before anything is written.
 void check_atlas_output(const std::string& path);
 void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r);

@@ -13,10 +13,13 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products, 2x2 inverses
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace intrinsic {
+
+struct GltfDocument;  // src/io/gltf_document.h (intrinsic/gltf.h)
 
 using Eigen::MatrixX2d;
 using Eigen::MatrixX3d;
@@ -61,6 +64,10 @@ struct MeshData {
   FaceLabels groups;     // g (the whole list of names on the line, as one label)
   FaceLabels objects;    // o
   FaceLabels smoothing;  // s ("off", "0", "1", ... as written)
+
+  // Set when the mesh was read from a .gltf/.glb: the whole document, so that
+  // write_atlas_file can write the atlas back into it (intrinsic/gltf.h).
+  std::shared_ptr<const GltfDocument> gltf;
 
   bool has_uv() const { return TC.rows() > 0 && FTC.rows() == F.rows(); }
   bool has_normals() const { return N.rows() > 0 && FN.rows() == F.rows(); }

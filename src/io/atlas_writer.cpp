@@ -1,11 +1,13 @@
 // Writing an atlas (io.h "Atlases"): the OBJ with one texture coordinate per
 // corner and what the input OBJ carried besides (normals, materials, groups,
-// objects, smoothing groups; docs/formats.md "OBJ"), or the .glb through
-// write_glb, chosen by the output's extension.
+// objects, smoothing groups; docs/formats.md "OBJ"), or the .glb/.gltf
+// through write_glb, chosen by the output's extension; a mesh read from glTF
+// goes back into its document (gltf.h).
 #include <charconv>
 
 #include "intrinsic/atlas.h"
 #include "intrinsic/error.h"
+#include "intrinsic/gltf.h"
 #include "intrinsic/io.h"
 
 namespace intrinsic {
@@ -117,15 +119,18 @@ void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResu
 
 void check_atlas_output(const std::string& path) {
   const std::string ext = mesh_extension(path);
-  if (ext != ".obj" && ext != ".glb")
-    throw_usage("output '" + path + "': the atlas is written as .obj (one texture coordinate per corner) or .glb");
-  if (ext == ".glb" && path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0)
-    throw_usage("output '" + path + "': .glb is written uncompressed (drop the .gz)");
+  if (ext != ".obj" && ext != ".glb" && ext != ".gltf")
+    throw_usage("output '" + path + "': the atlas is written as .obj (one texture coordinate per corner), .glb or .gltf");
+  if (ext != ".obj" && path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0)
+    throw_usage("output '" + path + "': " + ext + " is written uncompressed (drop the .gz)");
 }
 
 void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r) {
   check_atlas_output(path);
-  if (mesh_extension(path) == ".glb") write_glb(path, m.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
+  const std::string ext = mesh_extension(path);
+  // A glTF input is written back as the same document with the atlas added.
+  if (ext != ".obj" && m.gltf) write_gltf_atlas(path, m, r);
+  else if (ext != ".obj") write_glb(path, m.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
   else write_atlas_obj(path, m, r);
 }
 

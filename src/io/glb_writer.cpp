@@ -190,7 +190,9 @@ void write_glb(const std::string& path, const MatrixX3d& V, const MatrixX3i& F, 
   model.defaultScene = 0;
   std::ostringstream out;
   tinygltf::TinyGLTF gltf;
-  if (!gltf.WriteGltfSceneToStream(&model, out, false, true)) throw_output(path + ": could not format the glTF file");
+  // .gltf: the same document as JSON, the buffer embedded as a data URI.
+  const bool binary = mesh_extension(path) != ".gltf";
+  if (!gltf.WriteGltfSceneToStream(&model, out, false, binary)) throw_output(path + ": could not format the glTF file");
   write_file_atomically(path, out.str());
 }
 

@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "intrinsic/io.h"
+#include "io/gltf_document.h"
 #include "io/gzip.h"
 #include "io/mesh_builder.h"
 
@@ -47,13 +48,14 @@ std::uint64_t inflate_cap(const ReadOptions& opt, const std::string& format) {
   return std::min(cap, derived);
 }
 
-}  // namespace
-
-MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+// `files_allowed`: a glTF document may read buffer files beside `name`
+// (only when `name` is a file that was read, not bytes handed over).
+MeshData read_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options,
+                    bool files_allowed) {
   const std::string ext = format_of(name);
-  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl") {
+  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl" && ext != ".gltf" && ext != ".glb") {
     throw_usage("unknown input format '" + ext + "' for " + name +
-                " (use .obj, .off, .ply or .stl, optionally .gz)");
+                " (use .obj, .off, .ply, .stl, .gltf or .glb, optionally .gz)");
   }
   std::string inflated;
   const std::string* data = &bytes;
@@ -61,6 +63,7 @@ MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name
     inflated = io::gunzip(bytes, name, inflate_cap(options, ext));
     data = &inflated;
   }
+  if (ext == ".gltf" || ext == ".glb") return io::read_gltf(*data, name, options, files_allowed);
   const char* begin = data->data();
   std::size_t size = data->size();
   // Editors on Windows may prepend a UTF-8 byte order mark; left in place it
@@ -74,6 +77,12 @@ MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name
   if (ext == ".off") return io::read_off(begin, size, name, options);
   if (ext == ".stl") return io::read_stl(begin, size, name, options);
   return io::read_ply(data->data(), data->size(), name, options);
+}
+
+}  // namespace
+
+MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+  return read_bytes(bytes, name, options, false);
 }
 
 MeshData read_mesh(const std::string& path, const ReadOptions& options) {
@@ -118,7 +127,7 @@ MeshData read_mesh(const std::string& path, const ReadOptions& options) {
     throw;
   }
   ::close(fd);
-  return read_mesh_from_memory(bytes, path, options);
+  return read_bytes(bytes, path, options, true);
 }
 
 }  // namespace intrinsic

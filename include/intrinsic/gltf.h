@@ -1,0 +1,60 @@
+// glTF 2.0 documents in and out (docs/formats.md "glTF"). Reading merges the
+// triangles of every mesh primitive (lists, strips, fans) into one MeshData at
+// world scale, so an atlas sizes its charts by the area a viewer sees; the
+// parsed document rides along in MeshData::gltf. Writing puts the atlas back
+// into that same document as one more texture coordinate set, splitting
+// vertices at the seams and copying every other attribute, and leaves
+// everything else (nodes, materials, animations, skins, extensions...) as it
+// was.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "intrinsic/atlas.h"
+#include "intrinsic/io.h"
+#include "intrinsic/mesh_data.h"
+
+namespace intrinsic {
+
+// .gltf (JSON, buffers in data URIs or files beside it) or .glb. Refuses with
+// Error(Input) naming the file and the JSON path of the offending object, e.g.
+// "x.gltf: /meshes/0/primitives/0/indices: index 71 out of range (24 vertices)".
+// A mesh drawn by several nodes appears once, placed by its first instance
+// (scene graph walked from the default scene's roots, then the other scenes',
+// then any other parentless node, depth first). External buffer files are
+// read relative to `path`'s folder.
+MeshData read_gltf(const std::string& path, const ReadOptions& options = {});
+// The same from bytes in memory; external buffer files are refused (there is
+// no folder to read them from). `name` is used for messages.
+MeshData read_gltf_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options = {});
+
+// Where each merged vertex and face came from (MeshData::gltf must be set).
+struct GltfProvenance {
+  std::vector<int> vertex_mesh, vertex_primitive, vertex_index;  // per merged vertex: its source vertex
+  std::vector<int> face_mesh, face_primitive;                    // per merged face
+};
+GltfProvenance gltf_provenance(const MeshData& data);
+
+struct GltfWriteOptions {
+  // The TEXCOORD_n set the atlas goes to: -1 = the next free set of each
+  // primitive; n = that set in every primitive (an existing set is replaced;
+  // a set that would leave a gap is refused with Error(Usage)).
+  int texcoord_set = -1;
+  // Replacing a set that a texture of the primitive's material reads is
+  // refused with Error(Usage) unless this is true.
+  bool replace_used_set = false;
+};
+
+// Writes `data`'s glTF document back with the atlas `result` (computed on
+// `data`) as a new TEXCOORD set: .glb or .gltf (buffer embedded as a data URI)
+// by the extension of `path`. Every triangle primitive becomes an indexed
+// TRIANGLES list (faces in order, each with the document's winding even where
+// the atlas reoriented it) whose vertices are split where the atlas has a seam, every
+// other attribute and morph target copied per vertex; all buffers are merged
+// into one. Atomic: nothing is written when anything is refused.
+void write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& result,
+                      const GltfWriteOptions& options = {});
+
+}  // namespace intrinsic
