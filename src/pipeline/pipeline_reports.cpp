@@ -102,6 +102,9 @@ nlohmann::json atlas_report_json(const AtlasOutcome& o, const std::string& outpu
   j["atlas_stretch_budget"] = opt.atlas_stretch_budget;
   j["max_charts"] = opt.max_charts;
   j["seam_edges"] = opt.seams.size();
+  // The input's own texture coordinates, if it had any, are not in the
+  // output: the atlas takes their place.
+  j["replaced_texcoords"] = o.data.had_texcoords;
   j["cleaning"] = cleaning_json(r.cleaning);
   j["hard_angle"] = opt.hard_angle_deg;
   j["weld"] = opt.weld;
