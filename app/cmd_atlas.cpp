@@ -8,6 +8,7 @@
 #include "choice_option.h"
 #include "command.h"
 #include "intrinsic/error.h"
+#include "intrinsic/gltf.h"
 #include "intrinsic/io.h"
 #include "intrinsic/pictures.h"
 #include "intrinsic/pipeline.h"
@@ -21,6 +22,7 @@ struct AtlasArgs {
   std::string boundary = choice_name(BoundaryShape::Natural), optimize_lambda, optimize_boundary;
   std::shared_ptr<WeightArgs> weights = std::make_shared<WeightArgs>();
   AtlasOptions options;
+  GltfWriteOptions gltf;
   bool quiet = false;
   std::int64_t max_vertices = ReadOptions().max_vertices;
 };
@@ -55,7 +57,7 @@ int run_atlas(const AtlasArgs& a) {
   request.seams_file = a.seams;
   const AtlasOutcome o = atlas_file(a.input, request);
   const auto t1 = std::chrono::steady_clock::now();
-  write_atlas_file(a.output, o.data, o.result);
+  write_atlas_file(a.output, o.data, o.result, a.gltf);
   nlohmann::json j = atlas_report_json(o, a.output);
   j["timings_ms"]["write"] = elapsed_ms(t1);
   j["timings_ms"]["total"] = elapsed_ms(t0);
@@ -77,11 +79,17 @@ void register_atlas(CLI::App& app, Runner& run) {
       "atlas", "UV atlas of any mesh (closed, higher genus, several components, non-manifold): disk charts, "
                "each flattened by the natural conformal map refined toward an isometry, within a stretch bound, packed into "
                "[0,1]^2 without flips or overlaps");
-  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, .stl, optionally .gz)")->required();
+  cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, .stl, optionally .gz; .gltf, .glb)")->required();
   cmd->add_option("-o,--output", a->output,
                   "Output mesh (.obj: input vertices, one vt per atlas UV, f v/vt; "
-                  ".glb: glTF 2.0 binary, vertices split at seams)")
+                  ".glb/.gltf: glTF 2.0, vertices split at seams; a glTF input comes back as the same "
+                  "document with the atlas as a new TEXCOORD set)")
       ->required();
+  cmd->add_option("--uv-set", a->gltf.texcoord_set,
+                  "glTF input: the TEXCOORD_n set the atlas goes to (default: the next free set of each primitive)")
+      ->check(CLI::Range(0, 31));
+  cmd->add_flag("--replace-uv-set", a->gltf.replace_used_set,
+                "glTF input: allow --uv-set to replace a set that the material's textures read");
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
   cmd->add_option("--boundary", a->boundary,
                   "Each chart's map: natural (the natural conformal map, default) or a fixed circle or square "

@@ -530,6 +530,16 @@ TEST(Gltf, ReplacingASetATextureReadsIsRefused) {
   expect_valid(dir / "out.glb");
   const tinygltf::Model m = load(dir / "out.glb");
   EXPECT_EQ(m.meshes[0].primitives[0].attributes.count("TEXCOORD_1"), 0u);
+  // The same choice through the command line: refused (usage, exit 1, no
+  // file) without --replace-uv-set, written into set 0 with it.
+  const std::string cli = "atlas " + (dir / "in.glb") + " -o " + (dir / "cli.glb") + " -q --uv-set 0";
+  const test::CliResult refused = test::run_cli(cli, dir);
+  EXPECT_EQ(refused.code, 1) << refused.err;
+  EXPECT_NE(refused.err.find("TEXCOORD_0 is read by a texture"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "cli.glb"));
+  const test::CliResult replaced = test::run_cli(cli + " --replace-uv-set", dir);
+  ASSERT_EQ(replaced.code, 0) << replaced.err;
+  EXPECT_EQ(test::slurp(dir / "cli.glb"), test::slurp(dir / "out.glb"));  // the CLI is the library's call
 }
 
 // External buffer files beside the .gltf are read; a mesh without a glTF

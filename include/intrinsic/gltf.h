@@ -57,4 +57,9 @@ struct GltfWriteOptions {
 void write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& result,
                       const GltfWriteOptions& options = {});
 
+// write_atlas_file (io.h) with the choice of UV set for a glTF input
+// (ignored for other inputs and for .obj output).
+void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r,
+                      const GltfWriteOptions& gltf_options);
+
 }  // namespace intrinsic

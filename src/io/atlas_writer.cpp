@@ -126,10 +126,15 @@ void check_atlas_output(const std::string& path) {
 }
 
 void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r) {
+  write_atlas_file(path, m, r, GltfWriteOptions{});
+}
+
+void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r,
+                      const GltfWriteOptions& gltf_options) {
   check_atlas_output(path);
   const std::string ext = mesh_extension(path);
   // A glTF input is written back as the same document with the atlas added.
-  if (ext != ".obj" && m.gltf) write_gltf_atlas(path, m, r);
+  if (ext != ".obj" && m.gltf) write_gltf_atlas(path, m, r, gltf_options);
   else if (ext != ".obj") write_glb(path, m.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
   else write_atlas_obj(path, m, r);
 }
