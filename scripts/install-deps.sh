@@ -18,6 +18,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   libcpp-httplib-dev       # `intrinsic serve` (the browser editor)
   chromium                 # the editor's browser test (headless; node + npm from the system)
+  blender                  # the Blender add-on's test (ctest blender_addon) and bench/blender_addon.py
   # The Python module and its tests (Debian's /usr/bin/python3 and its packages)
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-distributed
   # `pip install --no-build-isolation .` offline (pyproject.toml, setup.py) and

@@ -261,10 +261,10 @@ TEST(AtlasPackingLayout, EqualSquaresReachTheGridUtilization) {
   for (const auto& [padding, best] : {std::pair<double, double>{2, 16.0 * 254 * 254 / (1024.0 * 1024)}, {0, 1.0}}) {
     std::vector<FlatChart> charts;
     for (int i = 0; i < 16; ++i) charts.push_back(square_chart(1.0));
-    AtlasOptions o;
+    PackOptions o;
     o.padding = padding;
     int overlapping = -1;
-    const double u = pack_charts(charts, o, overlapping);
+    const double u = pack_flat_charts(charts, o, overlapping);
     EXPECT_EQ(overlapping, 0);
     EXPECT_LE(u, best * (1 + 1e-9));
     EXPECT_GE(u, best * 0.98) << "padding " << padding;
@@ -283,10 +283,10 @@ TEST(AtlasPackingLayout, OneSimilarityPerChartOneScaleDeterministic) {
     input.push_back(polygon_chart({{0, 0}, {r, 0.1 * u(rng)}, {r * u(rng), r * (0.3 + u(rng))}, {-0.2 * r, r * 0.5}}));
   }
   std::vector<FlatChart> a = input, b = input;
-  AtlasOptions o;
+  PackOptions o;
   int overlapping = 0;
-  const double ua = pack_charts(a, o, overlapping);
-  const double ub = pack_charts(b, o, overlapping);
+  const double ua = pack_flat_charts(a, o, overlapping);
+  const double ub = pack_flat_charts(b, o, overlapping);
   EXPECT_EQ(ua, ub);
   double scale = 0;
   for (size_t c = 0; c < input.size(); ++c) {

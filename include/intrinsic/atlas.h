@@ -68,7 +68,11 @@ struct SeamEdge {
   int a = 0, b = 0;
 };
 
-struct AtlasOptions {
+// The charts stage (compute_charts): everything up to packing. The fields
+// are AtlasOptions' of the same name, defaults and meaning; none of them
+// depends on the texture's resolution or padding (the stretch and the
+// sparse-chart test are measured at the charts' own scale, UV area = 3D area).
+struct ChartOptions {
   ChartMapOptions chart_map;  // how each chart is flattened (default: the natural conformal map)
   Segmentation segmentation = Segmentation::NormalCones;
   double max_normal_deviation_deg = 60;  // NormalCones: face normal vs the chart's mean normal
@@ -97,9 +101,6 @@ struct AtlasOptions {
   // stretch when that is above max_stretch. 0: no merging at all (unless
   // max_charts asks for it).
   int min_chart_faces = 20;
-  // Texture size the padding is measured in (texels of the [0,1]^2 square).
-  int resolution = 1024;
-  double padding = 2;  // texels between charts; half of it (rounded up to whole texels) around the border
   // A face with area below this fraction of its longest edge squared (or a
   // repeated vertex) is degenerate: it gets UVs but takes no part in a solve.
   double degenerate_ratio = 1e-12;
@@ -124,6 +125,38 @@ struct AtlasOptions {
   // the union stays valid. A bound that validity cannot meet is exceeded.
   int max_charts = 0;
 };
+
+// The pack stage (pack_charts): all that only packing uses. The same fields
+// as AtlasOptions'.
+struct PackOptions {
+  // Texture size the padding is measured in (texels of the [0,1]^2 square).
+  int resolution = 1024;
+  double padding = 2;  // texels between charts; half of it (rounded up to whole texels) around the border
+};
+
+// The one-call form's options: ChartOptions' and PackOptions' fields side by
+// side (chart_options and pack_options take them apart; a test checks that
+// the defaults agree). Each field is documented where it belongs above.
+struct AtlasOptions {
+  ChartMapOptions chart_map;
+  Segmentation segmentation = Segmentation::NormalCones;
+  double max_normal_deviation_deg = 60;
+  double sharp_angle_deg = 70;
+  double hard_angle_deg = 0;
+  double max_stretch = 1.08;
+  double max_face_stretch = 2;
+  bool atlas_stretch_budget = true;
+  int min_chart_faces = 20;
+  int resolution = 1024;  // PackOptions
+  double padding = 2;     // PackOptions
+  double degenerate_ratio = 1e-12;
+  double weld = 1e-7;
+  bool reorient = true;
+  std::vector<SeamEdge> seams;
+  int max_charts = 0;
+};
+ChartOptions chart_options(const AtlasOptions& options);
+PackOptions pack_options(const AtlasOptions& options);
 
 struct AtlasChart {
   int component = 0;  // connected component of the input (faces sharing vertices)
@@ -219,9 +252,62 @@ struct SeamProblem {
 SeamProblem find_seam_problem(const MeshData& mesh, const std::vector<SeamEdge>& seams);
 
 
+// The charts stage's result: every chart flattened, checked and split until
+// valid, at the surface's own scale (UV area = 3D area: the atlas's one texel
+// density before packing), each in its own frame (charts overlap here), not
+// yet packed. pack_charts packs it at any resolution and padding without
+// recomputing a chart; it reads V, F, UV, FUV, face_chart and each chart's
+// area_3d and copies the rest into its AtlasResult.
+struct AtlasCharts {
+  MatrixX3d V;   // the input's vertices (the packed atlas's degenerate faces, seams and stretch are measured on them)
+  MatrixX3i F;   // the faces to write, as AtlasResult::F (with reorient, reversed_faces listed 0, 2, 1)
+  // Per chart vertex: chart 0's rows first, then chart 1's, and so on (each
+  // chart's rows one block, in chart order, every row used by its chart).
+  MatrixX2d UV;
+  MatrixX3i FUV;                // #F x 3 rows of UV in F's corner order; -1 for degenerate faces (pack_charts places them)
+  std::vector<int> face_chart;  // per face; -1 for degenerate faces
+  std::vector<AtlasChart> charts;  // boundary_length set; rotated is set by packing
+  int components = 0;
+  int splits = 0;  // as AtlasResult::splits; charts_from_ids also counts a given chart in k pieces as k - 1 not_disk splits
+  AtlasSplits split_reasons;
+  double stretch_l2_mean = 1;  // as AtlasResult::stretch_l2_mean
+  AtlasCleaning cleaning;
+  AtlasTimings timings;  // clean, segment, flatten, merge and their total; pack_charts adds pack_ms to it
+};
+
+// The charts stage of atlas(): clean, segment, flatten and split, merge.
+// Throws as atlas() does (Error(Input) for the mesh or a seam,
+// Error(Usage) for options out of range). Deterministic.
+AtlasCharts compute_charts(const MeshData& input, const ChartOptions& options = {});
+
+// Your own charts: face_chart gives a chart id per face of `input` (any
+// integers >= 0; -1 only for degenerate faces, which get no chart
+// anyway). Segmentation and merging are skipped; each given chart is cut
+// only where it must be: into its pieces connected across edges that the
+// cleaning glued (seams, hard edges and orientation cuts of `options`
+// included), and each piece split further only where it is not a disk or its
+// map is invalid (no sparse or stretch splits, as for the user's seams),
+// each split counted in split_reasons. Every output chart lies within one
+// given chart, and a given chart that is a valid disk stays exactly one
+// chart. Options used: chart_map, degenerate_ratio, weld, reorient, seams,
+// hard_angle_deg (the segmentation, stretch, merge and max_charts fields are
+// not). Throws Error(Usage) for ids of the wrong length, and naming the
+// face for an id below -1 or -1 on a face that is not degenerate.
+AtlasCharts charts_from_ids(const MeshData& input, const std::vector<int>& face_chart,
+                            const ChartOptions& options = {});
+
+// The pack stage of atlas(): scales all charts by one factor, turns and
+// packs them into [0,1]^2 at options' resolution and padding, and places the
+// degenerate faces. `charts` is not changed, so it can be packed again at
+// another resolution. Throws Error(Usage) for options out of range or
+// arrays of `charts` that do not fit together.
+AtlasResult pack_charts(const AtlasCharts& charts, const PackOptions& options = {});
+
 // The atlas of `input` (faces as given: triangles). Throws Error(Input) for
 // an empty mesh, an out-of-range index or a non-finite coordinate,
-// Error(Usage) for options out of range. Deterministic.
+// Error(Usage) for options out of range. Deterministic. Exactly
+// pack_charts(compute_charts(input, chart_options(options)),
+// pack_options(options)), every option checked before any work.
 AtlasResult atlas(const MeshData& input, const AtlasOptions& options = {});
 
 }  // namespace intrinsic

@@ -1,8 +1,12 @@
-// The stages of intrinsic::atlas (atlas.h), one file each: cleaning.cpp
-// (face adjacency for the computation), segmentation.cpp (region growing and
-// splits), chart_mesh.cpp (a chart as a Mesh of its own), chart_flatten.cpp
-// (the natural map and the validity checks), atlas_packing.cpp (the packer,
-// its steps one file each under packing/).
+// The stages of intrinsic::atlas (atlas.h), one file each: atlas_options.cpp
+// (the options taken apart and checked), chart_stage.cpp (compute_charts and
+// charts_from_ids: everything up to packing), cleaning.cpp (face adjacency
+// for the computation), segmentation.cpp (region growing and splits),
+// given_charts.cpp (the user's chart ids), chart_mesh.cpp (a chart as a Mesh
+// of its own), chart_flatten.cpp (the natural map and the validity checks),
+// chart_merge.cpp, pack_stage.cpp (pack_charts: AtlasCharts to AtlasResult),
+// atlas_packing.cpp (the packer, its steps one file each under packing/).
+// Fixed thresholds: thresholds.h.
 #pragma once
 
 #include <algorithm>
@@ -32,7 +36,11 @@ struct CleanMesh {
   AtlasCleaning cleaning;
 };
 
-CleanMesh clean_mesh(const MeshData& input, const AtlasOptions& options);
+// Error(Usage) for options out of range (atlas_options.cpp).
+void check_chart_options(const ChartOptions& options);
+void check_pack_options(const PackOptions& options);
+
+CleanMesh clean_mesh(const MeshData& input, const ChartOptions& options);
 
 // `input` with vertices within relative_distance times the bounding box
 // diagonal of each other merged in the faces (V unchanged; faces refer to the
@@ -71,7 +79,7 @@ void cut_seams(const MeshData& input, const std::vector<SeamEdge>& seams, CleanM
 int cut_hard_edges(double hard_angle_deg, CleanMesh& clean);
 
 // Charts as lists of face indices (sorted), each connected through glued edges.
-std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options);
+std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const ChartOptions& options);
 // Two connected halves grown from two far-apart faces of the chart (at least two faces).
 std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::vector<int>& faces);
 
@@ -119,7 +127,7 @@ double weighted_quantile(const std::vector<double>& value, const std::vector<dou
 // options.max_stretch (chart_merge.cpp), then (atlas_stretch_budget) past it
 // while the whole atlas's mean stays within it, then past it down to
 // options.max_charts when that is set.
-void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
+void merge_charts(const MeshData& input, const CleanMesh& clean, const ChartOptions& options,
                   std::vector<FlatChart>& charts);
 
 // A chart's smallest bounding box (whose side lies on a convex hull edge)
@@ -146,7 +154,7 @@ bool packs_well(const ChartBox& box, double surface_area);
 // with padding on a bitmap (atlas_packing.cpp, packing/), and fits the layout into
 // [0,1]^2 (UVs changed in place). Returns the utilization; `overlapping` is
 // 0: a mask is only placed where its dilated texels meet no taken texel.
-double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping);
+double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping);
 
 // Per-corner UV rows for the faces no chart holds (face_chart -1: zero area
 // or a repeated vertex), each with zero UV area: laid along a UV edge of a
@@ -155,6 +163,14 @@ double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, 
 // (zero_row when none has one). A corner given another vertex's UV gets a
 // new row of UV (a copy), so each row belongs to one vertex. V, F: the
 // output's vertices and faces (FUV in F's corner order).
+// The user's chart ids cut into pieces connected through glued edges
+// (given_charts.cpp), each a sorted face list, in order of their lowest
+// face; degenerate faces are in none. `splits` gets, per given chart, its
+// pieces beyond the first. Throws Error(Usage) naming the face for an id
+// below -1 or -1 on a face that is not degenerate (the length is checked by
+// the caller, before cleaning).
+std::vector<std::vector<int>> given_pieces(const CleanMesh& clean, const std::vector<int>& face_chart, int& splits);
+
 void place_degenerate_faces(const MatrixX3d& V, const MatrixX3i& F, const std::vector<int>& face_chart, MatrixX2d& UV,
                             MatrixX3i& FUV, int zero_row);
 

@@ -17,6 +17,7 @@
 #include "atlas/atlas_internal.h"
 #include "atlas/packing/chart_pose.h"
 #include "atlas/packing/scale_search.h"
+#include "atlas/thresholds.h"
 
 namespace intrinsic::detail {
 namespace {
@@ -56,11 +57,11 @@ ChartBox planar_chart_box(const ChartMesh& chart) {
 
 bool packs_well(const ChartBox& box, double surface_area) {
   const double square_fill = box.fill * box.shorter / box.longer;  // of the square on the longer side
-  return box.fill >= 0.15 && (square_fill >= 0.15 || box.fill >= 0.5) &&
-         box.longer * box.longer <= 4 * surface_area;
+  return box.fill >= kMinBoxFill && (square_fill >= kMinSquareFill || box.fill >= kStripBoxFill) &&
+         box.longer * box.longer <= kMaxSideOverSurface * kMaxSideOverSurface * surface_area;
 }
 
-double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, int& overlapping) {
+double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping) {
   overlapping = 0;
   if (charts.empty()) return 0;
   double area = 0;
@@ -74,9 +75,8 @@ double pack_charts(std::vector<FlatChart>& charts, const AtlasOptions& options, 
     pack[c].F = &charts[c].mesh.data.F;
     for (double angle : angles[c]) pack[c].poses.push_back(packing::turned_to(charts[c].UV, angle));
   }
-  // The bitmap is at most 1024 texels wide: larger textures pack on a coarser
-  // grid (padding rounded up to whole cells of it).
-  const int side = std::min(options.resolution, 1024);
+  // Larger textures pack on a coarser grid (thresholds.h).
+  const int side = std::min(options.resolution, kMaxPackBitmap);
   const int pad = static_cast<int>(std::ceil(options.padding * side / options.resolution - 1e-9));
   // Half the padding (rounded up) around the border, as a neighbour's half
   // would complete it: the bitmap reaches `edge` texels past the square on

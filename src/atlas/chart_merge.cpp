@@ -23,6 +23,7 @@
 #include <set>
 
 #include "atlas/atlas_internal.h"
+#include "atlas/thresholds.h"
 #include "util/parallel_for.h"
 
 namespace intrinsic::detail {
@@ -82,7 +83,7 @@ struct Proposal {
 
 // One pass: proposals from every live chart (smallest first), unions solved
 // in parallel, then the acceptable ones applied. Returns the merges made.
-int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options, double bound,
+int merge_pass(const MeshData& input, const CleanMesh& clean, const ChartOptions& options, double bound,
                int wanted, long& budget, std::vector<FlatChart>& charts, std::vector<char>& gone,
                std::vector<int>& owner, std::map<std::pair<int, int>, bool>& failed, AtlasStretch* atlas = nullptr) {
   std::vector<int> order;
@@ -121,7 +122,7 @@ int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions
       const double limit = small ? std::max(bound, charts[p.d].summary.face_stretch_p95) : bound;
       // Down to max_charts (wanted > 0) only validity bounds a union.
       p.valid = within_stretch(p.merged.summary, limit, wanted > 0 ? INFINITY : options.max_face_stretch) &&
-                (faces.size() < 64 || packs_well(chart_box(p.merged), clean.surface_area));
+                (static_cast<long>(faces.size()) < kSparseMinFaces || packs_well(chart_box(p.merged), clean.surface_area));
     }
   });
   std::vector<char> touched(charts.size(), 0);
@@ -130,7 +131,7 @@ int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions
     if (wanted > 0 && live <= wanted) break;
     if (!p.valid) {
       // true: hopeless, never retried
-      failed[{std::min(p.c, p.d), std::max(p.c, p.d)}] = std::isfinite(p.stretch) && p.stretch - 1 > 4 * (bound - 1);
+      failed[{std::min(p.c, p.d), std::max(p.c, p.d)}] = std::isfinite(p.stretch) && p.stretch - 1 > kHopelessStretchFactor * (bound - 1);
       continue;
     }
     if (touched[p.c] || touched[p.d]) continue;  // solved against a chart that has just changed: next pass
@@ -158,7 +159,7 @@ int merge_pass(const MeshData& input, const CleanMesh& clean, const AtlasOptions
 // Past the per-chart bound (still valid unions under 1% of the surface
 // only), smallest chart first, while the atlas's mean stays within
 // options.max_stretch.
-void merge_within_atlas_stretch(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
+void merge_within_atlas_stretch(const MeshData& input, const CleanMesh& clean, const ChartOptions& options,
                                 std::vector<FlatChart>& charts, std::vector<char>& gone, std::vector<int>& owner) {
   AtlasStretch atlas;
   atlas.limit = options.max_stretch;
@@ -166,50 +167,38 @@ void merge_within_atlas_stretch(const MeshData& input, const CleanMesh& clean, c
     if (!gone[c]) atlas.add(charts[c], +1);
   // Already over (only slivers' merges up to their neighbour's stretch can do that): nothing to spend.
   if (!(atlas.p95() <= atlas.limit)) return;
-  // Only unions under 1% of the surface: the packer puts small charts into
-  // the gaps of large ones, while large merged charts pack worse (with no
-  // area limit bumpy-cube, decimated-max and suzanne fell below xatlas's
-  // utilization: 67.1% -> 59.9%, 60.3 -> 53.7, 66.0 -> 62.1). Small parts are
-  // what this phase is for.
-  atlas.max_union_area = 0.01 * atlas.total;
+  // Only small unions: the packer puts small charts into the gaps of large
+  // ones, while large merged charts pack worse (thresholds.h).
+  atlas.max_union_area = kBudgetUnionShare * atlas.total;
   std::map<std::pair<int, int>, bool> failed;
-  // Work budget: 20,000 faces of unions, plus 8 times the faces of the
-  // small parts (components under 5% of the faces) this phase is for, at
-  // most 1,000,000 in all. igea and the generated sphere (one component
-  // each) get 20,000: with 60,000 igea went 211 -> 171 charts but took 12-18%
-  // longer (merge and packing), with 20,000 196 charts at about the same
-  // time. ogre (124k faces, ~30 small parts of 500-3300 faces): 326 charts.
+  // Work budget: a base, plus a multiple of the faces of the small parts
+  // this phase is for (thresholds.h).
   std::vector<long> part_faces(clean.components, 0);
   for (int f = 0; f < static_cast<int>(input.F.rows()); ++f)
     if (clean.good[f]) ++part_faces[clean.component[f]];
   long small_faces = 0;
   for (long n : part_faces)
-    if (n * 20 < static_cast<long>(input.F.rows())) small_faces += n;
-  long budget = 20000 + std::min(8 * small_faces, 980000L);
+    if (n * kSmallPartDivisor < static_cast<long>(input.F.rows())) small_faces += n;
+  long budget = kAtlasBudgetFaces + std::min(kSmallPartFactor * small_faces, kAtlasBudgetMaxExtra);
   while (merge_pass(input, clean, options, INFINITY, 0, budget, charts, gone, owner, failed, &atlas) > 0) {
   }
 }
 
 }  // namespace
 
-void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options,
+void merge_charts(const MeshData& input, const CleanMesh& clean, const ChartOptions& options,
                   std::vector<FlatChart>& charts) {
   std::vector<int> owner(input.F.rows(), -1);
   for (size_t c = 0; c < charts.size(); ++c)
     for (int f : charts[c].mesh.faces) owner[f] = static_cast<int>(c);
   std::vector<char> gone(charts.size(), 0);
   std::map<std::pair<int, int>, bool> failed;
-  // Merging costs a solve of every union tried: at most 150,000 faces in
-  // all (smallest charts first), so that meshes of up to about 20k faces
-  // merge fully and large ones stay fast (the splits' rounds have already
-  // made every chart valid; merges only make fewer of them).
-  // Each chart under 100 faces (a sliver the validity splits left, what
-  // merging is for) adds 500 faces, about one union with a neighbour each:
-  // on beast (64k faces, many slivers) 150,000 alone left 655 charts, 271
-  // of them under 20 faces; with this 294, while igea's budget grows ~10%.
+  // Merging costs a solve of every union tried: a budget of faces in all
+  // (smallest charts first), more for the slivers that merging is for
+  // (thresholds.h).
   long small = 0;
-  for (const FlatChart& c : charts) small += c.mesh.faces.size() < 100;
-  long budget = 150000 + 500 * small;
+  for (const FlatChart& c : charts) small += static_cast<long>(c.mesh.faces.size()) < kSliverFaces;
+  long budget = kMergeBudgetFaces + kMergeBudgetPerSliver * small;
   while (merge_pass(input, clean, options, options.max_stretch, 0, budget, charts, gone, owner, failed) > 0) {
   }
   auto live = [&] { return static_cast<int>(std::count(gone.begin(), gone.end(), 0)); };
@@ -219,7 +208,7 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const AtlasOpti
   // with a budget of its own.
   if (options.max_charts > 0 && live() > options.max_charts) {
     failed.clear();
-    budget = 300000;
+    budget = kMaxChartsBudgetFaces;
     while (live() > options.max_charts &&
            merge_pass(input, clean, options, INFINITY, options.max_charts, budget, charts, gone, owner, failed) > 0) {
     }

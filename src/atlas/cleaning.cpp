@@ -3,7 +3,7 @@
 // (non-degenerate ones, by the same area test as make_mesh) and across which
 // edges charts may be glued: edges with exactly two such faces that list the
 // edge in opposite directions (after the minority of each piece is reversed,
-// with AtlasOptions::reorient). Everything else (non-manifold edges,
+// with ChartOptions::reorient). Everything else (non-manifold edges,
 // inconsistently oriented edges, hence every non-orientable piece) is a seam,
 // so every chart is manifold and oriented as its faces are written
 // (docs/maths.md §9.6).
@@ -90,7 +90,7 @@ std::vector<std::pair<int, int>> manifold_edges(const MeshData& in, CleanMesh& m
   return pairs;
 }
 
-// AtlasOptions::reorient: by breadth-first search over manifold edges, a
+// ChartOptions::reorient: by breadth-first search over manifold edges, a
 // face is reversed when its neighbour's orientation requires it; in each
 // connected piece the smaller set of faces is the one reversed.
 void orient_pieces(const MeshData& in, const std::vector<std::pair<int, int>>& pairs, CleanMesh& m) {
@@ -240,7 +240,7 @@ MeshData weld_vertices(const MeshData& input, double relative_distance, int& wel
   return out;
 }
 
-CleanMesh clean_mesh(const MeshData& input, const AtlasOptions& options) {
+CleanMesh clean_mesh(const MeshData& input, const ChartOptions& options) {
   check_input(input);
   CleanMesh m;
   face_geometry(input, options.degenerate_ratio, m);

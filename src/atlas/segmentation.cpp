@@ -111,7 +111,7 @@ void straighten(const CleanMesh& m, double cos_sharp, std::vector<int>& label) {
 
 }  // namespace
 
-std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const AtlasOptions& options) {
+std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const ChartOptions& options) {
   const int nf = static_cast<int>(input.F.rows());
   // With the user's seams the charts are the pieces between them.
   const bool components = options.segmentation == Segmentation::Components || !options.seams.empty();

@@ -5,18 +5,13 @@
 #include <cmath>
 #include <cstdint>
 
+#include "atlas/thresholds.h"
 #include "util/parallel_for.h"
 
 namespace intrinsic::detail::packing {
 namespace {
 
-// Masks placed as their whole frame (BoxCursors in placement.cpp): frames
-// their dilated texels fill to at least kBoxFill, and small frames (at most
-// kBoxSide texels more than the padding on both sides), where the corners
-// given up are a few texels.
-constexpr double kBoxFill = 0.9;
-constexpr int kBoxSide = 6;
-
+// Masks placed as their whole frame (thresholds.h: kBoxFill, kBoxSide).
 bool as_box(const Mask& m, int pad) {
   if (m.box) return false;
   long dilated = 0;
@@ -99,7 +94,7 @@ struct Search {
     for (const PackChart& c : charts) more = more || c.poses.size() > 1;
     if (!more || lo == 0) return;
     angles = true;
-    double a = lo, b = lo * 1.08;
+    double a = lo, b = lo * kAnglesRange;
     for (int i = 0; i < 2; ++i) {
       const double mid = std::sqrt(a * b);
       (fits(mid) ? a : b) = mid;
@@ -114,9 +109,9 @@ Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side
                     double* largest = nullptr) {
   while (true) {
     Search s{charts, side, pad, false, {}};
-    if (s.bracket(0.85 * side / std::sqrt(area), 0.8, 42)) {  // 0.8^42: 1e-4
-      if (s.hi == INFINITY) s.hi = 0.85 * side / std::sqrt(area) / 0.8;
-      s.bisect(ratio, 12);
+    if (s.bracket(kStartFill * side / std::sqrt(area), kBracketStep, kBracketTries)) {
+      if (s.hi == INFINITY) s.hi = kStartFill * side / std::sqrt(area) / kBracketStep;
+      s.bisect(ratio, kBisectSteps);
       if (angles) s.with_angles();
       if (largest) *largest = s.lo;
       return std::move(s.best);
@@ -131,10 +126,10 @@ Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side
 // to place, twice the tolerance), then on the full bitmap around twice that
 // scale: a few full-size packings instead of a dozen.
 Layout search_layout(const std::vector<PackChart>& charts, double area, int& side, int pad) {
-  if (side < 256) return bisect_scale(charts, area, side, pad, 1.005, true);
+  if (side < kHalfBitmapMinSide) return bisect_scale(charts, area, side, pad, kFineRatio, true);
   int half = side / 2;
   double coarse = 0;  // the largest scale that fitted (the best layout may be at a smaller one)
-  bisect_scale(charts, area, half, (pad + 1) / 2, 1.02, false, &coarse);
+  bisect_scale(charts, area, half, (pad + 1) / 2, kCoarseRatio, false, &coarse);
   if (half == side / 2) {  // the half bitmap held them: its scale, doubled, is close
     Search s{charts, side, pad, false, {}};
     // Down from 3% above twice that scale in steps of 1.5% until one fits
@@ -144,11 +139,12 @@ Layout search_layout(const std::vector<PackChart>& charts, double area, int& sid
     // packings doubled the packing time (truck 360 -> 770 ms, spot 120 ->
     // 225 ms) for under 1% of utilization on most of them.
     const double guess = 2 * coarse;
-    if (!s.bracket(guess * 1.03, 1 / 1.015, 6)) return bisect_scale(charts, area, side, pad, 1.005, true);
-    if (s.hi == INFINITY) s.hi = s.lo * 1.03;
+    if (!s.bracket(guess * kGuessAbove, 1 / kGuessStep, kGuessTries))
+      return bisect_scale(charts, area, side, pad, kFineRatio, true);
+    if (s.hi == INFINITY) s.hi = s.lo * kGuessAbove;
     return std::move(s.best);
   }
-  return bisect_scale(charts, area, side, pad, 1.005, true);
+  return bisect_scale(charts, area, side, pad, kFineRatio, true);
 }
 
 }  // namespace intrinsic::detail::packing

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "atlas/thresholds.h"
+
 namespace intrinsic::detail::packing {
 
 Eigen::Vector2i cells_of(const MatrixX2d& UV, double scale) {
@@ -15,9 +17,6 @@ Eigen::Vector2i cells_of(const MatrixX2d& UV, double scale) {
 }
 
 namespace {
-
-// Masks with more frame texels than this get no inner box (Mask::inner).
-constexpr long kInnerBoxArea = 96 * 96;
 
 // The x range of the triangle within the horizontal band [y0, y1]: the
 // extremes over its vertices inside the band and its edges' crossings of the

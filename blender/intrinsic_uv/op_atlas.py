@@ -1,0 +1,150 @@
+"""`uv.intrinsic_atlas`: whole selected mesh objects through the library's
+atlas (`intrinsic.atlas`, the code of `intrinsic atlas`; docs/blender.md),
+like Smart UV Project: cut into disk charts, each flattened by the natural
+conformal map and packed into [0,1]^2 without flips or overlaps.
+
+Each object is one atlas of its own (its own [0,1]^2), read from its
+evaluated-free mesh data (no modifiers) in the object's world scale and
+rotation, so charts are cut and sized as the surface appears in the scene.
+The atlas triangles are Blender's loop triangles; a face split across two
+charts gets, at the corner the charts share, the UV of the last of its
+triangles (rare: the charts follow the surface's bends, not the diagonals
+of flat quads). All objects are solved before any UV is written.
+"""
+import bpy
+import numpy as np
+from bpy.props import BoolProperty, FloatProperty, IntProperty, StringProperty
+
+from . import library
+
+
+# The last run's UVs per loop in double precision, per object name (Blender
+# stores single precision; the add-on's test compares these to 1e-9).
+LAST_UVS = {}
+
+
+def mesh_arrays(obj):
+    """V (world-scaled, n x 3), F (loop triangles' vertices), T (their loops)."""
+    me = obj.data
+    me.calc_loop_triangles()
+    V = np.empty(len(me.vertices) * 3, dtype=np.float64)
+    me.vertices.foreach_get("co", V)
+    V = V.reshape(-1, 3) @ np.array(obj.matrix_world.to_3x3(), dtype=np.float64).T
+    F = np.empty(len(me.loop_triangles) * 3, dtype=np.int32)
+    me.loop_triangles.foreach_get("vertices", F)
+    T = np.empty(len(me.loop_triangles) * 3, dtype=np.int64)
+    me.loop_triangles.foreach_get("loops", T)
+    return np.ascontiguousarray(V), F.reshape(-1, 3), T.reshape(-1, 3)
+
+
+def loop_uvs(result, F, T, num_loops):
+    """Per loop, the atlas UV of its corner. The atlas may list a face
+    reversed (reorient), so each corner is found by its vertex."""
+    out = np.zeros((num_loops, 2), dtype=np.float64)
+    AF = np.asarray(result.F)
+    AI = np.asarray(result.uv_index)
+    for i in range(3):
+        for j in range(3):
+            hit = AF[:, j] == F[:, i]
+            out[T[hit, i]] = result.uv[AI[hit, j]]
+    return out
+
+
+def target_layer(me, name, new):
+    """The UV map to write: a new one, the named one, or the active one."""
+    if new or (name and name not in me.uv_layers):
+        base = name or "Lightmap"
+        return me.uv_layers.new(name=base, do_init=False)
+    if name:
+        return me.uv_layers[name]
+    return me.uv_layers.active or me.uv_layers.new(name="UVMap", do_init=False)
+
+
+class INTRINSIC_OT_atlas(bpy.types.Operator):
+    """UV atlas of the whole selected objects (disk charts, natural conformal maps, packed without overlaps)"""
+    bl_idname = "uv.intrinsic_atlas"
+    bl_label = "Intrinsic Atlas"
+    bl_options = {"REGISTER", "UNDO"}
+
+    max_stretch: FloatProperty(name="Max Stretch", description="Split charts while 5% of their surface is "
+                               "stretched or shrunk by more than this", default=1.08, min=1.0, soft_max=3.0)
+    hard_angle: FloatProperty(name="Hard Angle", description="Edges whose faces turn by more than this are "
+                              "seams (degrees, 0: none; 80 for lightmaps)", default=0.0, min=0.0, max=180.0)
+    padding: FloatProperty(name="Padding", description="Texels between charts", default=2.0, min=0.0)
+    resolution: IntProperty(name="Resolution", description="Texture width the padding is measured in",
+                            default=1024, min=16)
+    uv_map: StringProperty(name="UV Map", description="UV map to write (empty: the active one)", default="")
+    new_uv_map: BoolProperty(name="New UV Map", description="Write a new UV map (e.g. a lightmap), keeping "
+                             "the others", default=False)
+
+    @classmethod
+    def poll(cls, context):
+        return any(o.type == "MESH" for o in context.selected_objects) or (
+            context.mode == "EDIT_MESH" and context.edit_object is not None)
+
+    def objects(self, context):
+        objs = [o for o in context.selected_objects if o.type == "MESH"]
+        if context.mode == "EDIT_MESH":
+            objs += [o for o in getattr(context, "objects_in_mode_unique_data", []) if o not in objs]
+        seen, out = set(), []
+        for o in objs:
+            if o.data.name not in seen:  # linked duplicates share one mesh: one atlas
+                seen.add(o.data.name)
+                out.append(o)
+        return out
+
+    def solve(self, lib, objs, wm):
+        work = []
+        for k, obj in enumerate(objs):
+            if len(obj.data.polygons) == 0:
+                raise ValueError(f"{obj.name}: the mesh has no faces")
+            if (self.new_uv_map or (self.uv_map and self.uv_map not in obj.data.uv_layers)) and \
+                    len(obj.data.uv_layers) >= 8:
+                raise ValueError(f"{obj.name}: the mesh has 8 UV maps already, Blender's limit")
+            V, F, T = mesh_arrays(obj)
+            try:
+                r = lib.atlas(V, F, max_stretch=self.max_stretch, hard_angle=self.hard_angle,
+                              padding=self.padding, resolution=self.resolution)
+            except lib.Error as e:
+                raise ValueError(f"{obj.name}: {e}") from None
+            work.append((obj, loop_uvs(r, F, T, len(obj.data.loops)), len(r.report["charts"])
+                         if isinstance(r.report.get("charts"), list) else r.report.get("charts")))
+            wm.progress_update(k + 1)
+        return work
+
+    def execute(self, context):
+        try:
+            return self.run(context)
+        except Exception as e:  # noqa: BLE001  (a report, never a traceback)
+            self.report({"ERROR"}, f"Intrinsic Atlas failed: {type(e).__name__}: {e}")
+            return {"CANCELLED"}
+
+    def run(self, context):
+        lib = library.load()
+        if lib is None:
+            self.report({"ERROR"}, library.failure())
+            return {"CANCELLED"}
+        objs = self.objects(context)
+        if not objs:
+            self.report({"ERROR"}, "Intrinsic Atlas: no mesh object selected")
+            return {"CANCELLED"}
+        edit = context.mode == "EDIT_MESH"
+        if edit:
+            bpy.ops.object.mode_set(mode="OBJECT")  # the mesh data, not the edit mesh, is read and written
+        wm = context.window_manager
+        wm.progress_begin(0, len(objs))
+        try:
+            work = self.solve(lib, objs, wm)
+            LAST_UVS.clear()
+            for obj, uv, _ in work:
+                LAST_UVS[obj.name] = uv
+                target_layer(obj.data, self.uv_map, self.new_uv_map).data.foreach_set("uv", uv.ravel())
+        except ValueError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        finally:
+            wm.progress_end()
+            if edit:
+                bpy.ops.object.mode_set(mode="EDIT")
+        self.report({"INFO"}, "Intrinsic Atlas: " + ", ".join(f"{o.name} {c} charts" for o, _, c in work))
+        return {"FINISHED"}

@@ -1,0 +1,69 @@
+// The atlas's options: the one-call form's AtlasOptions taken apart into the
+// two stages' ChartOptions and PackOptions (atlas.h), and each stage's range
+// checks (Error(Usage)), done before any work.
+#include "atlas/atlas_internal.h"
+#include "intrinsic/error.h"
+
+namespace intrinsic {
+
+ChartOptions chart_options(const AtlasOptions& o) {
+  ChartOptions c;
+  c.chart_map = o.chart_map;
+  c.segmentation = o.segmentation;
+  c.max_normal_deviation_deg = o.max_normal_deviation_deg;
+  c.sharp_angle_deg = o.sharp_angle_deg;
+  c.hard_angle_deg = o.hard_angle_deg;
+  c.max_stretch = o.max_stretch;
+  c.max_face_stretch = o.max_face_stretch;
+  c.atlas_stretch_budget = o.atlas_stretch_budget;
+  c.min_chart_faces = o.min_chart_faces;
+  c.degenerate_ratio = o.degenerate_ratio;
+  c.weld = o.weld;
+  c.reorient = o.reorient;
+  c.seams = o.seams;
+  c.max_charts = o.max_charts;
+  return c;
+}
+
+PackOptions pack_options(const AtlasOptions& o) {
+  PackOptions p;
+  p.resolution = o.resolution;
+  p.padding = o.padding;
+  return p;
+}
+
+namespace detail {
+
+void check_chart_options(const ChartOptions& o) {
+  if (!(o.max_normal_deviation_deg > 0 && o.max_normal_deviation_deg <= 180))
+    throw_usage("the normal deviation must be in (0, 180] degrees");
+  if (!(o.hard_angle_deg >= 0 && o.hard_angle_deg < 180))
+    throw_usage("the hard angle must be in [0, 180) degrees (0: no hard edges)");
+  if (!(o.sharp_angle_deg > 0 && o.sharp_angle_deg <= 180)) throw_usage("the sharp angle must be in (0, 180] degrees");
+  if (o.min_chart_faces < 0) throw_usage("the minimum chart size must be at least 0 faces");
+  if (!(o.max_stretch >= 1)) throw_usage("the stretch bound must be at least 1");
+  if (!(o.max_face_stretch >= 1)) throw_usage("the per-face stretch bound must be at least 1");
+  if (o.chart_map.isometric_iterations < 0) throw_usage("the isometric refinement steps must be at least 0");
+  if (o.max_charts < 0) throw_usage("the chart limit must be at least 0 (0: no limit)");
+  if (!(o.degenerate_ratio >= 0 && o.degenerate_ratio < 1)) throw_usage("the degenerate ratio must be in [0, 1)");
+  if (!(o.weld >= 0 && o.weld < 1))
+    throw_usage("the weld distance must be in [0, 1) (a fraction of the bounding box diagonal)");
+  const ChartMapOptions& m = o.chart_map;
+  if (m.boundary != BoundaryShape::Natural && m.boundary != BoundaryShape::Circle &&
+      m.boundary != BoundaryShape::Square)
+    throw_usage("a chart's boundary is natural, circle or square");
+  if (m.optimizer != ChartOptimizer::None && m.boundary == BoundaryShape::Natural)
+    throw_usage("optimal lambda and boundary optimization need a fixed chart boundary (circle or square)");
+  // Checked here rather than per chart: a chart whose solve fails is split,
+  // so a bad option would otherwise end in single triangles, not an error.
+  check_weights(m.weights);
+}
+
+void check_pack_options(const PackOptions& o) {
+  if (o.resolution < 1 || o.resolution > 1 << 20) throw_usage("the resolution must be between 1 and 1048576 texels");
+  if (!(o.padding >= 0 && o.padding < o.resolution / 4.0))
+    throw_usage("the padding must be at least 0 and less than a quarter of the resolution");
+}
+
+}  // namespace detail
+}  // namespace intrinsic

@@ -1,0 +1,117 @@
+// The atlas's fixed thresholds, in one place: the sparse-chart test, the
+// merge phases' limits and work budgets, the packer's bitmap. Each value
+// with the reason (and, where one was made, the measurement) behind it.
+// None of them is an option: they decide how much work is spent, not what a
+// valid chart is (that is ChartOptions').
+#pragma once
+
+namespace intrinsic::detail {
+
+// --- Sparse charts (packs_well, atlas_packing.cpp) ---
+// A chart must fill at least this fraction of its smallest bounding box: a
+// ring, a C or a spiral fills less and wastes the rest of its box.
+constexpr double kMinBoxFill = 0.15;
+// ... and at least this fraction of the square on its box's longer side
+// (the square the packer must find room for) ...
+constexpr double kMinSquareFill = 0.15;
+// ... unless it fills at least this much of its box: a straight strip packs
+// lengthwise (testing the square alone cut a long handle across into dozens
+// of slivers), while a V or an L of thin arms does not pack.
+constexpr double kStripBoxFill = 0.5;
+// Its box's longer side is at most this many times the side of a square of
+// the whole surface's area: a longer chart alone would keep the layout
+// under 1 / kMaxSideOverSurface^2 = 25% full.
+constexpr double kMaxSideOverSurface = 2;
+// Only charts of at least this many faces and this share of the surface are
+// tested (and split) for sparseness: the packer puts small masks into the
+// gaps of the large ones, so their boxes hardly matter (on a 1M-vertex
+// sphere, 98 splits of slivers under 0.5% left the utilization unchanged to
+// 13 digits, with 141 charts instead of 45).
+constexpr int kSparseMinFaces = 64;
+constexpr double kSparseMinShare = 0.005;
+
+// --- Merging (chart_merge.cpp) ---
+// A failed pair is never retried when its union's stretch was more than this
+// many times as far above 1 as the bound: on the assets such pairs failed on
+// every retry as the neighbour grew (spot: 2.29, then 2.07, 2.06, 1.89), and
+// their solves used up the budget other pairs can use.
+constexpr double kHopelessStretchFactor = 4;
+// The stretch-bounded merges solve unions of at most this many faces in
+// all (smallest charts first): meshes of up to about 20k faces merge fully,
+// large ones stay fast (the splits have already made every chart valid) ...
+constexpr long kMergeBudgetFaces = 150000;
+// ... plus this many per chart under kSliverFaces faces (a sliver the
+// validity splits left, about one union with a neighbour each): on beast
+// (64k faces, many slivers) the base budget alone left 655 charts, 271 under
+// 20 faces; with this 294, while igea's budget grows ~10%.
+constexpr long kMergeBudgetPerSliver = 500;
+constexpr long kSliverFaces = 100;
+// The atlas-stretch phase merges unions under this share of the surface
+// only: large merged charts pack worse (with no limit bumpy-cube,
+// decimated-max and suzanne fell below xatlas's utilization: 67.1% -> 59.9%,
+// 60.3 -> 53.7, 66.0 -> 62.1); small parts are what the phase is for.
+constexpr double kBudgetUnionShare = 0.01;
+// Its work budget: this many faces of unions, plus kSmallPartFactor times
+// the faces of the small parts (components under 1 / kSmallPartDivisor of
+// the faces), the extra at most kAtlasBudgetMaxExtra (1,000,000 in all).
+// igea and the generated sphere (one component each) get the base: with
+// 60,000 igea went 211 -> 171 charts but took 12-18% longer, with 20,000 196
+// charts at about the same time. ogre (124k faces, ~30 small parts of
+// 500-3300 faces): 326 charts.
+constexpr long kAtlasBudgetFaces = 20000;
+constexpr long kSmallPartFactor = 8;
+constexpr long kSmallPartDivisor = 20;
+constexpr long kAtlasBudgetMaxExtra = 980000;
+// Merging down to max_charts has a budget of its own (no measurement is
+// recorded for it: twice the first phase's base, as the user asked for
+// fewer charts and pays for the solves).
+constexpr long kMaxChartsBudgetFaces = 300000;
+
+// --- Packing (atlas_packing.cpp) ---
+// The packer's bitmap is at most this many texels wide: larger textures pack
+// on a coarser grid (padding rounded up to whole cells of it): the bitmap's
+// memory and the placement's scans grow with its area (no measurement of
+// the utilization a finer grid would gain is recorded).
+constexpr int kMaxPackBitmap = 1024;
+
+// --- The scale search (packing/scale_search.cpp) ---
+// The first scale tried: the charts' area would fill kStartFill^2 (72%) of
+// the square, above the utilizations the packer reaches (at most about 70%
+// on the assets: docs/cli.md), so the bracket steps down toward the answer.
+constexpr double kStartFill = 0.85;
+// Down from it by this factor per packing until a scale fits, at most
+// kBracketTries packings (0.8^42: 1e-4 of the start) before the bitmap's
+// side doubles (more charts than it holds with their padding).
+constexpr double kBracketStep = 0.8;
+constexpr int kBracketTries = 42;
+// Then bisected until the largest fitting scale is known within kFineRatio
+// (0.5%), at most kBisectSteps packings.
+constexpr double kFineRatio = 1.005;
+constexpr int kBisectSteps = 12;
+// With the extra pose angles: two bisection steps up to this factor above
+// the largest scale the smallest-box poses reached.
+constexpr double kAnglesRange = 1.08;
+// Bitmaps of at least kHalfBitmapMinSide texels are searched on a bitmap of
+// half the side first (a quarter of the texels to place), to kCoarseRatio;
+// then the full bitmap is tried down from kGuessAbove times twice that scale
+// in steps of kGuessStep, at most kGuessTries packings, with no refinement
+// after: on the shared assets the refinement and the angle packings doubled
+// the packing time (truck 360 -> 770 ms, spot 120 -> 225 ms) for under 1%
+// of utilization on most of them.
+constexpr int kHalfBitmapMinSide = 256;
+constexpr double kCoarseRatio = 1.02;
+constexpr double kGuessAbove = 1.03;
+constexpr double kGuessStep = 1.015;
+constexpr int kGuessTries = 6;
+
+// --- Texel masks (packing/texel_mask.cpp, packing/scale_search.cpp) ---
+// Masks placed as their whole frame (BoxCursors in placement.cpp): frames
+// their dilated texels fill to at least kBoxFill, and small frames (at most
+// kBoxSide texels more than the padding on both sides), where the corners
+// given up are a few texels.
+constexpr double kBoxFill = 0.9;
+constexpr int kBoxSide = 6;
+// Masks with more frame texels than this get no inner box (Mask::inner).
+constexpr long kInnerBoxArea = 96 * 96;
+
+}  // namespace intrinsic::detail
