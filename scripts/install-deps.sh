@@ -22,6 +22,9 @@ PACKAGES=(
   blender                  # the Blender add-on's test (ctest blender_addon) and bench/blender_addon.py
   # The Python module and its tests (Debian's /usr/bin/python3 and its packages)
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-distributed
+  # `pip install --no-build-isolation .` offline (pyproject.toml, setup.py) and
+  # its test python_pip_install, which makes a venv
+  python3-pip python3-setuptools python3-wheel python3-venv
 )
 export DEBIAN_FRONTEND=noninteractive
 missing=()

@@ -1,7 +1,11 @@
 // The project's single exception type. Every failure that reaches the API
 // boundary is an intrinsic::Error carrying a message that names the problem
 // and where it is (file, line, element), plus a category the command-line
-// tool maps to its exit code (see docs/formats.md "Exit codes").
+// tool maps to its exit code (see docs/formats.md "Exit codes"), and, for a
+// file that could not be opened, read or written, the errno of the failed
+// system call (so a caller can tell a missing file from a malformed one
+// without reading the message; the Python module raises FileNotFoundError or
+// PermissionError from it).
 #pragma once
 
 #include <cstdio>
@@ -19,13 +23,17 @@ enum class ErrorKind {
 
 class Error : public std::runtime_error {
  public:
-  Error(ErrorKind kind, const std::string& message)
-      : std::runtime_error(message), kind_(kind) {}
+  Error(ErrorKind kind, const std::string& message, int os_error = 0)
+      : std::runtime_error(message), kind_(kind), os_error_(os_error) {}
   ErrorKind kind() const { return kind_; }
   int exit_code() const { return static_cast<int>(kind_); }
+  // ENOENT, EACCES, EISDIR, ...: the file system's reason when a file could
+  // not be opened, read or written; 0 for every other failure.
+  int os_error() const { return os_error_; }
 
  private:
   ErrorKind kind_;
+  int os_error_;
 };
 
 // "1.5e-12", "0.25": numbers in messages (std::to_string prints 0.000000).
@@ -39,5 +47,12 @@ inline std::string short_number(double x) {
 [[noreturn]] inline void throw_input(const std::string& m) { throw Error(ErrorKind::Input, m); }
 [[noreturn]] inline void throw_numerical(const std::string& m) { throw Error(ErrorKind::Numerical, m); }
 [[noreturn]] inline void throw_output(const std::string& m) { throw Error(ErrorKind::Output, m); }
+// A file that could not be opened, read or written: `os_error` is the errno.
+[[noreturn]] inline void throw_input_file(const std::string& m, int os_error) {
+  throw Error(ErrorKind::Input, m, os_error);
+}
+[[noreturn]] inline void throw_output_file(const std::string& m, int os_error) {
+  throw Error(ErrorKind::Output, m, os_error);
+}
 
 }  // namespace intrinsic

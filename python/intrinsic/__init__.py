@@ -10,9 +10,18 @@ and error messages as the ``intrinsic`` command line (docs/python.md).
     r.report["angle_distortion"]["mean"]            # the CLI's --report, as a dict
     img = intrinsic.render(V, F, r.uv, mode="checker", size=(512, 512))
 
-Errors raise ``intrinsic.Error`` subclasses: ``UsageError`` (exit code 1),
-``InputError`` (2), ``NumericalError`` (3), ``OutputError`` (4), with the
-message the command line prints after ``intrinsic: error:``.
+Errors raise ``intrinsic.Error`` subclasses: ``UsageError`` (exit code 1;
+also a ``ValueError``), ``InputError`` (2), ``NumericalError`` (3),
+``OutputError`` (4), with the message the command line prints after
+``intrinsic: error:``. A file that cannot be opened, read or written raises
+a class that is also the matching ``OSError``: ``InputFileNotFoundError`` is
+an ``InputError`` and a ``FileNotFoundError``; likewise ``...PermissionError``,
+``...IsADirectoryError``, ``...NotADirectoryError``, ``...OSError``, each for
+``Input`` and ``Output``.
+
+Choices are enums as well as strings: ``intrinsic.Method.CONFORMAL``,
+``intrinsic.SolverKind.EIGEN_LLT`` (``.option`` is the string, "eigen-llt").
+``python3 -m intrinsic`` runs the command line (bundled by ``pip install``).
 
 Arrays: a C-contiguous float64 V / int32 F is read in place (no conversion
 copy); other dtypes or layouts are converted once by numpy. The library
@@ -28,13 +37,35 @@ from typing import Any, Dict, Optional, Sequence, Tuple, Union
 from . import _intrinsic
 from ._intrinsic import (  # noqa: F401  (re-exported)
     Atlas,
+    BasisMode,
     BoundaryEditor,
+    BoundaryEnergy,
+    BoundaryShape,
+    Descent,
     Error,
+    GradientRoute,
+    HoleRule,
     InputError,
+    InputFileNotFoundError,
+    InputIsADirectoryError,
+    InputNotADirectoryError,
+    InputOSError,
+    InputPermissionError,
+    LambdaEnergy,
+    Method,
     NumericalError,
     OutputError,
+    OutputFileNotFoundError,
+    OutputIsADirectoryError,
+    OutputNotADirectoryError,
+    OutputOSError,
+    OutputPermissionError,
     Parameterizer,
     Result,
+    ScaleMode,
+    Segmentation,
+    SolverKind,
+    Spacing,
     UsageError,
     metrics,
     read_mesh,
@@ -45,10 +76,19 @@ from ._intrinsic import (  # noqa: F401  (re-exported)
 
 __version__ = _intrinsic.__version__
 
+_ERRORS = (
+    "Error", "UsageError", "InputError", "NumericalError", "OutputError",
+    "InputFileNotFoundError", "InputPermissionError", "InputIsADirectoryError", "InputNotADirectoryError",
+    "InputOSError", "OutputFileNotFoundError", "OutputPermissionError", "OutputIsADirectoryError",
+    "OutputNotADirectoryError", "OutputOSError",
+)
+_ENUMS = (
+    "Method", "BoundaryShape", "Spacing", "ScaleMode", "HoleRule", "SolverKind", "LambdaEnergy", "BoundaryEnergy",
+    "GradientRoute", "Descent", "Segmentation", "BasisMode",
+)
 __all__ = [
-    "Atlas", "BoundaryEditor", "Error", "InputError", "NumericalError", "OutputError", "Parameterizer", "Result",
-    "UsageError", "metrics", "optimal_lambda", "optimize_boundary", "parameterize", "read_mesh", "render",
-    "write_atlas", "write_mesh", "atlas",
+    *_ERRORS, *_ENUMS, "Atlas", "BoundaryEditor", "Parameterizer", "Result", "metrics", "optimal_lambda",
+    "optimize_boundary", "parameterize", "read_mesh", "render", "write_atlas", "write_mesh", "atlas",
 ]
 
 Path = Union[str, PathLike]
@@ -58,27 +98,27 @@ def parameterize(
     V: Any,
     F: Any = None,
     *,
-    method: str = "conformal",
-    boundary: Path = "circle",
+    method: Union[str, Method] = "conformal",
+    boundary: Union[Path, BoundaryShape] = "circle",
     lam: Optional[float] = None,
     lambda_: Optional[float] = None,
     mu: Optional[float] = None,
-    spacing: str = "arclength",
-    scale: str = "unit",
-    holes: str = "fill",
+    spacing: Union[str, Spacing] = "arclength",
+    scale: Union[str, ScaleMode] = "unit",
+    holes: Union[str, HoleRule] = "fill",
     largest_component: bool = False,
-    solver: str = "auto",
+    solver: Union[str, SolverKind] = "auto",
     pins: Optional[Sequence[Union[str, Tuple[int, float, float]]]] = None,
     max_residual: float = 1e-8,
     constraints: Union[None, Dict[str, Any], Path] = None,
     max_vertices: int = 50_000_000,
-    optimize_lambda: Optional[str] = None,
+    optimize_lambda: Union[None, str, LambdaEnergy] = None,
     lambda_range: Tuple[float, float] = (0.0, 1.0),
-    optimize_boundary: Optional[str] = None,
+    optimize_boundary: Union[None, str, BoundaryEnergy] = None,
     iterations: int = 200,
     tolerance: float = 1e-6,
-    gradient: str = "adjoint",
-    descent: str = "lbfgs",
+    gradient: Union[str, GradientRoute] = "adjoint",
+    descent: Union[str, Descent] = "lbfgs",
     verbose: bool = False,
     **kwargs: Any,
 ) -> Result:
@@ -90,7 +130,8 @@ def parameterize(
     laid out side by side, as on the command line.
 
     The keywords are the command line's long options with dashes as
-    underscores (docs/cli.md):
+    underscores (docs/cli.md); a choice is its string or the enum member
+    (``method=intrinsic.Method.AUTHALIC`` is ``method="authalic"``):
 
     - ``method``: conformal | authalic | mixed | tutte | floater.
     - ``lam`` / ``lambda_`` (``lambda`` is a Python keyword; ``**{"lambda": x}``
@@ -129,7 +170,7 @@ def parameterize(
     return _intrinsic.parameterize(V, F, **options)
 
 
-def optimal_lambda(V: Any, F: Any = None, energy: str = "edge",
+def optimal_lambda(V: Any, F: Any = None, energy: Union[str, LambdaEnergy] = "edge",
                    lambda_range: Tuple[float, float] = (0.0, 1.0), **options: Any) -> Result:
     """The map lambda*conformal + (1-lambda)*authalic with the lambda that
     minimises the edge-length (``energy="edge"``) or area distortion, exactly
@@ -141,7 +182,8 @@ def optimal_lambda(V: Any, F: Any = None, energy: str = "edge",
     return parameterize(V, F, optimize_lambda=energy, lambda_range=lambda_range, **options)
 
 
-def optimize_boundary(V: Any, F: Any = None, energy: str = "edge", **options: Any) -> Result:
+def optimize_boundary(V: Any, F: Any = None, energy: Union[str, BoundaryEnergy] = "edge",
+                      **options: Any) -> Result:
     """Moves every boundary vertex to minimise the edge-length, area or
     symmetric Dirichlet (``energy="dirichlet"``) distortion, the interior
     following the chosen intrinsic map (paper 5.2; ``intrinsic param
@@ -169,12 +211,12 @@ def atlas(
     reorient: Optional[bool] = None,
     atlas_stretch_budget: Optional[bool] = None,
     seams: Any = None,
-    boundary: Optional[str] = None,
-    method: Optional[str] = None,
+    boundary: Union[None, str, BoundaryShape] = None,
+    method: Union[None, str, Method] = None,
     lambda_: Optional[float] = None,
     mu: Optional[float] = None,
-    optimize_lambda: Optional[str] = None,
-    optimize_boundary: Optional[str] = None,
+    optimize_lambda: Union[None, str, LambdaEnergy] = None,
+    optimize_boundary: Union[None, str, BoundaryEnergy] = None,
     max_vertices: Optional[int] = None,
 ) -> Atlas:
     """`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or a mesh file (atlas(path)).

@@ -1,7 +1,7 @@
 # Type stubs of the compiled module intrinsic._intrinsic (pybind11; see
 # python/src/). The package intrinsic/__init__.py re-exports these names.
 from os import PathLike
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, ClassVar, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -12,12 +12,113 @@ _Fixed = Sequence[Tuple[int, float, float]]
 __version__: str
 
 class Error(Exception):
-    exit_code: int
+    exit_code: ClassVar[int]
 
-class UsageError(Error): ...
+class UsageError(Error, ValueError): ...
 class InputError(Error): ...
 class NumericalError(Error): ...
 class OutputError(Error): ...
+
+# A file that could not be opened, read or written: errno is set.
+class InputFileNotFoundError(InputError, FileNotFoundError): ...
+class InputPermissionError(InputError, PermissionError): ...
+class InputIsADirectoryError(InputError, IsADirectoryError): ...
+class InputNotADirectoryError(InputError, NotADirectoryError): ...
+class InputOSError(InputError, OSError): ...
+class OutputFileNotFoundError(OutputError, FileNotFoundError): ...
+class OutputPermissionError(OutputError, PermissionError): ...
+class OutputIsADirectoryError(OutputError, IsADirectoryError): ...
+class OutputNotADirectoryError(OutputError, NotADirectoryError): ...
+class OutputOSError(OutputError, OSError): ...
+
+# The choice enums (pybind11 enums; bind_enums.cpp). `option` is the command
+# line's spelling of the member ("eigen-llt" for SolverKind.EIGEN_LLT).
+# _Enum names what they share; it is not a class of the module.
+class _Enum:
+    def __init__(self, value: int) -> None: ...
+    def __eq__(self, other: object) -> bool: ...
+    def __ne__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
+    def __index__(self) -> int: ...
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+    @property
+    def option(self) -> str: ...
+
+class Method(_Enum):
+    CONFORMAL: ClassVar[Method]
+    AUTHALIC: ClassVar[Method]
+    MIXED: ClassVar[Method]
+    TUTTE: ClassVar[Method]
+    FLOATER: ClassVar[Method]
+    __members__: ClassVar[Dict[str, Method]]
+
+class BoundaryShape(_Enum):
+    CIRCLE: ClassVar[BoundaryShape]
+    SQUARE: ClassVar[BoundaryShape]
+    GIVEN: ClassVar[BoundaryShape]
+    NATURAL: ClassVar[BoundaryShape]
+    __members__: ClassVar[Dict[str, BoundaryShape]]
+
+class Spacing(_Enum):
+    ARCLENGTH: ClassVar[Spacing]
+    UNIFORM: ClassVar[Spacing]
+    __members__: ClassVar[Dict[str, Spacing]]
+
+class ScaleMode(_Enum):
+    UNIT: ClassVar[ScaleMode]
+    SURFACE: ClassVar[ScaleMode]
+    __members__: ClassVar[Dict[str, ScaleMode]]
+
+class HoleRule(_Enum):
+    FILL: ClassVar[HoleRule]
+    FREE: ClassVar[HoleRule]
+    NATURAL: ClassVar[HoleRule]
+    __members__: ClassVar[Dict[str, HoleRule]]
+
+class SolverKind(_Enum):
+    AUTO: ClassVar[SolverKind]
+    CHOLMOD: ClassVar[SolverKind]
+    UMFPACK: ClassVar[SolverKind]
+    EIGEN_LLT: ClassVar[SolverKind]
+    EIGEN_LU: ClassVar[SolverKind]
+    CG: ClassVar[SolverKind]
+    BICGSTAB: ClassVar[SolverKind]
+    __members__: ClassVar[Dict[str, SolverKind]]
+
+class LambdaEnergy(_Enum):
+    EDGE: ClassVar[LambdaEnergy]
+    AREA: ClassVar[LambdaEnergy]
+    __members__: ClassVar[Dict[str, LambdaEnergy]]
+
+class BoundaryEnergy(_Enum):
+    EDGE: ClassVar[BoundaryEnergy]
+    AREA: ClassVar[BoundaryEnergy]
+    DIRICHLET: ClassVar[BoundaryEnergy]
+    __members__: ClassVar[Dict[str, BoundaryEnergy]]
+
+class GradientRoute(_Enum):
+    ADJOINT: ClassVar[GradientRoute]
+    RESPONSES: ClassVar[GradientRoute]
+    __members__: ClassVar[Dict[str, GradientRoute]]
+
+class Descent(_Enum):
+    LBFGS: ClassVar[Descent]
+    GRADIENT: ClassVar[Descent]
+    __members__: ClassVar[Dict[str, Descent]]
+
+class Segmentation(_Enum):
+    NORMAL_CONES: ClassVar[Segmentation]
+    COMPONENTS: ClassVar[Segmentation]
+    __members__: ClassVar[Dict[str, Segmentation]]
+
+class BasisMode(_Enum):
+    FULL: ClassVar[BasisMode]
+    LAZY: ClassVar[BasisMode]
+    __members__: ClassVar[Dict[str, BasisMode]]
 
 def read_mesh(path: _Path, max_vertices: int = ...) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int32]]: ...
 def write_mesh(path: _Path, V: npt.ArrayLike, F: npt.ArrayLike, uv: Optional[npt.ArrayLike] = None,

@@ -129,3 +129,113 @@ def test_bad_arrays_are_usage_errors():
         intrinsic.parameterize(np.zeros((4, 2)), np.zeros((1, 3), dtype=np.int32))
     with pytest.raises(intrinsic.UsageError, match="integer"):
         intrinsic.parameterize(np.zeros((4, 3)), np.zeros((1, 3)))
+
+
+# ---- the built-in exceptions they also are ----------------------------------------------------
+
+FILE_CLASSES = [("FileNotFoundError", FileNotFoundError), ("PermissionError", PermissionError),
+                ("IsADirectoryError", IsADirectoryError), ("NotADirectoryError", NotADirectoryError),
+                ("OSError", OSError)]
+
+
+def test_builtin_bases():
+    assert issubclass(intrinsic.UsageError, ValueError)
+    for kind, base in (("Input", intrinsic.InputError), ("Output", intrinsic.OutputError)):
+        for suffix, builtin in FILE_CLASSES:
+            cls = getattr(intrinsic, kind + suffix)
+            assert issubclass(cls, base) and issubclass(cls, builtin) and cls.exit_code == base.exit_code
+            assert cls.__name__ == kind + suffix and cls.__module__ == "intrinsic"
+    for cls in (intrinsic.InputError, intrinsic.NumericalError, intrinsic.OutputError, intrinsic.Error):
+        assert not issubclass(cls, (ValueError, OSError))
+
+
+def test_bad_keyword_value_is_a_value_error():
+    V, F = intrinsic.read_mesh(generated_mesh("wave"))
+    with pytest.raises(ValueError) as e:
+        intrinsic.parameterize(V, F, method="foo")
+    assert isinstance(e.value, intrinsic.UsageError) and e.value.exit_code == 1
+
+
+def test_missing_mesh_is_file_not_found(cli, tmp_path):
+    import errno
+    path = tmp_path / "no-such-mesh.obj"
+    c = cli([path])
+    assert c.returncode == 2
+    for call in (lambda: intrinsic.read_mesh(path), lambda: intrinsic.parameterize(str(path)),
+                 lambda: intrinsic.atlas(str(path))):
+        with pytest.raises(FileNotFoundError) as e:
+            call()
+        assert isinstance(e.value, intrinsic.InputError) and type(e.value) is intrinsic.InputFileNotFoundError
+        assert e.value.errno == errno.ENOENT and str(e.value) == c.message
+
+
+def test_missing_side_files_are_file_not_found(tmp_path):
+    V, F = intrinsic.read_mesh(generated_mesh("wave"))
+    with pytest.raises(FileNotFoundError, match="no-such-boundary.txt"):
+        intrinsic.parameterize(V, F, boundary=str(tmp_path / "no-such-boundary.txt"))
+    with pytest.raises(intrinsic.InputFileNotFoundError, match="no-such-constraints.json"):
+        intrinsic.parameterize(V, F, constraints=str(tmp_path / "no-such-constraints.json"))
+
+
+def test_directory_and_not_a_directory(tmp_path):
+    import errno
+    with pytest.raises(IsADirectoryError) as e:
+        intrinsic.read_mesh(tmp_path)
+    assert isinstance(e.value, intrinsic.InputError) and e.value.errno == errno.EISDIR
+    (tmp_path / "file.obj").write_text(BAD_INDEX)
+    with pytest.raises(NotADirectoryError) as e:
+        intrinsic.read_mesh(tmp_path / "file.obj" / "x.obj")
+    assert isinstance(e.value, intrinsic.InputError) and e.value.errno == errno.ENOTDIR
+
+
+def test_output_file_errors(tmp_path):
+    import errno
+    V, F = intrinsic.read_mesh(generated_mesh("wave"))
+    with pytest.raises(FileNotFoundError) as e:
+        intrinsic.write_mesh(tmp_path / "missing-dir" / "x.obj", V, F)
+    assert isinstance(e.value, intrinsic.OutputError) and e.value.errno == errno.ENOENT
+    (tmp_path / "taken.obj").mkdir()
+    with pytest.raises(IsADirectoryError) as e:
+        intrinsic.write_mesh(tmp_path / "taken.obj", V, F)
+    assert isinstance(e.value, intrinsic.OutputError)
+    assert not list((tmp_path / "taken.obj").iterdir())  # nothing partial left behind
+
+
+def test_permission_errors(tmp_path):
+    """A file the process may not read, a folder it may not write in. Root may do both: then sysfs,
+    which refuses new files to everyone, stands in for the second, where Python's own mkstemp there
+    fails with EACCES too."""
+    import errno
+    import os
+    import tempfile
+    V, F = intrinsic.read_mesh(generated_mesh("wave"))
+    if os.geteuid() != 0:
+        secret = tmp_path / "secret.obj"
+        secret.write_text(BAD_INDEX)
+        secret.chmod(0)
+        with pytest.raises(PermissionError) as e:
+            intrinsic.read_mesh(secret)
+        assert isinstance(e.value, intrinsic.InputError)
+        locked = tmp_path / "locked"
+        locked.mkdir()
+        locked.chmod(0o500)
+        target = locked / "x.obj"
+    else:
+        try:
+            os.close(tempfile.mkstemp(dir="/sys")[0])
+            pytest.skip("running as root and /sys takes new files: no folder refuses writing")
+        except OSError as e:
+            if e.errno != errno.EACCES:
+                pytest.skip(f"running as root and /sys refuses new files with {errno.errorcode[e.errno]}")
+        target = "/sys/intrinsic-test.obj"
+    with pytest.raises(PermissionError) as e:
+        intrinsic.write_mesh(target, V, F)
+    assert isinstance(e.value, intrinsic.OutputError) and type(e.value) is intrinsic.OutputPermissionError
+
+
+def test_errors_without_a_file_are_not_os_errors():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
+    F = np.array([[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]], dtype=np.int32)
+    with pytest.raises(intrinsic.InputError) as e:
+        intrinsic.parameterize(V, F)
+    assert type(e.value) is intrinsic.InputError and not isinstance(e.value, OSError)

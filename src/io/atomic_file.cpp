@@ -105,7 +105,7 @@ void write_file_atomically(const std::string& path, const std::function<void(con
   const std::size_t slash = path.find_last_of('/');
   const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
   const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
-  if (base.empty()) throw_output("cannot write " + path + ": it names a directory");
+  if (base.empty()) throw_output_file("cannot write " + path + ": it names a directory", EISDIR);
   // The temporary file must be in the same directory: rename(2) is only
   // atomic within one file system.
   std::string tmpl = dir + "/." + base + ".tmp.XXXXXX";
@@ -122,14 +122,14 @@ void write_file_atomically(const std::string& path, const std::function<void(con
   const std::string tmp(fd >= 0 ? buf.data() : "");
   const TrackedTemporary tracked{fd >= 0 ? track_temporary(tmp) : -1};
   ::pthread_sigmask(SIG_SETMASK, &previous, nullptr);
-  if (fd < 0) throw_output("cannot write " + path + ": " + std::strerror(mkstemp_errno));
+  if (fd < 0) throw_output_file("cannot write " + path + ": " + std::strerror(mkstemp_errno), mkstemp_errno);
 
   bool removed = false;
   auto fail = [&](int err) {
     ::close(fd);
     ::unlink(tmp.c_str());
     removed = true;
-    throw_output("cannot write " + path + ": " + std::strerror(err));
+    throw_output_file("cannot write " + path + ": " + std::strerror(err), err);
   };
 
   auto sink = [&](const char* p, std::size_t left) {
@@ -158,12 +158,12 @@ void write_file_atomically(const std::string& path, const std::function<void(con
   if (::close(fd) != 0) {
     const int err = errno;
     ::unlink(tmp.c_str());
-    throw_output("cannot write " + path + ": " + std::strerror(err));
+    throw_output_file("cannot write " + path + ": " + std::strerror(err), err);
   }
   if (::rename(tmp.c_str(), path.c_str()) != 0) {
     const int err = errno;
     ::unlink(tmp.c_str());
-    throw_output("cannot write " + path + ": " + std::strerror(err));
+    throw_output_file("cannot write " + path + ": " + std::strerror(err), err);
   }
 }
 

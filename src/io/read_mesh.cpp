@@ -87,12 +87,18 @@ MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name
 
 MeshData read_mesh(const std::string& path, const ReadOptions& options) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw_input("cannot open " + path + ": " + std::strerror(errno));
+  if (fd < 0) {
+    const int err = errno;  // before anything else can change it
+    throw_input_file("cannot open " + path + ": " + std::strerror(err), err);
+  }
   std::string bytes;
   try {
     struct stat st {};
-    if (::fstat(fd, &st) != 0) throw_input("cannot read " + path + ": " + std::strerror(errno));
-    if (S_ISDIR(st.st_mode)) throw_input("cannot read " + path + ": it is a directory");
+    if (::fstat(fd, &st) != 0) {
+      const int err = errno;
+      throw_input_file("cannot read " + path + ": " + std::strerror(err), err);
+    }
+    if (S_ISDIR(st.st_mode)) throw_input_file("cannot read " + path + ": it is a directory", EISDIR);
     // A file larger than any mesh within the limits could be (the same bound
     // as for inflated gzip data) is refused before it is read into memory.
     const std::uint64_t max_bytes = inflate_cap(options, format_of(path));
@@ -115,8 +121,9 @@ MeshData read_mesh(const std::string& path, const ReadOptions& options) {
       }
       const ssize_t n = ::read(fd, &bytes[have], bytes.size() - have);
       if (n < 0) {
-        if (errno == EINTR) continue;
-        throw_input("cannot read " + path + ": " + std::strerror(errno));
+        const int err = errno;
+        if (err == EINTR) continue;
+        throw_input_file("cannot read " + path + ": " + std::strerror(err), err);
       }
       if (n == 0) break;
       have += static_cast<std::size_t>(n);

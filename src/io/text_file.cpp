@@ -1,6 +1,7 @@
 // Reading a small text input file whole (see text_file.h).
 #include "io/text_file.h"
 
+#include <cerrno>
 #include <fstream>
 #include <sstream>
 
@@ -9,8 +10,14 @@
 namespace intrinsic::detail {
 
 std::string read_text_file(const std::string& path, const std::string& what) {
+  // The stream opens the file with open(2), whose errno (missing file,
+  // permission) it leaves in place; cleared first so another reason is 0.
+  errno = 0;
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw_input("cannot open " + what + " '" + path + "'");
+  if (!file) {
+    const int err = errno;
+    throw_input_file("cannot open " + what + " '" + path + "'", err);
+  }
   std::ostringstream text;
   text << file.rdbuf();
   return text.str();

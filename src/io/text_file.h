@@ -6,7 +6,8 @@
 
 namespace intrinsic::detail {
 
-// The bytes of `path`. Throws Error(Input) "cannot open WHAT 'PATH'".
+// The bytes of `path`. Throws Error(Input) "cannot open WHAT 'PATH'" with
+// the errno of the failed open (Error::os_error).
 std::string read_text_file(const std::string& path, const std::string& what);
 
 }  // namespace intrinsic::detail
