@@ -6,6 +6,7 @@ SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
 PACKAGES=(
   build-essential cmake pkg-config
+  ccache                   # the pip-install test's own build reuses the main build's objects
   libeigen3-dev            # matrices and sparse assembly
   libsuitesparse-dev       # CHOLMOD (Cholesky), UMFPACK (LU)
   libopenblas-dev          # fast BLAS for CHOLMOD's supernodal factorization

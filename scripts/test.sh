@@ -6,7 +6,16 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 JOBS=${JOBS:-$(nproc)}
 # The CGAL comparison is a benchmark of its own (slow to compile); not built here.
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DINTRINSIC_BENCH_CGAL=OFF
+# ccache: the test python_pip_install builds the module and the CLI again in
+# build-pip/ (as `pip install .` does); beside build/ and with paths taken
+# relative to this folder it finds build/'s objects instead of compiling
+# everything a second time.
+LAUNCHER=()
+if command -v ccache >/dev/null; then
+  export CCACHE_BASEDIR="$PWD"
+  LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DINTRINSIC_BENCH_CGAL=OFF "${LAUNCHER[@]}"
 cmake --build build -j"$JOBS"
 # ctest also runs the Python tests (python_tests and python_tests_corpus:
 # /usr/bin/python3 -m pytest python/tests) and install_consumer (cmake
