@@ -214,8 +214,9 @@ void solve_needed(const MergeContext& ctx, std::vector<Proposal>& props, size_t 
   std::vector<Proposal*> batch;
   for (size_t i = next; i < props.size(); ++i) {
     Proposal& p = props[i];
-    if (p.solved || pass.touched[p.c] || pass.touched[p.d]) continue;
-    if (!held[p.c] && !held[p.d]) batch.push_back(&p);
+    if (pass.touched[p.c] || pass.touched[p.d]) continue;  // will not be applied
+    // Solved or not, an undecided proposal may still change its charts.
+    if (!p.solved && !held[p.c] && !held[p.d]) batch.push_back(&p);
     held[p.c] = held[p.d] = 1;
   }
   const std::int64_t n = static_cast<std::int64_t>(batch.size());
