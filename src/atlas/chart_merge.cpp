@@ -11,6 +11,14 @@
 // failed on every retry as the neighbour grew (spot: a union at 2.29 retried
 // at 2.07, 2.06, 1.89), and their solves used up the work budget that other
 // pairs can use. The unions solved are bounded in total size (a work budget).
+// Unions are solved lazily, in the order the pass applies them: a union one
+// of whose charts an earlier union of the pass has just changed is not
+// solved (it would be thrown away). In the passes past the stretch bound
+// that saves the work outright (on ogre 60% of that phase's union faces). In
+// a stretch-bounded pass such a union is put aside as the face set it was
+// proposed with, since whether it is hopeless (never retried) matters, and
+// solved at the start of the next pass unless a chart of it is gone. The
+// charts are thus exactly those of solving every union proposed.
 // A last phase merges past the per-chart bound, unions under 1% of the
 // surface only, while the whole atlas's 95th percentile of face stretch stays
 // within it (docs/maths.md §9.7): a small closed part (ogre's ~30 small
@@ -29,18 +37,88 @@
 namespace intrinsic::detail {
 namespace {
 
-// The neighbour chart `c` shares most glued edges with, among those not in `skip`; -1 if none.
-int best_neighbour(const CleanMesh& clean, const std::vector<int>& owner, const FlatChart& chart, int c,
-                   const std::map<std::pair<int, int>, bool>& skip) {
+using Pair = std::pair<int, int>;
+Pair key(int c, int d) { return {std::min(c, d), std::max(c, d)}; }
+
+// A union as proposed: its faces and the limits it is judged by, fixed when
+// it is proposed (the same whenever it is solved).
+struct UnionTask {
+  std::vector<int> faces;  // sorted
+  int component = 0;
+  double limit = INFINITY, face_limit = INFINITY;
+};
+
+struct UnionResult {
+  FlatChart merged;
+  bool valid = false;
+  double stretch = INFINITY;  // of the union's map, when it flattened
+};
+
+UnionResult solve_union(const MeshData& input, const CleanMesh& clean, const ChartOptions& options,
+                        const UnionTask& task) {
+  UnionResult r;
+  r.merged.mesh = chart_mesh(input, clean, task.faces);
+  r.merged.summary.component = task.component;
+  if (flatten_chart(r.merged, options.chart_map, options.degenerate_ratio) != ChartStatus::Valid) return r;
+  r.stretch = r.merged.summary.face_stretch_p95;
+  r.valid = within_stretch(r.merged.summary, task.limit, task.face_limit) &&
+            (static_cast<long>(task.faces.size()) < kSparseMinFaces || packs_well(chart_box(r.merged), clean.surface_area));
+  return r;
+}
+
+// What one merge phase remembers about pairs: failed ones (true: hopeless,
+// never retried; false: retried once a chart changes) and, in a
+// stretch-bounded phase, the unions proposed but not solved because a chart
+// changed first (whether they are hopeless is decided at the next pass).
+struct PairMemory {
+  double bound = INFINITY;
+  std::map<Pair, bool> failed;
+  std::map<Pair, UnionTask> unsolved;
+  bool hopeless(double stretch) const {
+    return std::isfinite(stretch) && stretch - 1 > kHopelessStretchFactor * (bound - 1);
+  }
+};
+
+struct MergeContext {
+  const MeshData& input;
+  const CleanMesh& clean;
+  const ChartOptions& options;
+};
+
+// Solves, in parallel, the unions put aside in the last pass whose charts
+// both live, and marks the hopeless ones: the memory is then what solving
+// every proposed union would have left (a pair with a merged-away chart is
+// never proposed again).
+void settle_unsolved(const MergeContext& ctx, const std::vector<char>& gone, PairMemory& memory) {
+  std::vector<std::pair<Pair, const UnionTask*>> tasks;
+  for (const auto& [k, task] : memory.unsolved)
+    if (!gone[k.first] && !gone[k.second]) tasks.push_back({k, &task});
+  const std::int64_t n = static_cast<std::int64_t>(tasks.size());
+  std::vector<char> hopeless(tasks.size(), 0);
+  const int parts = parallel_parts(n, 1);
+  parallel_for_parts(parts, parts, [&](int part, std::int64_t, std::int64_t) {
+    for (std::int64_t i = part; i < n; i += parts) {
+      const UnionResult r = solve_union(ctx.input, ctx.clean, ctx.options, *tasks[i].second);
+      hopeless[i] = !r.valid && memory.hopeless(r.stretch);
+    }
+  });
+  for (std::int64_t i = 0; i < n; ++i)
+    if (hopeless[i]) memory.failed[tasks[i].first] = true;
+  memory.unsolved.clear();
+}
+
+// The neighbour chart `c` shares most glued edges with, among the pairs not failed; -1 if none.
+int best_neighbour(const MergeContext& ctx, const std::vector<int>& owner, const FlatChart& chart, int c,
+                   const PairMemory& memory) {
   std::map<int, int> shared;
   for (int f : chart.mesh.faces)
     for (int k = 0; k < 3; ++k) {
-      const int g = clean.glued[3 * f + k];
+      const int g = ctx.clean.glued[3 * f + k];
       if (g >= 0 && owner[g] >= 0 && owner[g] != c) ++shared[owner[g]];
     }
   int best = -1, most = 0;
   for (const auto& [d, n] : shared)
-    if (n > most && !skip.count({std::min(c, d), std::max(c, d)})) best = d, most = n;
+    if (n > most && !memory.failed.count(key(c, d))) best = d, most = n;
   return best;
 }
 
@@ -76,93 +154,141 @@ struct AtlasStretch {
 
 struct Proposal {
   int c, d;  // merge c into d
-  FlatChart merged;
-  bool valid = false;
-  double stretch = INFINITY;  // of the union's map, when valid
+  UnionTask task;
+  bool solved = false;
+  UnionResult result;
 };
 
-// One pass: proposals from every live chart (smallest first), unions solved
-// in parallel, then the acceptable ones applied. Returns the merges made.
-int merge_pass(const MeshData& input, const CleanMesh& clean, const ChartOptions& options, double bound,
-               int wanted, long& budget, std::vector<FlatChart>& charts, std::vector<char>& gone,
-               std::vector<int>& owner, std::map<std::pair<int, int>, bool>& failed, AtlasStretch* atlas = nullptr) {
+// The state of one pass: the charts, which of them changed in it, the merges made.
+struct Pass {
+  std::vector<FlatChart>& charts;
+  std::vector<char>& gone;
+  std::vector<int>& owner;
+  PairMemory& memory;
+  AtlasStretch* atlas;
+  std::vector<char> touched;
+  int merges = 0, live = 0;
+};
+
+// Proposals from every live chart (smallest first), within the work budget.
+std::vector<Proposal> propose(const MergeContext& ctx, double bound, int wanted, long& budget, Pass& pass) {
+  const std::vector<FlatChart>& charts = pass.charts;
   std::vector<int> order;
   for (size_t c = 0; c < charts.size(); ++c)
-    if (!gone[c]) order.push_back(static_cast<int>(c));
+    if (!pass.gone[c]) order.push_back(static_cast<int>(c));
+  pass.live = static_cast<int>(order.size());
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return charts[a].mesh.faces.size() < charts[b].mesh.faces.size(); });
   std::vector<Proposal> props;
-  std::set<std::pair<int, int>> proposed;
+  std::set<Pair> proposed;
   for (int c : order) {
-    const int d = best_neighbour(clean, owner, charts[c], c, failed);
-    if (d < 0 || !proposed.insert({std::min(c, d), std::max(c, d)}).second) continue;
-    if (atlas && charts[c].summary.area_3d + charts[d].summary.area_3d > atlas->max_union_area) {
-      failed[{std::min(c, d), std::max(c, d)}] = true;  // too large for this phase, and charts only grow
+    const int d = best_neighbour(ctx, pass.owner, charts[c], c, pass.memory);
+    if (d < 0 || !proposed.insert(key(c, d)).second) continue;
+    if (pass.atlas && charts[c].summary.area_3d + charts[d].summary.area_3d > pass.atlas->max_union_area) {
+      pass.memory.failed[key(c, d)] = true;  // too large for this phase, and charts only grow
       continue;
     }
     const long size = static_cast<long>(charts[c].mesh.faces.size() + charts[d].mesh.faces.size());
     if (size > budget) break;  // the work bound: each union is solved once more
     budget -= size;
-    props.push_back({c, d, {}, false});
+    Proposal p{c, d, {}, false, {}};
+    p.task.faces = charts[d].mesh.faces;
+    p.task.faces.insert(p.task.faces.end(), charts[c].mesh.faces.begin(), charts[c].mesh.faces.end());
+    std::sort(p.task.faces.begin(), p.task.faces.end());
+    p.task.component = charts[d].summary.component;
+    // Slivers below min_chart_faces may go up to their neighbour's own stretch.
+    const bool small = static_cast<int>(charts[c].mesh.faces.size()) < ctx.options.min_chart_faces;
+    p.task.limit = small ? std::max(bound, charts[d].summary.face_stretch_p95) : bound;
+    // Down to max_charts (wanted > 0) only validity bounds a union.
+    p.task.face_limit = wanted > 0 ? INFINITY : ctx.options.max_face_stretch;
+    props.push_back(std::move(p));
   }
-  const std::int64_t n = static_cast<std::int64_t>(props.size());
+  return props;
+}
+
+// Solves, in parallel, the unsolved proposals from `next` on whose charts no
+// earlier undecided proposal holds: whatever the earlier ones decide, these
+// are needed (their charts cannot change before their turn).
+void solve_needed(const MergeContext& ctx, std::vector<Proposal>& props, size_t next, const Pass& pass) {
+  std::vector<char> held(pass.charts.size(), 0);
+  std::vector<Proposal*> batch;
+  for (size_t i = next; i < props.size(); ++i) {
+    Proposal& p = props[i];
+    if (pass.touched[p.c] || pass.touched[p.d]) continue;  // will not be applied
+    // Solved or not, an undecided proposal may still change its charts.
+    if (!p.solved && !held[p.c] && !held[p.d]) batch.push_back(&p);
+    held[p.c] = held[p.d] = 1;
+  }
+  const std::int64_t n = static_cast<std::int64_t>(batch.size());
   const int parts = parallel_parts(n, 1);
   parallel_for_parts(parts, parts, [&](int part, std::int64_t, std::int64_t) {
     for (std::int64_t i = part; i < n; i += parts) {
-      Proposal& p = props[i];
-      std::vector<int> faces = charts[p.d].mesh.faces;
-      faces.insert(faces.end(), charts[p.c].mesh.faces.begin(), charts[p.c].mesh.faces.end());
-      std::sort(faces.begin(), faces.end());
-      p.merged.mesh = chart_mesh(input, clean, faces);
-      p.merged.summary.component = charts[p.d].summary.component;
-      if (flatten_chart(p.merged, options.chart_map, options.degenerate_ratio) != ChartStatus::Valid) continue;
-      p.stretch = p.merged.summary.face_stretch_p95;
-      // Slivers below min_chart_faces may go up to their neighbour's own stretch.
-      const bool small = static_cast<int>(charts[p.c].mesh.faces.size()) < options.min_chart_faces;
-      const double limit = small ? std::max(bound, charts[p.d].summary.face_stretch_p95) : bound;
-      // Down to max_charts (wanted > 0) only validity bounds a union.
-      p.valid = within_stretch(p.merged.summary, limit, wanted > 0 ? INFINITY : options.max_face_stretch) &&
-                (static_cast<long>(faces.size()) < kSparseMinFaces || packs_well(chart_box(p.merged), clean.surface_area));
+      batch[i]->result = solve_union(ctx.input, ctx.clean, ctx.options, batch[i]->task);
+      batch[i]->solved = true;
     }
   });
-  std::vector<char> touched(charts.size(), 0);
-  int merges = 0, live = static_cast<int>(order.size());
-  for (Proposal& p : props) {
-    if (wanted > 0 && live <= wanted) break;
-    if (!p.valid) {
-      // true: hopeless, never retried
-      failed[{std::min(p.c, p.d), std::max(p.c, p.d)}] = std::isfinite(p.stretch) && p.stretch - 1 > kHopelessStretchFactor * (bound - 1);
+}
+
+// Applies one solved proposal whose charts have not changed in this pass.
+void decide(Proposal& p, Pass& pass) {
+  PairMemory& memory = pass.memory;
+  if (!p.result.valid) {
+    memory.failed[key(p.c, p.d)] = memory.hopeless(p.result.stretch);  // true: hopeless, never retried
+    return;
+  }
+  std::vector<FlatChart>& charts = pass.charts;
+  if (AtlasStretch* atlas = pass.atlas) {
+    atlas->add(charts[p.c], -1), atlas->add(charts[p.d], -1), atlas->add(p.result.merged, +1);
+    if (atlas->p95() > atlas->limit) {
+      atlas->add(p.result.merged, -1), atlas->add(charts[p.c], +1), atlas->add(charts[p.d], +1);
+      memory.failed[key(p.c, p.d)] = false;  // over the atlas's budget: retried if a chart changes
+      return;
+    }
+  }
+  pass.touched[p.c] = pass.touched[p.d] = 1;
+  for (int f : charts[p.c].mesh.faces) pass.owner[f] = p.d;
+  charts[p.d] = std::move(p.result.merged);
+  charts[p.c] = {};
+  pass.gone[p.c] = 1;
+  ++pass.merges, --pass.live;
+}
+
+// One pass: proposals from every live chart (smallest first), then, in
+// their order, each applied when acceptable; the unions solved in parallel
+// batches of those surely needed. Returns the merges made.
+int merge_pass(const MergeContext& ctx, double bound, int wanted, long& budget, std::vector<FlatChart>& charts,
+               std::vector<char>& gone, std::vector<int>& owner, PairMemory& memory, AtlasStretch* atlas = nullptr) {
+  settle_unsolved(ctx, gone, memory);
+  Pass pass{charts, gone, owner, memory, atlas, std::vector<char>(charts.size(), 0)};
+  std::vector<Proposal> props = propose(ctx, bound, wanted, budget, pass);
+  for (size_t next = 0; next < props.size(); ++next) {
+    Proposal& p = props[next];
+    if (wanted > 0 && pass.live <= wanted) break;
+    if (pass.touched[p.c] || pass.touched[p.d]) {
+      // Solved against a chart that has just changed, it would not be kept:
+      // put aside where it could be hopeless (settle_unsolved).
+      if (std::isfinite(memory.bound)) memory.unsolved[key(p.c, p.d)] = std::move(p.task);
       continue;
     }
-    if (touched[p.c] || touched[p.d]) continue;  // solved against a chart that has just changed: next pass
-    if (atlas) {
-      atlas->add(charts[p.c], -1), atlas->add(charts[p.d], -1), atlas->add(p.merged, +1);
-      if (atlas->p95() > atlas->limit) {
-        atlas->add(p.merged, -1), atlas->add(charts[p.c], +1), atlas->add(charts[p.d], +1);
-        failed[{std::min(p.c, p.d), std::max(p.c, p.d)}] = false;  // over the atlas's budget: retried if a chart changes
-        continue;
-      }
-    }
-    touched[p.c] = touched[p.d] = 1;
-    for (int f : charts[p.c].mesh.faces) owner[f] = p.d;
-    charts[p.d] = std::move(p.merged);
-    charts[p.c] = {};
-    gone[p.c] = 1;
-    ++merges, --live;
+    if (!p.solved) solve_needed(ctx, props, next, pass);
+    decide(p, pass);
   }
   // Pairs with a changed chart may succeed now (unless hopeless).
-  for (auto it = failed.begin(); it != failed.end();)
-    it = !it->second && (touched[it->first.first] || touched[it->first.second]) ? failed.erase(it) : std::next(it);
-  return merges;
+  for (auto it = memory.failed.begin(); it != memory.failed.end();)
+    it = !it->second && (pass.touched[it->first.first] || pass.touched[it->first.second]) ? memory.failed.erase(it)
+                                                                                          : std::next(it);
+  return pass.merges;
 }
 
 // Past the per-chart bound (still valid unions under 1% of the surface
 // only), smallest chart first, while the atlas's mean stays within
 // options.max_stretch.
-void merge_within_atlas_stretch(const MeshData& input, const CleanMesh& clean, const ChartOptions& options,
-                                std::vector<FlatChart>& charts, std::vector<char>& gone, std::vector<int>& owner) {
+void merge_within_atlas_stretch(const MergeContext& ctx, std::vector<FlatChart>& charts, std::vector<char>& gone,
+                                std::vector<int>& owner) {
+  const MeshData& input = ctx.input;
+  const CleanMesh& clean = ctx.clean;
   AtlasStretch atlas;
-  atlas.limit = options.max_stretch;
+  atlas.limit = ctx.options.max_stretch;
   for (size_t c = 0; c < charts.size(); ++c)
     if (!gone[c]) atlas.add(charts[c], +1);
   // Already over (only slivers' merges up to their neighbour's stretch can do that): nothing to spend.
@@ -170,7 +296,7 @@ void merge_within_atlas_stretch(const MeshData& input, const CleanMesh& clean, c
   // Only small unions: the packer puts small charts into the gaps of large
   // ones, while large merged charts pack worse (thresholds.h).
   atlas.max_union_area = kBudgetUnionShare * atlas.total;
-  std::map<std::pair<int, int>, bool> failed;
+  PairMemory memory;  // bound INFINITY: nothing is hopeless
   // Work budget: a base, plus a multiple of the faces of the small parts
   // this phase is for (thresholds.h).
   std::vector<long> part_faces(clean.components, 0);
@@ -180,7 +306,7 @@ void merge_within_atlas_stretch(const MeshData& input, const CleanMesh& clean, c
   for (long n : part_faces)
     if (n * kSmallPartDivisor < static_cast<long>(input.F.rows())) small_faces += n;
   long budget = kAtlasBudgetFaces + std::min(kSmallPartFactor * small_faces, kAtlasBudgetMaxExtra);
-  while (merge_pass(input, clean, options, INFINITY, 0, budget, charts, gone, owner, failed, &atlas) > 0) {
+  while (merge_pass(ctx, INFINITY, 0, budget, charts, gone, owner, memory, &atlas) > 0) {
   }
 }
 
@@ -192,25 +318,27 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const ChartOpti
   for (size_t c = 0; c < charts.size(); ++c)
     for (int f : charts[c].mesh.faces) owner[f] = static_cast<int>(c);
   std::vector<char> gone(charts.size(), 0);
-  std::map<std::pair<int, int>, bool> failed;
+  const MergeContext ctx{input, clean, options};
+  PairMemory memory;
+  memory.bound = options.max_stretch;
   // Merging costs a solve of every union tried: a budget of faces in all
   // (smallest charts first), more for the slivers that merging is for
   // (thresholds.h).
   long small = 0;
   for (const FlatChart& c : charts) small += static_cast<long>(c.mesh.faces.size()) < kSliverFaces;
   long budget = kMergeBudgetFaces + kMergeBudgetPerSliver * small;
-  while (merge_pass(input, clean, options, options.max_stretch, 0, budget, charts, gone, owner, failed) > 0) {
+  while (merge_pass(ctx, options.max_stretch, 0, budget, charts, gone, owner, memory) > 0) {
   }
   auto live = [&] { return static_cast<int>(std::count(gone.begin(), gone.end(), 0)); };
   if (options.atlas_stretch_budget && options.seams.empty() && options.min_chart_faces > 0)
-    merge_within_atlas_stretch(input, clean, options, charts, gone, owner);
+    merge_within_atlas_stretch(ctx, charts, gone, owner);
   // Over the chart limit: merge past the stretch bound (never past validity),
   // with a budget of its own.
   if (options.max_charts > 0 && live() > options.max_charts) {
-    failed.clear();
+    memory = PairMemory();  // bound INFINITY: nothing is hopeless
     budget = kMaxChartsBudgetFaces;
     while (live() > options.max_charts &&
-           merge_pass(input, clean, options, INFINITY, options.max_charts, budget, charts, gone, owner, failed) > 0) {
+           merge_pass(ctx, INFINITY, options.max_charts, budget, charts, gone, owner, memory) > 0) {
     }
   }
   std::vector<FlatChart> kept;
