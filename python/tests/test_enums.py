@@ -71,3 +71,28 @@ def test_members_are_distinct_and_hashable():
     for name in intrinsic._ENUMS:
         members = list(getattr(intrinsic, name).__members__.values())
         assert len(set(members)) == len(members) == len({int(m) for m in members})
+
+
+@pytest.mark.parametrize("options", [
+    dict(method="authalic", boundary="square", spacing="uniform"),
+    dict(boundary="natural", scale="surface"),
+    dict(method="mixed", lam=0.3, mu=0.7, holes="free", solver="umfpack"),
+    dict(optimize_lambda="area"),
+], ids=["authalic-square", "natural", "mixed", "optimal-lambda"])
+def test_members_as_keyword_values_equal_their_spelling(options):
+    """A keyword takes the enum member or its spelling; both give the same map."""
+    keyword_enum = {"method": intrinsic.Method, "boundary": intrinsic.BoundaryShape, "spacing": intrinsic.Spacing,
+                    "scale": intrinsic.ScaleMode, "holes": intrinsic.HoleRule, "solver": intrinsic.SolverKind,
+                    "optimize_lambda": intrinsic.LambdaEnergy}
+    as_members = {k: (getattr(keyword_enum[k], v.upper().replace("-", "_")) if k in keyword_enum else v)
+                  for k, v in options.items()}
+    mesh = str(generated_mesh("wave"))
+    by_name = intrinsic.parameterize(mesh, **options)
+    by_member = intrinsic.parameterize(mesh, **as_members)
+    assert (by_name.uv == by_member.uv).all()
+    assert by_name.report["method"] == by_member.report["method"]
+
+
+def test_member_of_the_wrong_enum_is_refused():
+    with pytest.raises(ValueError, match="method"):
+        intrinsic.parameterize(str(generated_mesh("wave")), method=intrinsic.Spacing.UNIFORM)
