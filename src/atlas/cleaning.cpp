@@ -195,7 +195,14 @@ void count_components(const MeshData& in, CleanMesh& m) {
 MeshData weld_vertices(const MeshData& input, double relative_distance, int& welded) {
   check_input(input);
   welded = 0;
-  MeshData out = input;
+  // Only what the computation reads: the input's other attributes (texture
+  // coordinates, normals, materials, a glTF document) stay with the input,
+  // which is what the output is written from.
+  MeshData out;
+  out.V = input.V;
+  out.F = input.F;
+  out.path = input.path;
+  out.face_line = input.face_line;
   if (!(relative_distance > 0)) return out;
   const Eigen::Vector3d lo = input.V.colwise().minCoeff(), hi = input.V.colwise().maxCoeff();
   const double d = relative_distance * (hi - lo).norm();
