@@ -1,4 +1,4 @@
-// Fuzzes the whole atlas pipeline (issue 13) on small mutated meshes: read,
+// Fuzzes the whole atlas pipeline on small mutated meshes: read,
 // atlas() (cleaning, optional weld, segmentation, flattening, merging,
 // packing), then checks the atlas's promises with `metrics`' own measures
 // (metrics.h: charts, flips per chart, exact overlaps): a result with a

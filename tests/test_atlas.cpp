@@ -1,4 +1,4 @@
-// intrinsic atlas (issue 13), checked from the outside: every face gets
+// intrinsic atlas, checked from the outside: every face gets
 // finite per-corner UVs in [0,1]^2, no triangle is flipped, no two triangles
 // overlap (an overlap test of its own: a uniform grid over UV space and a
 // separating-axis triangle test with a small tolerance, independent of the

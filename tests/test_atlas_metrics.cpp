@@ -1,4 +1,4 @@
-// Atlas measures of `metrics` (issue 13 item 7): charts of per-corner UVs and
+// Atlas measures of `metrics`: charts of per-corner UVs and
 // triangle soups, mirrored charts apart from local folds, exact overlaps and
 // utilization, against figures worked out here by other means (polygon
 // clipping for overlap areas, hand counts), and `metrics`/`render` on a soup

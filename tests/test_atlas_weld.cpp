@@ -1,4 +1,4 @@
-// `--weld EPS` (issue 13 item 1): coincident vertices merged for the
+// `--weld EPS`: coincident vertices merged for the
 // computation only. A hand-built square whose two triangles do not share
 // vertices, and teapot.obj (unwelded seams), against counts made here by
 // other means (exact duplicate positions in a std::set).

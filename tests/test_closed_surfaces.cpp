@@ -1,4 +1,4 @@
-// The generated closed surfaces (issue 13): Euler characteristic, closed,
+// The generated closed surfaces: Euler characteristic, closed,
 // manifold, one consistently oriented component, outward normals.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The natural map's system factored in its complex Hermitian form
-// (docs/maths.md §3.6), and the solver's thread settings (issue 14).
+// (docs/maths.md §3.6), and the solver's thread settings.
 #include <dlfcn.h>
 
 #include <random>

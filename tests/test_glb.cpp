@@ -1,4 +1,4 @@
-// glTF 2.0 binary output (issue 13 item 6): the atlas of a closed surface
+// glTF 2.0 binary output: the atlas of a closed surface
 // written as .glb and read back with tinygltf's own loader; every corner's
 // position and texture coordinate must equal the atlas result (as float32,
 // v flipped to glTF's top-left origin), vertices split exactly where corners

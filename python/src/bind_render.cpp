@@ -52,7 +52,7 @@ py::object render(const py::object& V, const py::object& F, const py::object& uv
                   bool log_scale) {
   const PictureMode pm = parse_mode(mode, "mode");
   if ((on_surface || log_scale) && (pm == PictureMode::Checker || pm == PictureMode::Layout))
-    throw_usage("--on-surface and --log apply to the angle, area and stretch modes only");
+    throw_usage("on_surface and log apply to the angle, area and stretch modes only");
   const PictureSettings s = settings(size, view, on_surface, log_scale);
   const std::string out = path.is_none() ? "" : to_path(path);
   if (!out.empty()) check_png_path(out, "path");
