@@ -43,3 +43,18 @@ def origin():
         return None
     path = os.path.abspath(_module.__file__)
     return "bundled" if path.startswith(BUNDLED_DIR + os.sep) else "installed"
+
+
+def execute_reporting(op, title, context):
+    """An operator's execute: loads the module and calls op.run(context, lib);
+    a missing module or any failure becomes an error report (never a
+    traceback in the user's face) and CANCELLED."""
+    lib = load()
+    if lib is None:
+        op.report({"ERROR"}, failure())
+        return {"CANCELLED"}
+    try:
+        return op.run(context, lib)
+    except Exception as e:  # noqa: BLE001  (a report, never a traceback)
+        op.report({"ERROR"}, f"{title} failed: {type(e).__name__}: {e}")
+        return {"CANCELLED"}

@@ -113,17 +113,9 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
         return work
 
     def execute(self, context):
-        try:
-            return self.run(context)
-        except Exception as e:  # noqa: BLE001  (a report, never a traceback)
-            self.report({"ERROR"}, f"Intrinsic Atlas failed: {type(e).__name__}: {e}")
-            return {"CANCELLED"}
+        return library.execute_reporting(self, "Intrinsic Atlas", context)
 
-    def run(self, context):
-        lib = library.load()
-        if lib is None:
-            self.report({"ERROR"}, library.failure())
-            return {"CANCELLED"}
+    def run(self, context, lib):
         objs = self.objects(context)
         if not objs:
             self.report({"ERROR"}, "Intrinsic Atlas: no mesh object selected")

@@ -157,17 +157,9 @@ class INTRINSIC_OT_unwrap(bpy.types.Operator):
         col.prop(self, "margin")
 
     def execute(self, context):
-        try:
-            return self.run(context)
-        except Exception as e:  # noqa: BLE001  (a report, never a traceback)
-            self.report({"ERROR"}, f"Intrinsic Unwrap failed: {type(e).__name__}: {e}")
-            return {"CANCELLED"}
+        return library.execute_reporting(self, "Intrinsic Unwrap", context)
 
-    def run(self, context):
-        lib = library.load()
-        if lib is None:
-            self.report({"ERROR"}, library.failure())
-            return {"CANCELLED"}
+    def run(self, context, lib):
         objs = edit_objects(context)
         total = selected_faces(objs)
         if total == 0:
