@@ -6,10 +6,11 @@ conformal map and packed into [0,1]^2 without flips or overlaps.
 Each object is one atlas of its own (its own [0,1]^2), read from its
 evaluated-free mesh data (no modifiers) in the object's world scale and
 rotation, so charts are cut and sized as the surface appears in the scene.
-The atlas triangles are Blender's loop triangles; a face split across two
-charts gets, at the corner the charts share, the UV of the last of its
-triangles (rare: the charts follow the surface's bends, not the diagonals
-of flat quads). All objects are solved before any UV is written.
+The atlas triangles are Blender's loop triangles, grouped by polygon
+(the library's face groups), so every polygon lies in one chart: a loop
+stores one UV per polygon corner, and a quad cut along its diagonal would
+have its shared corners in one chart and stretch across the atlas. All
+objects are solved before any UV is written.
 """
 import bpy
 import numpy as np
@@ -24,7 +25,8 @@ LAST_UVS = {}
 
 
 def mesh_arrays(obj):
-    """V (world-scaled, n x 3), F (loop triangles' vertices), T (their loops)."""
+    """V (world-scaled, n x 3), F (loop triangles' vertices), T (their loops),
+    P (each loop triangle's polygon)."""
     me = obj.data
     me.calc_loop_triangles()
     V = np.empty(len(me.vertices) * 3, dtype=np.float64)
@@ -34,7 +36,9 @@ def mesh_arrays(obj):
     me.loop_triangles.foreach_get("vertices", F)
     T = np.empty(len(me.loop_triangles) * 3, dtype=np.int64)
     me.loop_triangles.foreach_get("loops", T)
-    return np.ascontiguousarray(V), F.reshape(-1, 3), T.reshape(-1, 3)
+    P = np.empty(len(me.loop_triangles), dtype=np.int32)
+    me.loop_triangles.foreach_get("polygon_index", P)
+    return np.ascontiguousarray(V), F.reshape(-1, 3), T.reshape(-1, 3), P
 
 
 def loop_uvs(result, F, T, num_loops):
@@ -101,10 +105,10 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
             if (self.new_uv_map or (self.uv_map and self.uv_map not in obj.data.uv_layers)) and \
                     len(obj.data.uv_layers) >= 8:
                 raise ValueError(f"{obj.name}: the mesh has 8 UV maps already, Blender's limit")
-            V, F, T = mesh_arrays(obj)
+            V, F, T, P = mesh_arrays(obj)
             try:
                 r = lib.atlas(V, F, max_stretch=self.max_stretch, hard_angle=self.hard_angle,
-                              padding=self.padding, resolution=self.resolution)
+                              padding=self.padding, resolution=self.resolution, face_groups=P)
             except lib.Error as e:
                 raise ValueError(f"{obj.name}: {e}") from None
             work.append((obj, loop_uvs(r, F, T, len(obj.data.loops)), len(r.report["charts"])

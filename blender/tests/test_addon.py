@@ -474,6 +474,54 @@ def test_atlas(lib):
     bpy.data.objects.remove(torus)
 
 
+def polygon_area_spread(me, uv):
+    """Largest factor by which a polygon's UV area over its 3D area departs
+    from the median of that ratio (inf for a flipped or collapsed polygon)."""
+    ratios = []
+    for poly in me.polygons:
+        p = uv[list(poly.loop_indices)]
+        q = np.roll(p, -1, axis=0)
+        ratios.append(0.5 * np.sum(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]) / poly.area)
+    ratios = np.array(ratios)
+    if ratios.min() <= 0:
+        return float("inf")
+    med = np.median(ratios)
+    return max(ratios.max() / med, med / ratios.min())
+
+
+def test_atlas_quads(lib):
+    """A quad mesh: every polygon must lie in one chart (loops hold one UV per
+    polygon corner), so no quad is stretched across the atlas. Checked on the
+    stored UVs against each polygon's own 3D area (UV area over 3D area near
+    the atlas's one texel density, the median; the per-face stretch bound of 2
+    allows 4x), and the same check on the atlas without polygon groups, written
+    to the loops the same way, must fail (the check can tell)."""
+    if bpy.context.mode != "OBJECT":
+        bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.ops.mesh.primitive_monkey_add()
+    obj = bpy.context.active_object
+    mod = obj.modifiers.new("subdivide", "SUBSURF")
+    mod.levels = 2
+    bpy.ops.object.modifier_apply(modifier=mod.name)
+    check(bpy.ops.uv.intrinsic_atlas(max_stretch=1.05) == {"FINISHED"}, "atlas of quads: finished")
+    me = obj.data
+    stored = np.array([d.uv[:] for d in me.uv_layers.active.data], dtype=np.float64)
+    spread = polygon_area_spread(me, stored)
+    print(f"atlas of quads: {len(me.polygons)} polygons, UV/3D area within {spread:.2f}x of the median", flush=True)
+    check(spread <= 4.5, f"atlas of quads: no polygon stretched across charts ({spread:.2f}x the median)")
+    from intrinsic_uv import op_atlas
+    V, F, T, P = op_atlas.mesh_arrays(obj)
+    ref = lib.atlas(V, F, max_stretch=1.05, face_groups=P)
+    check(ref.report["split_groups"] == 0, f"atlas of quads: no polygon split ({ref.report['split_groups']})")
+    plain = lib.atlas(V, F, max_stretch=1.05)
+    fc = np.asarray(plain.face_chart)
+    split = sum(1 for k in range(len(me.polygons)) if len(set(fc[P == k])) > 1)
+    plain_spread = polygon_area_spread(me, op_atlas.loop_uvs(plain, F, T, len(me.loops)))
+    print(f"atlas of quads: without polygon groups {split} polygons split, spread {plain_spread:.3g}x", flush=True)
+    check(split > 0 and plain_spread > 4.5, "atlas of quads: the check tells a split polygon")
+    bpy.data.objects.remove(obj)
+
+
 def main():
     lib = install()
     obj, verts, faces, cells = build_grid()
@@ -489,6 +537,7 @@ def main():
     test_errors(obj, faces)
     test_quads_and_winding()
     test_atlas(lib)
+    test_atlas_quads(lib)
     if FAILURES:
         raise AssertionError(f"{len(FAILURES)} check(s) failed:\n" + "\n".join(FAILURES))
     print("blender add-on test: all checks passed", flush=True)
