@@ -67,9 +67,11 @@ from ._intrinsic import (  # noqa: F401  (re-exported)
     SolverKind,
     Spacing,
     UsageError,
+    compute_tangents,
     metrics,
     read_mesh,
     render,
+    transfer_texture,
     write_atlas,
     write_mesh,
 )
@@ -89,6 +91,7 @@ _ENUMS = (
 __all__ = [
     *_ERRORS, *_ENUMS, "Atlas", "BoundaryEditor", "Parameterizer", "Result", "metrics", "optimal_lambda",
     "optimize_boundary", "parameterize", "read_mesh", "render", "write_atlas", "write_mesh", "atlas",
+    "transfer_texture", "compute_tangents",
 ]
 
 Path = Union[str, PathLike]
