@@ -16,7 +16,7 @@ import bpy
 import numpy as np
 from bpy.props import BoolProperty, FloatProperty, IntProperty, StringProperty
 
-from . import library
+from . import library, texture_bake
 
 
 # The last run's UVs per loop in double precision, per object name (Blender
@@ -80,6 +80,11 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
     uv_map: StringProperty(name="UV Map", description="UV map to write (empty: the active one)", default="")
     new_uv_map: BoolProperty(name="New UV Map", description="Write a new UV map (e.g. a lightmap), keeping "
                              "the others", default=False)
+    bake_textures: BoolProperty(name="Bake Textures", description="Move the images the materials read through "
+                                "the replaced UV map (or, for a new map, the render-active one) into the new "
+                                "layout, so the object looks the same", default=False)
+    texture_size: IntProperty(name="Texture Size", description="Width and height of the baked images",
+                              default=2048, min=16, max=16384)
 
     @classmethod
     def poll(cls, context):
@@ -112,9 +117,24 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
             except lib.Error as e:
                 raise ValueError(f"{obj.name}: {e}") from None
             work.append((obj, loop_uvs(r, F, T, len(obj.data.loops)), len(r.report["charts"])
-                         if isinstance(r.report.get("charts"), list) else r.report.get("charts")))
+                         if isinstance(r.report.get("charts"), list) else r.report.get("charts"), T, P))
             wm.progress_update(k + 1)
         return work
+
+    def texture_source(self, me):
+        """The UV map the textures read before the atlas is written (the one
+        it replaces, or the render-active one when a new map is made) and
+        its UVs per loop; (None, None) when the mesh has none."""
+        creating = self.new_uv_map or (self.uv_map and self.uv_map not in me.uv_layers)
+        if creating:
+            name = texture_bake.render_active_map(me)
+        else:
+            name = self.uv_map or (me.uv_layers.active.name if me.uv_layers.active else None)
+        if name is None:
+            return None, None
+        uv = np.empty(len(me.loops) * 2, dtype=np.float64)
+        me.uv_layers[name].data.foreach_get("uv", uv)
+        return name, uv.reshape(-1, 2)
 
     def execute(self, context):
         return library.execute_reporting(self, "Intrinsic Atlas", context)
@@ -132,9 +152,19 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
         try:
             work = self.solve(lib, objs, wm)
             LAST_UVS.clear()
-            for obj, uv, _ in work:
+            baked = []
+            for obj, uv, _, T, P in work:
                 LAST_UVS[obj.name] = uv
-                target_layer(obj.data, self.uv_map, self.new_uv_map).data.foreach_set("uv", uv.ravel())
+                source, old_uv = self.texture_source(obj.data) if self.bake_textures else (None, None)
+                layer = target_layer(obj.data, self.uv_map, self.new_uv_map)
+                layer.data.foreach_set("uv", uv.ravel())
+                if source is not None:
+                    padding = max(2, int(round(self.padding * self.texture_size / self.resolution)))
+                    images, notes = texture_bake.bake_object(lib, obj, source, layer.name, old_uv, uv, T, P,
+                                                             self.texture_size, padding)
+                    baked += images
+                    for note in notes:
+                        self.report({"WARNING"}, f"Intrinsic Atlas: {obj.name}: {note}")
         except ValueError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
@@ -142,5 +172,6 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
             wm.progress_end()
             if edit:
                 bpy.ops.object.mode_set(mode="EDIT")
-        self.report({"INFO"}, "Intrinsic Atlas: " + ", ".join(f"{o.name} {c} charts" for o, _, c in work))
+        self.report({"INFO"}, "Intrinsic Atlas: " + ", ".join(f"{o.name} {c} charts" for o, _, c, _, _ in work) +
+                    (f"; baked {len(baked)} images" if self.bake_textures else ""))
         return {"FINISHED"}
