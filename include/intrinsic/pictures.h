@@ -29,7 +29,7 @@ void parse_view(const std::string& text, RenderOptions& o);
 // Throws Error(Usage) unless the path ends in .png (any case).
 void check_png_path(const std::string& path, const std::string& option);
 // A texture for the checker picture (RenderOptions::texture): PNG or JPEG
-// read by read_texture (texture.h), as RGB8 with alpha composited on white.
+// read by read_texture_file (texture.h), as RGB8 with alpha composited on white.
 // Error(Input) naming the file on failure.
 Image read_picture_texture(const std::string& path);
 

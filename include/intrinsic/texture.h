@@ -28,7 +28,8 @@ struct Texture {
 Texture decode_texture(const std::string& bytes, const std::string& name);
 // Reads and decodes a file: Error(Input) with the errno when it cannot be
 // read (a missing file has os_error ENOENT), Error(Input) when malformed.
-Texture read_texture(const std::string& path);
+// (pictures.h's read_picture_texture turns it into the renderer's RGB8.)
+Texture read_texture_file(const std::string& path);
 // PNG bytes with the texture's channels and bit depth (values rounded to the
 // nearest code, clamped to [0,1]). Error(Usage) for an inconsistent Texture.
 std::string encode_texture_png(const Texture& t);

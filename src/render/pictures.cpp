@@ -70,7 +70,7 @@ void check_png_path(const std::string& path, const std::string& option) {
 }
 
 Image read_picture_texture(const std::string& path) {
-  const Texture t = read_texture(path);
+  const Texture t = read_texture_file(path);
   Image img(t.width, t.height);
   const int c = t.channels;
   const bool alpha = c == 2 || c == 4;
