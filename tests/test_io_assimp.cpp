@@ -288,6 +288,29 @@ TEST_F(AssimpRoundTrip, EveryExportReadsBackAsTheSameSurface) {
   }
 }
 
+// The atlas of an FBX goes out as OBJ with each face's material as `usemtl`
+// (read back by our OBJ reader: the same material per face) and as .glb.
+TEST_F(AssimpRoundTrip, AtlasOfAnFbxWrittenAsObjKeepsMaterials) {
+  const std::unique_ptr<aiScene> scene = make_scene(*model_);
+  const std::string fbx = dir_ / "in.fbx";
+  Assimp::Exporter exporter;
+  ASSERT_EQ(exporter.Export(scene.get(), "fbxa", fbx), aiReturn_SUCCESS) << exporter.GetErrorString();
+  const AtlasOutcome out = atlas_file(fbx, AtlasRequest{});
+  write_atlas_file(dir_ / "atlas.obj", out.data, out.result);
+  write_atlas_file(dir_ / "atlas.glb", out.data, out.result);
+  const MeshData obj = read_mesh(dir_ / "atlas.obj");
+  ASSERT_EQ(obj.F.rows(), out.data.F.rows());
+  ASSERT_TRUE(obj.has_uv());
+  for (int f = 0; f < obj.F.rows(); ++f) {
+    ASSERT_NE(obj.materials.of(f), nullptr) << "face " << f;
+    EXPECT_EQ(*obj.materials.of(f), *out.data.materials.of(f)) << "face " << f;
+    ASSERT_NE(obj.objects.of(f), nullptr) << "face " << f;
+    EXPECT_EQ(*obj.objects.of(f), *out.data.objects.of(f)) << "face " << f;
+  }
+  const MeshData glb = read_mesh(dir_ / "atlas.glb");
+  EXPECT_EQ(glb.F.rows(), out.data.F.rows());
+}
+
 // What `intrinsic atlas` does with a file assimp refuses: exit 2, one line
 // naming the file and what is wrong (assimp's own log stays silent), no
 // output file.
