@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "io/mesh_builder.h"
 
@@ -61,9 +62,13 @@ std::vector<Instance> first_instances(const aiScene& scene) {
   std::vector<Instance> out(scene.mNumMeshes);
   if (!scene.mRootNode) return out;
   std::vector<std::pair<const aiNode*, Eigen::Matrix4d>> stack{{scene.mRootNode, Eigen::Matrix4d::Identity()}};
+  // An importer builds a tree; a node met twice (a damaged file turned into
+  // a loop) is not walked again, so the walk always ends.
+  std::unordered_set<const aiNode*> seen;
   while (!stack.empty()) {
     const auto [node, above] = stack.back();
     stack.pop_back();
+    if (!seen.insert(node).second) continue;
     const Eigen::Matrix4d world = above * to_eigen(node->mTransformation);
     for (unsigned k = 0; k < node->mNumMeshes; ++k) {
       const unsigned m = node->mMeshes[k];
