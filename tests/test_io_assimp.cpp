@@ -23,6 +23,8 @@
 #include <random>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_support.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/io.h"
@@ -347,6 +349,38 @@ TEST_F(AssimpRoundTrip, DamagedFilesAreRefusedNamingTheFile) {
 TEST(AssimpRead, UnknownExtensionListsTheFormats) {
   test::expect_error([] { read_mesh_from_memory("solid", "x.nosuchformat"); }, ErrorKind::Usage, ".fbx .hmp");
   test::expect_error([] { read_mesh_from_memory("solid", "x.nosuchformat"); }, ErrorKind::Usage, ".obj, .off");
+}
+
+// The table `intrinsic formats` prints agrees with what read_mesh does: every
+// extension listed as read goes to a reader (garbage is an input error, not
+// "unknown format"), and the CLI prints the library's table.
+TEST(AssimpRead, FormatsTableMatchesTheDispatch) {
+  const std::vector<FormatInfo> formats = supported_formats();
+  int assimp = 0;
+  for (const FormatInfo& f : formats) {
+    SCOPED_TRACE(f.extension);
+    ASSERT_NE(f.reader, FormatReader::None);
+    assimp += f.reader == FormatReader::Assimp;
+    try {
+      read_mesh_from_memory("not a mesh\n", "x" + f.extension);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Input) << e.what();
+    }
+  }
+  EXPECT_GT(assimp, 20);
+  test::TempDir dir;
+  const test::CliResult r = test::run_cli("formats --json", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["formats"].size(), formats.size());
+  std::map<std::string, std::string> reader;
+  for (const auto& row : j["formats"]) reader[row["extension"]] = row["reader"];
+  EXPECT_EQ(reader[".obj"], "intrinsic");
+  EXPECT_EQ(reader[".fbx"], "assimp");
+  EXPECT_EQ(reader[".dae"], "assimp");
+  const test::CliResult text = test::run_cli("formats", dir);
+  EXPECT_EQ(text.code, 0);
+  EXPECT_NE(text.out.find(".blend"), std::string::npos);
 }
 
 TEST(AssimpRead, PointsAndLinesOnlyIsNoTriangles) {
