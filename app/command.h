@@ -23,6 +23,7 @@ void register_edit(CLI::App& app, Runner& run);
 void register_render(CLI::App& app, Runner& run);
 void register_compare(CLI::App& app, Runner& run);
 void register_atlas(CLI::App& app, Runner& run);
+void register_formats(CLI::App& app, Runner& run);
 void register_serve(CLI::App& app, Runner& run);  // built when cpp-httplib is found
 
 // Milliseconds since t0.

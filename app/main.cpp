@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   app::register_render(app, run);
   app::register_compare(app, run);
   app::register_atlas(app, run);
+  app::register_formats(app, run);
 #ifdef INTRINSIC_HAVE_SERVE
   app::register_serve(app, run);
 #endif

@@ -2,7 +2,7 @@
 # and the CMake package (intrinsicConfig.cmake + version file) so that another
 # project does find_package(intrinsic REQUIRED) and links intrinsic::intrinsic.
 # SuiteSparse, OpenBLAS, METIS and the OpenMP runtime are linked by path (no
-# CMake config on Debian 12); Eigen3, ZLIB, PNG and Threads are found again
+# CMake config on Debian 12); Eigen3, ZLIB, PNG, Threads and assimp are found again
 # by the config (find_dependency). The Python package's rules are in
 # python/CMakeLists.txt.
 include(CMakePackageConfigHelpers)

@@ -16,7 +16,8 @@ PACKAGES=(
   libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
   libstb-dev               # stb_easy_font for picture labels, stb_image for JPEG textures
   libtinygltf-dev          # glTF 2.0 binary (.glb) output of `intrinsic atlas`
-  assimp-testmodels        # Khronos glTF sample models for tests/test_gltf.cpp (GltfSamples; skipped without)
+  libassimp-dev            # every other asset format (FBX, Collada, 3DS, LWO, X, .blend...: src/io/assimp_reader.cpp)
+  assimp-testmodels        # sample models for tests/test_gltf.cpp (GltfSamples) and tests/test_io_assimp.cpp (AssimpSamples); skipped without
   libgtest-dev libbenchmark-dev
   libcpp-httplib-dev       # `intrinsic serve` (the browser editor)
   chromium                 # the editor's browser test (headless; node + npm from the system)

@@ -1,7 +1,9 @@
 // Every file format of the project. Reading and writing meshes: OBJ, OFF, PLY (ASCII and binary, either
 // endianness), STL (read only, ASCII and binary, equal corners welded) and glTF 2.0 (read_mesh of
 // .gltf/.glb: every triangle primitive merged at world scale, the document kept; intrinsic/gltf.h), each
-// optionally gzip-compressed (detected from the bytes, not the name). Writers
+// optionally gzip-compressed (detected from the bytes, not the name), and
+// every other format assimp imports (FBX, Collada, 3DS, LWO, X, .blend...:
+// supported_formats() lists them). Writers
 // never leave a partial file: temporary file in the target directory, renamed.
 // Then the side files (boundary positions, constraints, seams) and the atlas
 // writers.
@@ -10,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "intrinsic/error.h"
 #include "intrinsic/atlas.h"
@@ -27,7 +30,13 @@ struct ReadOptions {
 };
 
 // Throws Error(Input) naming file and line (or byte offset / element index in
-// binary files) on anything malformed.
+// binary files) on anything malformed. The project's own readers take .obj,
+// .off, .ply, .stl, .gltf and .glb; any other extension assimp imports goes
+// through assimp (src/io/assimp_reader.cpp): every mesh at world scale (first
+// instance of each), corners at equal positions welded, material, node and
+// mesh names as per-face labels (materials, objects, groups), points and
+// lines skipped; assimp's refusals become Error(Input) with the file named
+// and assimp's message. An unknown extension is Error(Usage).
 MeshData read_mesh(const std::string& path, const ReadOptions& options = {});
 // Same, from bytes already in memory (used by fuzz targets and tests); the
 // format is taken from `name`'s extension (".obj", ".off", ".ply", ".stl",
@@ -62,6 +71,23 @@ void write_mesh(const std::string& path, const MatrixX3d& V, const MatrixX3i& F,
 // when writing fails; atomic.
 void write_glb(const std::string& path, const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV,
                const MatrixX3i& FUV);
+
+// What the project reads and writes (`intrinsic formats`): one row per
+// extension, ours first, then assimp's in alphabetical order.
+enum class FormatReader {
+  None,    // not read (written only)
+  Own,     // the project's own reader (line numbers in messages, stricter)
+  Assimp,  // through assimp
+};
+struct FormatInfo {
+  std::string extension;  // lower case with the dot: ".fbx"
+  std::string name;       // "Wavefront OBJ", or the assimp importer's name
+  FormatReader reader = FormatReader::None;
+  bool gzip = false;         // also read gzip-compressed (".obj.gz")
+  bool writes_mesh = false;  // write_mesh (`param`, `generate` outputs)
+  bool writes_atlas = false; // write_atlas_file (`atlas` outputs)
+};
+std::vector<FormatInfo> supported_formats();
 
 // Lower-case extension after stripping a trailing ".gz": "mesh.OBJ.gz" -> ".obj"
 // ("" when there is none).

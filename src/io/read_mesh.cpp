@@ -1,5 +1,7 @@
 // Entry points for reading: load the file in one read, undo gzip if the bytes
-// say so, and hand the buffer to the reader chosen by the file extension.
+// say so, and hand the buffer to the reader chosen by the file extension:
+// ours for OBJ, OFF, PLY, STL and glTF, assimp for any other extension it
+// imports.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,6 +12,7 @@
 #include <cstring>
 
 #include "intrinsic/io.h"
+#include "io/assimp_reader.h"
 #include "io/gltf_document.h"
 #include "io/gzip.h"
 #include "io/mesh_builder.h"
@@ -48,21 +51,30 @@ std::uint64_t inflate_cap(const ReadOptions& opt, const std::string& format) {
   return std::min(cap, derived);
 }
 
+std::string unknown_format(const std::string& ext, const std::string& name) {
+  std::string others;
+  for (const io::AssimpExtension& e : io::assimp_extensions()) others += " " + e.extension;
+  return "unknown input format '" + ext + "' for " + name +
+         " (use .obj, .off, .ply, .stl, .gltf or .glb, optionally .gz, or one assimp reads:" + others +
+         "; `intrinsic formats` lists them)";
+}
+
 // `files_allowed`: a glTF document may read buffer files beside `name`
 // (only when `name` is a file that was read, not bytes handed over).
 MeshData read_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options,
                     bool files_allowed) {
   const std::string ext = format_of(name);
-  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl" && ext != ".gltf" && ext != ".glb") {
-    throw_usage("unknown input format '" + ext + "' for " + name +
-                " (use .obj, .off, .ply, .stl, .gltf or .glb, optionally .gz)");
-  }
+  const bool ours = ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
+  if (!ours && !io::assimp_reads(ext)) throw_usage(unknown_format(ext, name));
   std::string inflated;
   const std::string* data = &bytes;
   if (io::is_gzip(bytes)) {
     inflated = io::gunzip(bytes, name, inflate_cap(options, ext));
     data = &inflated;
   }
+  // assimp opens a file itself when it can (some formats name companion
+  // files beside it); decompressed or in-memory bytes are handed over.
+  if (!ours) return io::read_assimp(*data, name, ext, options, files_allowed && data == &bytes);
   if (ext == ".gltf" || ext == ".glb") return io::read_gltf(*data, name, options, files_allowed);
   const char* begin = data->data();
   std::size_t size = data->size();
