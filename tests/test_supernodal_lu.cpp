@@ -159,5 +159,19 @@ TEST(SupernodalLUSolver, ModeratelySmallPivotsAreRefined) {
       << solver.name();
 }
 
+TEST(SupernodalLUSolver, TinySystems) {
+  if (!solver_available(SolverKind::SupernodalLU)) GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+  // One unknown (a fan with one interior vertex) and none (every vertex fixed).
+  SparseMatrix one(1, 1);
+  one.insert(0, 0) = 4;
+  LinearSolver solver(SolverKind::Auto, false);
+  solver.factor(one);
+  EXPECT_EQ(solver.kind(), SolverKind::SupernodalLU);
+  EXPECT_DOUBLE_EQ(solver.solve(Eigen::MatrixXd::Constant(1, 2, 2.0))(0, 1), 0.5);
+  LinearSolver empty(SolverKind::Auto, false);
+  empty.factor(SparseMatrix(0, 0));
+  EXPECT_EQ(empty.solve(Eigen::MatrixXd(0, 2)).rows(), 0);
+}
+
 }  // namespace
 }  // namespace intrinsic

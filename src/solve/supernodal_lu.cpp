@@ -91,7 +91,7 @@ struct SupernodalLU::Impl {
   std::vector<double> Lx, Ux;
   double flops = 0;
 
-  void analyse(const SparseMatrix& A);
+  bool analyse(const SparseMatrix& A);
   Long position(int s, int row) const;
   bool assemble(const SparseMatrix& A, const std::vector<int>& iperm);
   void update_from(int d, int s, std::vector<Long>& lpos, const std::vector<int>& map, std::vector<double>& work);
@@ -102,7 +102,8 @@ struct SupernodalLU::Impl {
 
 // CHOLMOD's supernodal symbolic analysis of A's (symmetric) pattern on the
 // level-set nested dissection ordering, the one the conformal system gets.
-void SupernodalLU::Impl::analyse(const SparseMatrix& A) {
+// False when CHOLMOD cannot (out of memory): UMFPACK may still.
+bool SupernodalLU::Impl::analyse(const SparseMatrix& A) {
   n = static_cast<int>(A.rows());
   const std::vector<int> order = level_set_nested_dissection(A);
   std::vector<Long> given(order.begin(), order.end());
@@ -129,7 +130,7 @@ void SupernodalLU::Impl::analyse(const SparseMatrix& A) {
   if (!L || !L->is_super) {
     if (L) cholmod_l_free_factor(&L, &c);
     cholmod_l_finish(&c);
-    throw_numerical("CHOLMOD analysis for the supernodal LU failed (status " + std::to_string(c.status) + ")");
+    return false;
   }
   nsuper = static_cast<int>(L->nsuper);
   const Long* Lsuper = static_cast<const Long*>(L->super);
@@ -151,6 +152,7 @@ void SupernodalLU::Impl::analyse(const SparseMatrix& A) {
     ux[s + 1] = ux[s] + (pi[s + 1] - pi[s] - nscol) * nscol;
     for (int k = super[s]; k < super[s + 1]; ++k) super_of[k] = s;
   }
+  return true;
 }
 
 // Where `row` is in supernode s's (ascending) row list; -1 if absent.
@@ -276,7 +278,13 @@ bool SupernodalLU::factor(const SparseMatrix& A) {
   Impl& s = *impl_;
   if (A.rows() != A.cols() || !A.isCompressed()) throw_numerical("internal: supernodal LU needs a compressed square matrix");
   const auto t0 = std::chrono::steady_clock::now();
-  s.analyse(A);
+  if (A.rows() == 0) {  // nothing to factor (every vertex fixed)
+    s = Impl();
+    s.super = {0};
+    s.pi = s.px = s.ux = {0};
+    return true;
+  }
+  if (!s.analyse(A)) return false;
   analyse_ms = ms_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
   bool ok;
