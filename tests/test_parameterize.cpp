@@ -134,6 +134,7 @@ TEST(Parameterize, SolversAgree) {
     if (m == Method::Conformal) kinds.insert(kinds.end(), {SolverKind::EigenLLT, SolverKind::CG});
     if (solver_available(SolverKind::Umfpack)) kinds.push_back(SolverKind::Umfpack);
     if (solver_available(SolverKind::Cholmod) && m == Method::Conformal) kinds.push_back(SolverKind::Cholmod);
+    if (solver_available(SolverKind::SupernodalLU)) kinds.push_back(SolverKind::SupernodalLU);
     for (SolverKind k : kinds) {
       o.solver = k;
       const ParamResult r = parameterize(mesh, o);

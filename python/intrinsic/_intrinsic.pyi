@@ -87,6 +87,7 @@ class SolverKind(_Enum):
     EIGEN_LU: ClassVar[SolverKind]
     CG: ClassVar[SolverKind]
     BICGSTAB: ClassVar[SolverKind]
+    SUPERNODAL_LU: ClassVar[SolverKind]
     __members__: ClassVar[Dict[str, SolverKind]]
 
 class LambdaEnergy(_Enum):

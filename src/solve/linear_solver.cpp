@@ -1,12 +1,16 @@
-// Backends of LinearSolver. CHOLMOD and UMFPACK get the level-set nested
-// dissection ordering (solve/ordering.h) instead of their own analysis:
-// CHOLMOD's default tries METIS, which on meshes costs more than the
-// factorization it saves, and AMD fills more on large meshes.
+// Backends of LinearSolver. CHOLMOD, the supernodal LU and UMFPACK get the
+// level-set nested dissection ordering (solve/ordering.h) instead of their
+// own analysis: CHOLMOD's default tries METIS, which on meshes costs more
+// than the factorization it saves, and AMD fills more on large meshes.
 #include "intrinsic/linear_solver.h"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <mutex>
 #include <variant>
 
 #include "intrinsic/error.h"
@@ -14,6 +18,7 @@
 
 #ifdef INTRINSIC_HAVE_SUITESPARSE
 #include "solve/suitesparse.h"
+#include "solve/supernodal_lu.h"
 #endif
 
 namespace intrinsic {
@@ -30,11 +35,13 @@ SolverKind parse_solver(const std::string& name, std::string_view label) {
 }
 
 bool solver_available(SolverKind k) {
-#ifdef INTRINSIC_HAVE_SUITESPARSE
+#ifdef INTRINSIC_HAVE_SUPERNODAL_LU
   (void)k;
   return true;
+#elif defined(INTRINSIC_HAVE_SUITESPARSE)
+  return k != SolverKind::SupernodalLU;
 #else
-  return k != SolverKind::Cholmod && k != SolverKind::Umfpack;
+  return k != SolverKind::Cholmod && k != SolverKind::Umfpack && k != SolverKind::SupernodalLU;
 #endif
 }
 
@@ -48,6 +55,26 @@ using BiCG = Eigen::BiCGSTAB<SparseMatrix, Eigen::DiagonalPreconditioner<double>
 using Cholmod = detail::CholmodFactor;
 using Umfpack = detail::UmfpackFactor;
 #endif
+
+// Componentwise backward error max_i |R|_i / (|op(A)| |X| + |B|)_i of X for
+// op(A) X = B (op(A) = A^T when transposed), with R = B - op(A) X returned.
+double backward_error(const SparseMatrix& A, bool transposed, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B,
+                      Eigen::MatrixXd& R) {
+  R = B;
+  Eigen::MatrixXd scale = B.cwiseAbs();
+  for (Eigen::Index c = 0; c < B.cols(); ++c)
+    for (int j = 0; j < A.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+        const Eigen::Index to = transposed ? j : it.row(), from = transposed ? it.row() : j;
+        R(to, c) -= it.value() * X(from, c);
+        scale(to, c) += std::abs(it.value() * X(from, c));
+      }
+  double omega = 0;
+  for (Eigen::Index k = 0; k < R.size(); ++k)
+    if (scale.data()[k] > 0) omega = std::max(omega, std::abs(R.data()[k]) / scale.data()[k]);
+    else if (R.data()[k] != 0 || std::isnan(R.data()[k])) omega = std::numeric_limits<double>::infinity();
+  return omega;
+}
 
 }  // namespace
 
@@ -70,6 +97,15 @@ struct LinearSolver::Impl {
   std::unique_ptr<Cholmod> cholmod;
   std::unique_ptr<Umfpack> umfpack;
 #endif
+#ifdef INTRINSIC_HAVE_SUPERNODAL_LU
+  std::unique_ptr<detail::SupernodalLU> slu;
+  // Set once a solve found the supernodal LU inaccurate: from then on
+  // `umfpack` (built under the mutex) answers every solve.
+  mutable std::mutex fallback_mutex;
+  mutable std::atomic<bool> fell_back{false};
+  mutable std::unique_ptr<Umfpack> fallback;
+  Eigen::MatrixXd supernodal_solve(const Eigen::MatrixXd& B, bool transposed) const;
+#endif
 
   bool try_cholesky() {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
@@ -89,6 +125,15 @@ struct LinearSolver::Impl {
   }
 
   bool try_lu() {
+#ifdef INTRINSIC_HAVE_SUPERNODAL_LU
+    // Not for an explicit UMFPACK or Eigen LU; a failed factorization
+    // (a pivot that needs pivoting) goes on to UMFPACK.
+    if (requested == SolverKind::Auto || requested == SolverKind::SupernodalLU) {
+      slu = std::make_unique<detail::SupernodalLU>();
+      if (slu->factor(A)) { used = SolverKind::SupernodalLU; return true; }
+      slu.reset();
+    }
+#endif
 #ifdef INTRINSIC_HAVE_SUITESPARSE
     if (requested != SolverKind::EigenLU) {
       umfpack = std::make_unique<Umfpack>();
@@ -127,6 +172,9 @@ void LinearSolver::factor(SparseMatrix&& matrix) {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
   s.cholmod.reset(); s.umfpack.reset();
 #endif
+#ifdef INTRINSIC_HAVE_SUPERNODAL_LU
+  s.slu.reset(); s.fallback.reset(); s.fell_back = false;
+#endif
   ++s.factorizations;
   const std::string n = std::to_string(A.rows());
   switch (s.requested) {
@@ -143,6 +191,7 @@ void LinearSolver::factor(SparseMatrix&& matrix) {
                       " system is not positive definite (negative cotangent weights from obtuse angles can cause this; try --solver auto)");
     case SolverKind::Umfpack:
     case SolverKind::EigenLU:
+    case SolverKind::SupernodalLU:
       if (s.try_lu()) return;
       throw_numerical("the " + n + "x" + n + " system is singular (sparse LU failed)");
     case SolverKind::CG:
@@ -174,6 +223,9 @@ Eigen::MatrixXd LinearSolver::solve(const Eigen::MatrixXd& B) const {
   else if (s.cholmod) X = s.cholmod->solve(B, s.ill_conditioned);
   else if (s.umfpack) X = s.umfpack->solve(B);
 #endif
+#ifdef INTRINSIC_HAVE_SUPERNODAL_LU
+  else if (s.slu) X = s.supernodal_solve(B, false);
+#endif
   else if (s.cg || s.bicg) {
     for (int c = 0; c < B.cols(); ++c) {
       if (s.cg) {
@@ -197,6 +249,9 @@ Eigen::MatrixXd LinearSolver::solve_transposed(const Eigen::MatrixXd& B) const {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
   if (s.umfpack) return s.umfpack->solve(B, true);
 #endif
+#ifdef INTRINSIC_HAVE_SUPERNODAL_LU
+  if (s.slu) return s.supernodal_solve(B, true);
+#endif
   // Other backends: factor the transpose on first use and keep it.
   if (!s.transposed) {
     s.transposed = std::make_unique<LinearSolver>(s.requested, false, s.tolerance);
@@ -208,8 +263,41 @@ Eigen::MatrixXd LinearSolver::solve_transposed(const Eigen::MatrixXd& B) const {
 void LinearSolver::set_ill_conditioned(bool on) { impl_->ill_conditioned = on; }
 void LinearSolver::set_complex_form(bool on) { impl_->complex_form = on; }
 
-SolverKind LinearSolver::kind() const { return impl_->used; }
-std::string LinearSolver::name() const { return solver_name(impl_->used); }
+#ifdef INTRINSIC_HAVE_SUPERNODAL_LU
+// The supernodal LU's answer, refined while its componentwise backward error
+// is above 16 ulps (as CHOLMOD's). Diagonally dominant matrices need no
+// step; when three steps leave it above 1e-12 the factorization needed
+// pivoting (growth), and UMFPACK factors A and answers this solve and every
+// later one.
+Eigen::MatrixXd LinearSolver::Impl::supernodal_solve(const Eigen::MatrixXd& B, bool transposed) const {
+  if (!fell_back.load(std::memory_order_acquire)) {
+    Eigen::MatrixXd X = slu->solve(B, transposed), R;
+    double omega = backward_error(A, transposed, X, B, R);
+    for (int step = 0; step < 3 && omega > 16 * std::numeric_limits<double>::epsilon(); ++step) {
+      X += slu->solve(R, transposed);
+      omega = backward_error(A, transposed, X, B, R);
+    }
+    if (omega <= 1e-12) return X;
+    std::lock_guard<std::mutex> lock(fallback_mutex);
+    if (!fell_back.load(std::memory_order_relaxed)) {
+      auto u = std::make_unique<Umfpack>();
+      if (!u->factor(A))
+        throw_numerical("the " + std::to_string(A.rows()) + "x" + std::to_string(A.rows()) + " system is singular (sparse LU failed)");
+      fallback = std::move(u);
+      fell_back.store(true, std::memory_order_release);
+    }
+  }
+  return fallback->solve(B, transposed);
+}
+#endif
+
+SolverKind LinearSolver::kind() const {
+#ifdef INTRINSIC_HAVE_SUPERNODAL_LU
+  if (impl_->fell_back.load(std::memory_order_acquire)) return SolverKind::Umfpack;
+#endif
+  return impl_->used;
+}
+std::string LinearSolver::name() const { return solver_name(kind()); }
 int LinearSolver::factorizations() const { return impl_->factorizations; }
 int LinearSolver::iterations() const { return impl_->iterations; }
 const SparseMatrix& LinearSolver::matrix() const { return impl_->A; }

@@ -77,7 +77,8 @@ ChoiceTable<SolverKind> choice_table<SolverKind>() {
   static const Choice<SolverKind> rows[] = {{SolverKind::Auto, "auto"},         {SolverKind::Cholmod, "cholmod"},
                                             {SolverKind::Umfpack, "umfpack"},   {SolverKind::EigenLLT, "eigen-llt"},
                                             {SolverKind::EigenLU, "eigen-lu"},  {SolverKind::CG, "cg"},
-                                            {SolverKind::BiCGSTAB, "bicgstab"}};
+                                            {SolverKind::BiCGSTAB, "bicgstab"},
+                                            {SolverKind::SupernodalLU, "supernodal-lu"}};
   return table(rows);
 }
 

@@ -1,0 +1,177 @@
+// The supernodal LU without pivoting (src/solve/supernodal_lu.h) against
+// Eigen's SparseLU (partial pivoting, its own COLAMD ordering: a separate
+// code path) on the authalic and mixed systems of generated meshes, and its
+// fall-back to UMFPACK on matrices that need pivoting.
+#include <random>
+
+#include "intrinsic/assemble.h"
+#include "intrinsic/boundary.h"
+#include "intrinsic/linear_solver.h"
+#include "intrinsic/parameterize.h"
+#include "test_support.h"
+
+namespace intrinsic {
+namespace {
+
+struct System {
+  SparseMatrix A;     // interior rows and columns
+  Eigen::MatrixXd B;  // the circle boundary's contribution, u and v
+};
+
+// The method's weight matrix with the outer loop fixed on a circle.
+System fixed_boundary_system(const Mesh& mesh, const WeightOptions& w) {
+  const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, w);
+  const std::vector<int>& loop = mesh.topology.boundary_loops[0];
+  std::vector<char> fixed(mesh.V.rows(), 0);
+  for (int v : loop) fixed[v] = 1;
+  const Partition p = partition(static_cast<int>(mesh.V.rows()), fixed, mesh.topology.is_used);
+  System s;
+  SparseMatrix KB;
+  split_matrix(K, p, s.A, KB);
+  Eigen::MatrixXd UB = Eigen::MatrixXd::Zero(KB.cols(), 2);
+  const std::vector<FixedVertex> circle = circle_boundary(mesh.V, loop, Spacing::ArcLength);
+  Eigen::MatrixXd all = Eigen::MatrixXd::Zero(mesh.V.rows(), 2);
+  for (const FixedVertex& f : circle) all.row(f.vertex) = f.uv.transpose();
+  int k = 0;
+  for (int v = 0; v < mesh.V.rows(); ++v)
+    if (fixed[v]) UB.row(k++) = all.row(v);
+  s.B = -(KB * UB);
+  return s;
+}
+
+Eigen::MatrixXd reference_solve(const SparseMatrix& A, const Eigen::MatrixXd& B) {
+  Eigen::SparseLU<SparseMatrix> lu(A);
+  EXPECT_EQ(lu.info(), Eigen::Success);
+  return lu.solve(B);
+}
+
+double relative_difference(const Eigen::MatrixXd& X, const Eigen::MatrixXd& ref) {
+  return (X - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff();
+}
+
+WeightOptions weights(Method m, double lambda, double mu) {
+  WeightOptions w;
+  w.method = m;
+  w.lambda = lambda;
+  w.mu = mu;
+  return w;
+}
+
+TEST(SupernodalLUSolver, AgreesWithPlainLUOnAuthalicAndMixed) {
+  if (!solver_available(SolverKind::SupernodalLU)) GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+  // A jittered patch: obtuse angles, so the mixed weights include negative
+  // cotangents and some rows are not diagonally dominant.
+  const Mesh mesh = test::wavy(40, 0.5);
+  for (const WeightOptions& w : {weights(Method::Authalic, 0, 1), weights(Method::Mixed, 0.5, 0.5)}) {
+    SCOPED_TRACE(method_name(w.method));
+    const System s = fixed_boundary_system(mesh, w);
+    ASSERT_GT(s.A.rows(), 4000);
+    ASSERT_GT((SparseMatrix(s.A.transpose()) - s.A).norm(), 1e-3 * s.A.norm());  // really not symmetric
+    LinearSolver solver(SolverKind::SupernodalLU, false);
+    solver.factor(s.A);
+    const Eigen::MatrixXd X = solver.solve(s.B);
+    EXPECT_EQ(solver.kind(), SolverKind::SupernodalLU);  // no fall-back needed
+    EXPECT_LT(relative_difference(X, reference_solve(s.A, s.B)), 1e-9);
+    // Adjoint solves reuse the factors.
+    const Eigen::MatrixXd Y = solver.solve_transposed(s.B);
+    EXPECT_LT(relative_difference(Y, reference_solve(SparseMatrix(s.A.transpose()), s.B)), 1e-9);
+    EXPECT_EQ(solver.kind(), SolverKind::SupernodalLU);
+  }
+}
+
+TEST(SupernodalLUSolver, ParameterizeAutoPicksItAndAgrees) {
+  if (!solver_available(SolverKind::SupernodalLU)) GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+  const Mesh mesh = test::wavy(30);
+  for (const test::MethodCase& c : test::kMethods) {
+    if (c.m == Method::Conformal) continue;
+    ParamOptions o = test::options_for(c);
+    o.solver = SolverKind::EigenLU;
+    const MatrixX2d ref = parameterize(mesh, o).UV;
+    o.solver = SolverKind::Auto;
+    const ParamResult r = parameterize(mesh, o);
+    ASSERT_EQ(r.solvers.size(), 1u);
+    EXPECT_EQ(r.solvers[0], SolverKind::SupernodalLU) << method_name(c.m);
+    EXPECT_LT(relative_difference(r.UV, ref), 1e-9) << method_name(c.m);
+  }
+}
+
+// The mesh's adjacency (a symmetric pattern) with random values that differ
+// between (i, j) and (j, i), and the given diagonal.
+SparseMatrix scrambled_adjacency(const Mesh& mesh, double diagonal) {
+  const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, WeightOptions());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> value(0.5, 2.0);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < K.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(K, j); it; ++it)
+      t.emplace_back(static_cast<int>(it.row()), j, it.row() == j ? diagonal : value(rng));
+  SparseMatrix A(K.rows(), K.cols());
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
+TEST(SupernodalLUSolver, FallsBackToUmfpackWhenPivotingIsNeeded) {
+  if (!solver_available(SolverKind::SupernodalLU)) GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+  const Mesh mesh = test::wavy(12);
+  // Zero diagonal: the first pivot of every elimination order is zero, which
+  // the factorization itself reports.
+  const SparseMatrix A = scrambled_adjacency(mesh, 0.0);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 2);
+  for (SolverKind k : {SolverKind::Auto, SolverKind::SupernodalLU}) {
+    LinearSolver solver(k, false);
+    solver.factor(A);
+    EXPECT_EQ(solver.kind(), SolverKind::Umfpack) << solver_name(k);
+    EXPECT_LT(relative_difference(solver.solve(B), reference_solve(A, B)), 1e-9) << solver_name(k);
+  }
+}
+
+TEST(SupernodalLUSolver, TinyPivotsEndInUmfpack) {
+  if (!solver_available(SolverKind::SupernodalLU)) GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+  // Diagonal 1e-12 against off-diagonal entries near 1: elimination without
+  // pivoting grows entries by about 1e12. Depending on the cancellations
+  // either a later pivot falls below the floor (the factorization fails) or
+  // the first solve's residual stays far above rounding after refinement;
+  // both end in UMFPACK with an accurate answer.
+  const Mesh mesh = test::wavy(12);
+  const SparseMatrix A = scrambled_adjacency(mesh, 1e-12);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 2);
+  LinearSolver solver(SolverKind::Auto, false);
+  solver.factor(A);
+  const Eigen::MatrixXd X = solver.solve(B);
+  EXPECT_EQ(solver.kind(), SolverKind::Umfpack);
+  EXPECT_LT(relative_difference(X, reference_solve(A, B)), 1e-9);
+  EXPECT_LT(relative_difference(solver.solve_transposed(B), reference_solve(SparseMatrix(A.transpose()), B)), 1e-9);
+}
+
+TEST(SupernodalLUSolver, ModeratelySmallPivotsAreRefined) {
+  if (!solver_available(SolverKind::SupernodalLU)) GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+  // Diagonal 0.05 against off-diagonal entries of 0.5 to 2: no longer
+  // diagonally dominant, some growth; whichever path answers (the LU with
+  // refinement, or UMFPACK), the answer is accurate.
+  const Mesh mesh = test::wavy(12);
+  const SparseMatrix A = scrambled_adjacency(mesh, 0.05);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 2);
+  LinearSolver solver(SolverKind::Auto, false);
+  solver.factor(A);
+  EXPECT_LT(relative_difference(solver.solve(B), reference_solve(A, B)), 1e-9) << solver.name();
+  EXPECT_LT(relative_difference(solver.solve_transposed(B), reference_solve(SparseMatrix(A.transpose()), B)), 1e-9)
+      << solver.name();
+}
+
+TEST(SupernodalLUSolver, TinySystems) {
+  if (!solver_available(SolverKind::SupernodalLU)) GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+  // One unknown (a fan with one interior vertex) and none (every vertex fixed).
+  SparseMatrix one(1, 1);
+  one.insert(0, 0) = 4;
+  LinearSolver solver(SolverKind::Auto, false);
+  solver.factor(one);
+  EXPECT_EQ(solver.kind(), SolverKind::SupernodalLU);
+  EXPECT_DOUBLE_EQ(solver.solve(Eigen::MatrixXd::Constant(1, 2, 2.0))(0, 1), 0.5);
+  LinearSolver empty(SolverKind::Auto, false);
+  empty.factor(SparseMatrix(0, 0));
+  EXPECT_EQ(empty.solve(Eigen::MatrixXd(0, 2)).rows(), 0);
+}
+
+}  // namespace
+}  // namespace intrinsic
