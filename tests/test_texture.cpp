@@ -142,6 +142,16 @@ TEST(TextureCodec, MalformedDataRefusedWithTheName) {
   expect_input_error(bad_crc, "crc.png", "malformed PNG");
   // A header announcing 20000 x 20000 texels: refused before allocating.
   expect_input_error(hand_png(20000, 1, 1, 8, std::vector<unsigned>(20000, 0)), "huge.png", "malformed PNG");
+  // A 16000 x 16000 header in front of a few bytes: refused without
+  // allocating the 1 GB it announces.
+  std::string big = png;  // IHDR: width at byte 16, height at 20, CRC of bytes 12..28 at 29
+  std::string dims;
+  put32(dims, 16000), put32(dims, 16000);
+  big.replace(16, 8, dims);
+  std::string crc;
+  put32(crc, static_cast<unsigned>(crc32(0, reinterpret_cast<const Bytef*>(big.data() + 12), 17)));
+  big.replace(29, 4, crc);
+  expect_input_error(big, "short.png", "too small");
   std::string jpg;
   std::vector<unsigned char> px(32 * 32 * 3, 90);
   stbi_write_jpg_to_func([](void* ctx, void* d, int n) { static_cast<std::string*>(ctx)->append(
