@@ -108,6 +108,11 @@ std::array<float, 4> sample_texture(const Texture& t, const TextureSampler& s, d
 // accumulated angle-weighted, Gram-Schmidt against the normal, handedness
 // from the bitangent; faces with opposite handedness or degenerate uv are
 // not averaged together. Returns 3m x 4 (xyz unit, w = +-1).
+// The tangent points along increasing u and w * cross(n, t) along increasing
+// v of the uv given. glTF's TANGENT (and normal maps' green channel) points
+// up the image, so for TransferMesh tangents pass v-up uv: (u, 1 - v) of the
+// glTF image-convention uv, as MikkTSpace exporters do.
+// Error(Usage) for mismatched sizes, Error(Input) for non-finite values.
 Eigen::MatrixX4d compute_tangents(const Eigen::MatrixX3d& position, const Eigen::MatrixX3d& normal,
                                   const Eigen::MatrixX2d& uv);
 
