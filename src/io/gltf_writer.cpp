@@ -6,9 +6,9 @@
 // delta of its source vertex, plus the atlas as one more TEXCOORD set. Each
 // rewritten primitive is an indexed TRIANGLES list, faces in their order and
 // winding (faces the atlas reoriented keep the document's); its old
-// accessors stay in the file unused. Everything outside the triangle primitives (nodes,
-// materials, textures, images, animations, skins, cameras, extras,
-// extensions) is copied as it was; all buffers become one (the GLB binary
+// accessors, views and bytes are then dropped (gltf_prune.cpp). Everything
+// outside the triangle primitives (nodes, materials, textures, images,
+// animations, skins, cameras, extras, extensions) is copied as it was; all buffers become one (the GLB binary
 // chunk, or a base64 data URI in a .gltf).
 #include <cstring>
 #include <functional>
@@ -248,7 +248,8 @@ std::string glb_bytes(const json& j, const std::string& bin) {
   return out;
 }
 
-void write_document(const std::string& path, const MeshData& data, const AtlasResult& r, const GltfWriteOptions& o) {
+GltfWriteResult write_document(const std::string& path, const MeshData& data, const AtlasResult& r,
+                               const GltfWriteOptions& o) {
   const std::string ext = mesh_extension(path);
   if (ext != ".glb" && ext != ".gltf") throw_usage("output '" + path + "': a glTF document is written as .glb or .gltf");
   if (!data.gltf) throw_usage("output '" + path + "': " + data.path + " was not read from a glTF document");
@@ -267,6 +268,17 @@ void write_document(const std::string& path, const MeshData& data, const AtlasRe
     out.j["meshes"][static_cast<std::size_t>(p.mesh)]["primitives"][static_cast<std::size_t>(p.primitive)] =
         rewrite_primitive(out, doc, p, data, r, set, cache);
   }
+  GltfWriteResult result;
+  if (o.prune) {
+    const gltf::PruneOutcome p = gltf::prune_unreferenced(out.j, out.bin);
+    result.pruned = p.pruned;
+    result.accessors_dropped = p.accessors_dropped;
+    result.views_dropped = p.views_dropped;
+    result.bytes_dropped = p.bytes_dropped;
+    if (!p.pruned)
+      result.note = doc.name + ": extension " + p.kept_because +
+                    " could reference accessors or buffer views: unused data kept, not pruned";
+  }
   if (out.bin.size() > 0xFFFFFFF0u) throw_output(path + ": more than 4 GiB of buffer data (GLB's limit)");
   json buffer = {{"byteLength", out.bin.size()}};
   if (ext == ".gltf") {
@@ -277,15 +289,17 @@ void write_document(const std::string& path, const MeshData& data, const AtlasRe
     out.j["buffers"] = json::array({buffer});
     write_file_atomically(path, glb_bytes(out.j, out.bin));
   }
+  return result;
 }
 
 }  // namespace
 
-void write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& r, const GltfWriteOptions& o) {
+GltfWriteResult write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& r,
+                                 const GltfWriteOptions& o) {
   // Every JSON access above checks its type first; should one have been
   // missed, the document is refused, not the program ended.
   try {
-    write_document(path, data, r, o);
+    return write_document(path, data, r, o);
   } catch (const nlohmann::json::exception& e) {
     throw_input((data.gltf ? data.gltf->name : path) + ": unexpected JSON in the document: " + e.what());
   }
