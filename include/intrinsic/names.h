@@ -81,6 +81,8 @@ template <>
 ChoiceTable<BasisMode> choice_table<BasisMode>();
 template <>
 ChoiceTable<PictureMode> choice_table<PictureMode>();
+template <>
+ChoiceTable<AtlasScope> choice_table<AtlasScope>();
 
 // The names a user may give, in table order.
 template <class E>

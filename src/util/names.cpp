@@ -150,6 +150,12 @@ ChoiceTable<PictureMode> choice_table<PictureMode>() {
   return table(rows);
 }
 
+template <>
+ChoiceTable<AtlasScope> choice_table<AtlasScope>() {
+  static const Choice<AtlasScope> rows[] = {{AtlasScope::Whole, "whole"}, {AtlasScope::PerMesh, "per-mesh"}};
+  return table(rows);
+}
+
 }  // namespace intrinsic
 
 namespace intrinsic {
