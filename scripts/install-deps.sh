@@ -16,6 +16,7 @@ PACKAGES=(
   libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
   libstb-dev               # stb_easy_font for picture labels
   libtinygltf-dev          # glTF 2.0 binary (.glb) output of `intrinsic atlas`
+  libdraco-dev             # glTF KHR_draco_mesh_compression: decoding on read (src/io/gltf_draco.cpp), encoding in tests
   assimp-testmodels        # Khronos glTF sample models for tests/test_gltf.cpp (GltfSamples; skipped without)
   libgtest-dev libbenchmark-dev
   libcpp-httplib-dev       # `intrinsic serve` (the browser editor)

@@ -81,6 +81,11 @@ std::string base64_encode(const std::string& bytes);
 GltfDocument load_document(const std::string& bytes, const std::string& name, const std::string& folder,
                            bool files_allowed);
 
+// gltf_draco.cpp: decodes every KHR_draco_mesh_compression primitive into
+// plain accessors (a new buffer with a view per attribute and the indices),
+// refusing a malformed stream with its JSON path.
+void decode_draco(GltfDocument& doc);
+
 // gltf_prune.cpp: drops the accessors, buffer views and bytes of `bin` (the
 // document's one buffer) that nothing references any more, renumbering every
 // reference. Leaves everything as it was when an extension it does not know

@@ -8,8 +8,10 @@
 // winding (faces the atlas reoriented keep the document's); its old
 // accessors, views and bytes are then dropped (gltf_prune.cpp). Everything
 // outside the triangle primitives (nodes, materials, textures, images,
-// animations, skins, cameras, extras, extensions) is copied as it was; all buffers become one (the GLB binary
-// chunk, or a base64 data URI in a .gltf).
+// animations, skins, cameras, extras, extensions) is copied as it was
+// (KHR_draco_mesh_compression aside: the rewritten primitives are
+// uncompressed); all buffers become one (the GLB binary chunk, or a base64
+// data URI in a .gltf).
 #include <cstring>
 #include <functional>
 #include <map>
@@ -228,6 +230,26 @@ json rewrite_primitive(Output& out, const GltfDocument& doc, const GltfDocument:
   return np;
 }
 
+// Rewritten primitives are written uncompressed: once no primitive keeps a
+// Draco stream, the document no longer uses (or requires) the extension.
+void drop_unused_draco(json& j) {
+  const char* draco = "KHR_draco_mesh_compression";
+  if (j.contains("meshes"))
+    for (const json& m : j["meshes"])
+      if (m.is_object() && m.contains("primitives") && m["primitives"].is_array())
+        for (const json& p : m["primitives"])
+          if (p.is_object() && p.contains("extensions") && p["extensions"].is_object() && p["extensions"].contains(draco))
+            return;
+  for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
+    if (!j.contains(list) || !j[list].is_array()) continue;
+    json kept = json::array();
+    for (const json& e : j[list])
+      if (e != draco) kept.push_back(e);
+    if (kept.empty()) j.erase(list);
+    else j[list] = kept;
+  }
+}
+
 std::string glb_bytes(const json& j, const std::string& bin) {
   std::string text = j.dump();
   while (text.size() % 4) text += ' ';
@@ -268,6 +290,7 @@ GltfWriteResult write_document(const std::string& path, const MeshData& data, co
     out.j["meshes"][static_cast<std::size_t>(p.mesh)]["primitives"][static_cast<std::size_t>(p.primitive)] =
         rewrite_primitive(out, doc, p, data, r, set, cache);
   }
+  drop_unused_draco(out.j);
   GltfWriteResult result;
   if (o.prune) {
     const gltf::PruneOutcome p = gltf::prune_unreferenced(out.j, out.bin);
