@@ -1,11 +1,12 @@
 // glTF 2.0 documents in and out (docs/formats.md "glTF"). Reading merges the
-// triangles of every mesh primitive (lists, strips, fans) into one MeshData at
-// world scale, so an atlas sizes its charts by the area a viewer sees; the
-// parsed document rides along in MeshData::gltf. Writing puts the atlas back
-// into that same document as one more texture coordinate set, splitting
-// vertices at the seams and copying every other attribute, and leaves
-// everything else (nodes, materials, animations, skins, extensions...) as it
-// was.
+// triangles of every mesh primitive (lists, strips, fans; Draco-compressed
+// ones decoded) into one MeshData at world scale, so an atlas sizes its
+// charts by the area a viewer sees; the parsed document rides along in
+// MeshData::gltf. Writing puts the atlas back into that same document as one
+// more texture coordinate set, splitting vertices at the seams and copying
+// every other attribute, leaves everything else (nodes, materials,
+// animations, skins, extensions...) as it was, and drops the data nothing
+// references any more.
 #pragma once
 
 #include <cstdint>

@@ -131,6 +131,9 @@ void decode_draco(GltfDocument& doc) {
       if (!prim.is_object() || !prim.contains("extensions") || !prim["extensions"].is_object() ||
           !prim["extensions"].contains("KHR_draco_mesh_compression") || !prim.contains("attributes"))
         continue;
+      // Points and lines are not read, nor rewritten: their stream stays.
+      const json mode = prim.value("mode", json(4));
+      if (!mode.is_number_integer() || mode.get<int>() < 4) continue;
       decode_primitive(doc, prim, path + "/primitives/" + std::to_string(p), buffer, buffer_index);
     }
   }
