@@ -23,6 +23,7 @@ struct AtlasArgs {
   std::shared_ptr<WeightArgs> weights = std::make_shared<WeightArgs>();
   AtlasOptions options;
   GltfWriteOptions gltf;
+  std::string scope = choice_name(AtlasScope::Whole);
   bool quiet = false;
   std::int64_t max_vertices = ReadOptions().max_vertices;
 };
@@ -51,6 +52,7 @@ int run_atlas(const AtlasArgs& a) {
   AtlasRequest request;
   request.options = a.options;
   set_chart_map(a, request.options.chart_map);
+  request.options.scope = parse_choice<AtlasScope>(a.scope, "--atlas");
   check_atlas_output(a.output);
   request.read.max_vertices = a.max_vertices;
   request.read.max_faces = faces_for_vertices(a.max_vertices);
@@ -85,6 +87,11 @@ void register_atlas(CLI::App& app, Runner& run) {
                   ".glb/.gltf: glTF 2.0, vertices split at seams; a glTF input comes back as the same "
                   "document with the atlas as a new TEXCOORD set)")
       ->required();
+  cmd->add_option("--atlas", a->scope,
+                  "whole: one atlas for the whole input (default, e.g. a lightmap); per-mesh: each glTF mesh "
+                  "or OBJ object `o` gets its own atlas filling [0,1]^2")
+      ->check(choice_check<AtlasScope>())
+      ->capture_default_str();
   cmd->add_option("--uv-set", a->gltf.texcoord_set,
                   "glTF input: the TEXCOORD_n set the atlas goes to (default: the next free set of each primitive)")
       ->check(CLI::Range(0, 31));

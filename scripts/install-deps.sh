@@ -18,6 +18,7 @@ PACKAGES=(
   libjpeg62-turbo-dev      # JPEG textures (texture transfer): libjpeg-turbo, hardened against hostile files
   libtinygltf-dev          # glTF 2.0 binary (.glb) output of `intrinsic atlas`
   libassimp-dev            # every other asset format (FBX, Collada, 3DS, LWO, X, .blend...: src/io/assimp_reader.cpp)
+  libdraco-dev             # glTF KHR_draco_mesh_compression: decoding on read (src/io/gltf_draco.cpp), encoding in tests
   assimp-testmodels        # sample models for tests/test_gltf.cpp (GltfSamples) and tests/test_io_assimp.cpp (AssimpSamples); skipped without
   libgtest-dev libbenchmark-dev
   libcpp-httplib-dev       # `intrinsic serve` (the browser editor)

@@ -144,6 +144,11 @@ struct PackOptions {
   double padding = 2;  // texels between charts; half of it (rounded up to whole texels) around the border
 };
 
+// What one atlas covers: the whole input (one texture for everything, e.g. a
+// lightmap), or each mesh of it on its own filling the unit square (a glTF
+// document's meshes, an OBJ file's `o` objects; src/atlas/atlas_per_mesh.cpp).
+enum class AtlasScope { Whole, PerMesh };
+
 // The one-call form's options: ChartOptions' and PackOptions' fields side by
 // side (chart_options and pack_options take them apart; a test checks that
 // the defaults agree). Each field is documented where it belongs above.
@@ -165,6 +170,9 @@ struct AtlasOptions {
   std::vector<SeamEdge> seams;
   int max_charts = 0;
   std::vector<int> face_group;
+  // PerMesh: one atlas per mesh, each in [0,1]^2 (they overlap each other);
+  // refused with Error(Usage) for an input without meshes to tell apart.
+  AtlasScope scope = AtlasScope::Whole;
 };
 ChartOptions chart_options(const AtlasOptions& options);
 PackOptions pack_options(const AtlasOptions& options);

@@ -1,13 +1,15 @@
 // glTF 2.0 documents in and out (docs/formats.md "glTF"). Reading merges the
-// triangles of every mesh primitive (lists, strips, fans) into one MeshData at
-// world scale, so an atlas sizes its charts by the area a viewer sees; the
-// parsed document rides along in MeshData::gltf. Writing puts the atlas back
-// into that same document as one more texture coordinate set, splitting
-// vertices at the seams and copying every other attribute, and leaves
-// everything else (nodes, materials, animations, skins, extensions...) as it
-// was.
+// triangles of every mesh primitive (lists, strips, fans; Draco-compressed
+// ones decoded) into one MeshData at world scale, so an atlas sizes its
+// charts by the area a viewer sees; the parsed document rides along in
+// MeshData::gltf. Writing puts the atlas back into that same document as one
+// more texture coordinate set, splitting vertices at the seams and copying
+// every other attribute, leaves everything else (nodes, materials,
+// animations, skins, extensions...) as it was, and drops the data nothing
+// references any more.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,6 +47,21 @@ struct GltfWriteOptions {
   // Replacing a set that a texture of the primitive's material reads is
   // refused with Error(Usage) unless this is true.
   bool replace_used_set = false;
+  // Drop the accessors, buffer views and buffer bytes that nothing
+  // references after the rewrite (the primitives' old data), so that a
+  // document does not grow with every atlas written into it.
+  bool prune = true;
+};
+
+// What write_gltf_atlas did besides the atlas.
+struct GltfWriteResult {
+  bool pruned = false;  // unreferenced accessors, views and bytes dropped
+  int accessors_dropped = 0, views_dropped = 0;
+  std::int64_t bytes_dropped = 0;
+  // Set when pruning was asked for but not done: the document uses an
+  // extension this writer does not know, which could reference accessors
+  // or buffer views, so everything was kept.
+  std::string note;
 };
 
 // Writes `data`'s glTF document back with the atlas `result` (computed on
@@ -54,8 +71,8 @@ struct GltfWriteOptions {
 // the atlas reoriented it) whose vertices are split where the atlas has a seam, every
 // other attribute and morph target copied per vertex; all buffers are merged
 // into one. Atomic: nothing is written when anything is refused.
-void write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& result,
-                      const GltfWriteOptions& options = {});
+GltfWriteResult write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& result,
+                                 const GltfWriteOptions& options = {});
 
 // write_atlas_file (io.h) with the choice of UV set for a glTF input
 // (ignored for other inputs and for .obj output).

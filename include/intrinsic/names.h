@@ -86,6 +86,8 @@ template <>
 ChoiceTable<TextureRole> choice_table<TextureRole>();
 template <>
 ChoiceTable<TextureWrap> choice_table<TextureWrap>();
+template <>
+ChoiceTable<AtlasScope> choice_table<AtlasScope>();
 
 // The names a user may give, in table order.
 template <class E>

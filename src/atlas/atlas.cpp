@@ -1,11 +1,13 @@
 // intrinsic::atlas (atlas.h): the one-call form, the charts stage and the
 // pack stage in turn (chart_stage.cpp, pack_stage.cpp), every option checked
-// first so that a bad packing option fails before the charts are computed.
+// first so that a bad packing option fails before the charts are computed;
+// one atlas per mesh is atlas_per_mesh.cpp's.
 #include "atlas/atlas_internal.h"
 
 namespace intrinsic {
 
 AtlasResult atlas(const MeshData& input, const AtlasOptions& options) {
+  if (options.scope == AtlasScope::PerMesh) return detail::atlas_per_mesh(input, options);
   const ChartOptions chart = chart_options(options);
   const PackOptions pack = pack_options(options);
   detail::check_chart_options(chart);

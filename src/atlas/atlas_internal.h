@@ -185,4 +185,8 @@ int keep_groups_whole(const std::vector<int>& group, const CleanMesh& clean, std
 void place_degenerate_faces(const MatrixX3d& V, const MatrixX3i& F, const std::vector<int>& face_chart, MatrixX2d& UV,
                             MatrixX3i& FUV, int zero_row);
 
+// atlas_per_mesh.cpp: AtlasScope::PerMesh, one atlas per glTF mesh or OBJ
+// object, put side by side in one result.
+AtlasResult atlas_per_mesh(const MeshData& input, const AtlasOptions& options);
+
 }  // namespace intrinsic::detail

@@ -81,6 +81,23 @@ std::string base64_encode(const std::string& bytes);
 GltfDocument load_document(const std::string& bytes, const std::string& name, const std::string& folder,
                            bool files_allowed);
 
+// gltf_draco.cpp: decodes every KHR_draco_mesh_compression primitive into
+// plain accessors (a new buffer with a view per attribute and the indices),
+// refusing a malformed stream with its JSON path.
+void decode_draco(GltfDocument& doc);
+
+// gltf_prune.cpp: drops the accessors, buffer views and bytes of `bin` (the
+// document's one buffer) that nothing references any more, renumbering every
+// reference. Leaves everything as it was when an extension it does not know
+// is used (kept_because names it).
+struct PruneOutcome {
+  bool pruned = false;
+  std::string kept_because;
+  int accessors_dropped = 0, views_dropped = 0;
+  std::int64_t bytes_dropped = 0;
+};
+PruneOutcome prune_unreferenced(nlohmann::json& j, std::string& bin);
+
 }  // namespace gltf
 
 namespace io {

@@ -223,14 +223,14 @@ void check_buffer_views(const GltfDocument& doc) {
 }
 
 // Extensions that change how geometry is stored: without decoding them the
-// triangles cannot be read.
+// triangles cannot be read (Draco is decoded: gltf_draco.cpp).
 void check_required_extensions(const GltfDocument& doc) {
   const json& required = array_at(doc.json, "extensionsRequired", doc.name, "");
   for (std::size_t i = 0; i < required.size(); ++i) {
     const std::string path = "/extensionsRequired/" + std::to_string(i);
     if (!required[i].is_string()) fail(doc.name, path, "expected a string");
     const std::string& e = required[i].get_ref<const std::string&>();
-    if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression" || e == "KHR_meshopt_compression")
+    if (e == "EXT_meshopt_compression" || e == "KHR_meshopt_compression")
       fail(doc.name, path,
            e + " is not supported: decompress the file first (e.g. gltf-transform or gltfpack without compression)");
   }
@@ -256,6 +256,7 @@ GltfDocument load_document(const std::string& bytes, const std::string& name, co
   check_required_extensions(doc);
   load_buffers(doc, bin, has_bin, folder, files_allowed);
   check_buffer_views(doc);
+  decode_draco(doc);
   return doc;
 }
 

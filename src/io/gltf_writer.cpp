@@ -6,10 +6,12 @@
 // delta of its source vertex, plus the atlas as one more TEXCOORD set. Each
 // rewritten primitive is an indexed TRIANGLES list, faces in their order and
 // winding (faces the atlas reoriented keep the document's); its old
-// accessors stay in the file unused. Everything outside the triangle primitives (nodes,
-// materials, textures, images, animations, skins, cameras, extras,
-// extensions) is copied as it was; all buffers become one (the GLB binary
-// chunk, or a base64 data URI in a .gltf).
+// accessors, views and bytes are then dropped (gltf_prune.cpp). Everything
+// outside the triangle primitives (nodes, materials, textures, images,
+// animations, skins, cameras, extras, extensions) is copied as it was
+// (KHR_draco_mesh_compression aside: the rewritten primitives are
+// uncompressed); all buffers become one (the GLB binary chunk, or a base64
+// data URI in a .gltf).
 #include <cstring>
 #include <functional>
 #include <map>
@@ -228,6 +230,26 @@ json rewrite_primitive(Output& out, const GltfDocument& doc, const GltfDocument:
   return np;
 }
 
+// Rewritten primitives are written uncompressed: once no primitive keeps a
+// Draco stream, the document no longer uses (or requires) the extension.
+void drop_unused_draco(json& j) {
+  const char* draco = "KHR_draco_mesh_compression";
+  if (j.contains("meshes"))
+    for (const json& m : j["meshes"])
+      if (m.is_object() && m.contains("primitives") && m["primitives"].is_array())
+        for (const json& p : m["primitives"])
+          if (p.is_object() && p.contains("extensions") && p["extensions"].is_object() && p["extensions"].contains(draco))
+            return;
+  for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
+    if (!j.contains(list) || !j[list].is_array()) continue;
+    json kept = json::array();
+    for (const json& e : j[list])
+      if (e != draco) kept.push_back(e);
+    if (kept.empty()) j.erase(list);
+    else j[list] = kept;
+  }
+}
+
 std::string glb_bytes(const json& j, const std::string& bin) {
   std::string text = j.dump();
   while (text.size() % 4) text += ' ';
@@ -248,7 +270,8 @@ std::string glb_bytes(const json& j, const std::string& bin) {
   return out;
 }
 
-void write_document(const std::string& path, const MeshData& data, const AtlasResult& r, const GltfWriteOptions& o) {
+GltfWriteResult write_document(const std::string& path, const MeshData& data, const AtlasResult& r,
+                               const GltfWriteOptions& o) {
   const std::string ext = mesh_extension(path);
   if (ext != ".glb" && ext != ".gltf") throw_usage("output '" + path + "': a glTF document is written as .glb or .gltf");
   if (!data.gltf) throw_usage("output '" + path + "': " + data.path + " was not read from a glTF document");
@@ -267,6 +290,18 @@ void write_document(const std::string& path, const MeshData& data, const AtlasRe
     out.j["meshes"][static_cast<std::size_t>(p.mesh)]["primitives"][static_cast<std::size_t>(p.primitive)] =
         rewrite_primitive(out, doc, p, data, r, set, cache);
   }
+  drop_unused_draco(out.j);
+  GltfWriteResult result;
+  if (o.prune) {
+    const gltf::PruneOutcome p = gltf::prune_unreferenced(out.j, out.bin);
+    result.pruned = p.pruned;
+    result.accessors_dropped = p.accessors_dropped;
+    result.views_dropped = p.views_dropped;
+    result.bytes_dropped = p.bytes_dropped;
+    if (!p.pruned)
+      result.note = doc.name + ": extension " + p.kept_because +
+                    " could reference accessors or buffer views: unused data kept, not pruned";
+  }
   if (out.bin.size() > 0xFFFFFFF0u) throw_output(path + ": more than 4 GiB of buffer data (GLB's limit)");
   json buffer = {{"byteLength", out.bin.size()}};
   if (ext == ".gltf") {
@@ -277,15 +312,17 @@ void write_document(const std::string& path, const MeshData& data, const AtlasRe
     out.j["buffers"] = json::array({buffer});
     write_file_atomically(path, glb_bytes(out.j, out.bin));
   }
+  return result;
 }
 
 }  // namespace
 
-void write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& r, const GltfWriteOptions& o) {
+GltfWriteResult write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& r,
+                                 const GltfWriteOptions& o) {
   // Every JSON access above checks its type first; should one have been
   // missed, the document is refused, not the program ended.
   try {
-    write_document(path, data, r, o);
+    return write_document(path, data, r, o);
   } catch (const nlohmann::json::exception& e) {
     throw_input((data.gltf ? data.gltf->name : path) + ": unexpected JSON in the document: " + e.what());
   }

@@ -165,6 +165,12 @@ ChoiceTable<TextureWrap> choice_table<TextureWrap>() {
   return table(rows);
 }
 
+template <>
+ChoiceTable<AtlasScope> choice_table<AtlasScope>() {
+  static const Choice<AtlasScope> rows[] = {{AtlasScope::Whole, "whole"}, {AtlasScope::PerMesh, "per-mesh"}};
+  return table(rows);
+}
+
 }  // namespace intrinsic
 
 namespace intrinsic {

@@ -1,6 +1,7 @@
 // Runs the Khronos glTF validator (npm gltf-validator) on each file given and
 // prints one line per file: "<errors> <warnings> <path>", then every error
-// message. Exit 0 when no file has an error, 1 otherwise, 77 when the npm
+// message and every unused object (UNUSED_OBJECT, an information the
+// validator gives for accessors, views... nothing references). Exit 0 when no file has an error, 1 otherwise, 77 when the npm
 // package is not installed (the calling test then skips).
 import fs from 'node:fs';
 import path from 'node:path';
@@ -30,7 +31,8 @@ for (const file of process.argv.slice(2)) {
   const s = report.issues;
   console.log(`${s.numErrors} ${s.numWarnings} ${file}`);
   for (const m of s.messages)
-    if (m.severity === 0) console.log(`  error ${m.code} ${m.pointer || ''}: ${m.message}`);
+    if (m.severity === 0 || m.code === 'UNUSED_OBJECT')
+      console.log(`  ${m.severity === 0 ? 'error' : 'info'} ${m.code} ${m.pointer || ''}: ${m.message}`);
   if (s.numErrors > 0) failed = true;
 }
 process.exit(failed ? 1 : 0);
