@@ -76,6 +76,7 @@ Part cut_out(const MeshData& input, const std::vector<int>& group, int g, const 
 void add_counts(AtlasResult& to, const AtlasResult& r) {
   to.components += r.components;
   to.splits += r.splits;
+  to.split_groups += r.split_groups;
   AtlasSplits& s = to.split_reasons;
   s.not_disk += r.split_reasons.not_disk, s.refused += r.split_reasons.refused;
   s.solve_failed += r.split_reasons.solve_failed, s.flipped += r.split_reasons.flipped;
@@ -130,6 +131,11 @@ AtlasResult atlas_per_mesh(const MeshData& input, const AtlasOptions& options) {
   for (int g = 0; g < meshes; ++g) {
     Part p = cut_out(input, group, g, options.seams);
     each.seams = p.seams;
+    if (!options.face_group.empty()) {  // the part's faces' groups, in the part's face order
+      detail::check_face_groups(options.face_group, static_cast<int>(input.F.rows()));
+      each.face_group.clear();
+      for (int f : p.faces) each.face_group.push_back(options.face_group[static_cast<std::size_t>(f)]);
+    }
     const AtlasResult r = atlas(p.mesh, each);
     const int chart0 = static_cast<int>(out.charts.size());
     for (std::size_t f = 0; f < p.faces.size(); ++f) {
