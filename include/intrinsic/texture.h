@@ -83,8 +83,11 @@ struct TransferResult {
   // The source's channels and bit depth; texels no chart reaches (beyond the
   // padding) are 0 (alpha 0 too).
   Texture texture;
-  std::vector<char> covered;  // per texel: inside a new triangle (or within half a texel of one)
+  std::vector<char> covered;  // per texel (top row first): its centre is inside a new triangle
   long texels_covered = 0, texels_dilated = 0;
+  // Texels whose centre is outside every triangle but within half a texel of
+  // one (partly covered): they take the colour of the nearest point of it.
+  long texels_edge = 0;
 };
 
 // Error(Usage) for bad options or inconsistent mesh sizes, Error(Input) for
