@@ -41,6 +41,7 @@ struct BakedTexture {
 struct TextureTransferReport {
   std::vector<BakedTexture> baked;
   std::vector<std::string> notes;  // e.g. a material with no texture on the replaced set
+  std::vector<std::string> files;  // written beside the output (an OBJ's PNGs and .mtl)
 };
 
 // Error(Usage) for options out of range (before any work).

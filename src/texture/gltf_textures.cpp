@@ -9,7 +9,11 @@
 // re-expressed in the new tangent frame, which is written as TANGENT.
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <set>
 
 #include "intrinsic/error.h"
@@ -131,6 +135,15 @@ std::string percent_decode(const std::string& s) {
   return out;
 }
 
+// The bytes of an image file beside the document (the errno kept for the message).
+std::string read_image_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw_input_file("cannot open '" + path + "': " + std::strerror(errno), errno);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
 // The image decoded from its buffer view, data URI or file beside the document.
 Texture decode_image(const GltfDocument& doc, int image, const std::string& where) {
   const std::string path = "/images/" + std::to_string(image);
@@ -154,7 +167,7 @@ Texture decode_image(const GltfDocument& doc, int image, const std::string& wher
       return decode_texture(gltf::base64_decode(uri, comma + 8, doc.name, path + "/uri"), label);
     }
     const std::filesystem::path file = std::filesystem::path(doc.name).parent_path() / percent_decode(uri);
-    return read_texture(file.string());
+    return decode_texture(read_image_file(file.string()), label);
   } catch (const Error& e) {
     throw Error(ErrorKind::Input, label + ": cannot use the image: " + e.what(), e.os_error());
   }
