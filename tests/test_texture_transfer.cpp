@@ -1,0 +1,239 @@
+// Texture transfer for whole assets (docs/textures.md): re-atlasing the
+// generated fragmented asset, whose texture is a known function of the
+// surface point, must give a texture that is that function in the new layout
+// (texel by texel), must look the same rendered before and after, must be a
+// valid glTF; bad images and samplers are refused with nothing written.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+#include "cli_support.h"
+#include "intrinsic/atlas.h"
+#include "intrinsic/generate.h"
+#include "intrinsic/gltf.h"
+#include "intrinsic/io.h"
+#include "intrinsic/texture_transfer.h"
+#include "test_texture_transfer_support.h"
+
+namespace intrinsic {
+namespace {
+
+using test::Drawn;
+using test::TempDir;
+using nlohmann::json;
+
+constexpr double kLipschitz = 0.75;  // textured_asset_colour's bound per unit of length (generate.h)
+
+TexturedAssetOptions small_asset() {
+  TexturedAssetOptions o;
+  o.cells = 16;
+  o.chart_cells = 1;  // 1,536 charts of two triangles
+  o.texture_size = 1024;
+  return o;
+}
+
+// Re-atlases `input` into `output` (set 0 replaced, textures baked).
+TextureTransferReport transfer(const std::string& input, const std::string& output, int size = 512) {
+  const MeshData m = read_mesh(input);
+  const AtlasResult r = atlas(m, AtlasOptions{});
+  GltfWriteOptions g;
+  g.texcoord_set = 0;
+  TextureTransferOptions t;
+  t.enabled = true;
+  t.size = size;
+  return write_atlas_with_textures(output, m, r, g, t);
+}
+
+// Frobenius norm of the map from texel space to the surface over triangle f
+// (texels of a size x size image): how far one texel step moves on the surface.
+double texel_step(const Drawn& d, int f, int size) {
+  Eigen::Matrix<double, 3, 2> E;
+  Eigen::Matrix2d T;
+  for (int k = 0; k < 2; ++k) {
+    E.col(k) = (d.V.row(d.F(f, k + 1)) - d.V.row(d.F(f, 0))).transpose();
+    T.col(k) = (d.UV.row(d.F(f, k + 1)) - d.UV.row(d.F(f, 0))).transpose() * size;
+  }
+  return std::abs(T.determinant()) < 1e-12 ? 0 : (E * T.inverse()).norm();
+}
+
+// Every texel whose centre lies inside a triangle of the new layout holds
+// the asset's colour at the surface point of that centre, to within what
+// sampling both images can change it by: 8-bit rounding twice (3 codes),
+// plus the colour's change over a texel of the new image (supersampling)
+// and two texels of the old one (bilinear lookup reaching the neighbours).
+TEST(TextureTransfer, BakedTexelsAreTheAnalyticColourOfTheirSurfacePoint) {
+  TempDir dir;
+  const TexturedAsset asset = generate_textured_asset(small_asset());
+  write_textured_asset(dir / "in.glb", asset);
+  const TextureTransferReport rep = transfer(dir / "in.glb", dir / "out.glb");
+  ASSERT_EQ(rep.baked.size(), 1u);
+  EXPECT_EQ(rep.baked[0].slot, "pbrMetallicRoughness/baseColorTexture");
+  const Drawn before = test::drawn(dir / "in.glb"), after = test::drawn(dir / "out.glb");
+  ASSERT_EQ(after.texture.width, 512);
+  double old_step = 0;
+  for (int f = 0; f < before.F.rows(); ++f) old_step = std::max(old_step, texel_step(before, f, 1024));
+  const int W = after.texture.width, H = after.texture.height;
+  long checked = 0;
+  double worst = 0;  // error over allowance
+  for (int f = 0; f < after.F.rows(); ++f) {
+    const double allowance = 3.0 / 255 + kLipschitz * std::sqrt(3.0) * (texel_step(after, f, W) + 2 * old_step);
+    Eigen::Vector2d t[3];
+    for (int k = 0; k < 3; ++k) t[k] = Eigen::Vector2d(after.UV(after.F(f, k), 0) * W, (1 - after.UV(after.F(f, k), 1)) * H);
+    const double area = (t[1] - t[0]).x() * (t[2] - t[0]).y() - (t[1] - t[0]).y() * (t[2] - t[0]).x();
+    if (std::abs(area) < 1e-12) continue;
+    const int x0 = std::max(0, static_cast<int>(std::floor(std::min({t[0].x(), t[1].x(), t[2].x()}))));
+    const int x1 = std::min(W - 1, static_cast<int>(std::ceil(std::max({t[0].x(), t[1].x(), t[2].x()}))));
+    const int y0 = std::max(0, static_cast<int>(std::floor(std::min({t[0].y(), t[1].y(), t[2].y()}))));
+    const int y1 = std::min(H - 1, static_cast<int>(std::ceil(std::max({t[0].y(), t[1].y(), t[2].y()}))));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const Eigen::Vector2d c(x + 0.5, y + 0.5);
+        double b[3];
+        for (int k = 0; k < 3; ++k) {
+          const Eigen::Vector2d p = t[(k + 1) % 3], q = t[(k + 2) % 3];
+          b[k] = ((q - p).x() * (c - p).y() - (q - p).y() * (c - p).x()) / area;
+        }
+        if (std::min({b[0], b[1], b[2]}) < 0) continue;
+        Eigen::Vector3d point = Eigen::Vector3d::Zero();
+        for (int k = 0; k < 3; ++k) point += b[k] * after.V.row(after.F(f, k)).transpose();
+        const Eigen::Vector3d want = textured_asset_colour(point);
+        for (int q = 0; q < 3; ++q)
+          worst = std::max(worst, std::abs(after.texture.pixel(x, y)[q] / 255.0 - want[q]) - allowance);
+        ++checked;
+      }
+  }
+  EXPECT_GT(checked, 0.8 * rep.baked[0].texels_covered);
+  EXPECT_LE(worst, 0.0) << "a texel differs from the analytic colour by more than its allowance";
+}
+
+TEST(TextureTransfer, GeneratedAssetLooksTheSameBeforeAndAfter) {
+  TempDir dir;
+  write_textured_asset(dir / "in.glb", generate_textured_asset(small_asset()));
+  transfer(dir / "in.glb", dir / "out.glb", 1024);
+  const test::LookDifference d = test::look_difference(test::drawn(dir / "in.glb"), test::drawn(dir / "out.glb"), 400);
+  EXPECT_GT(d.pixels_away, d.pixels / 4);
+  EXPECT_LT(d.mean, 0.02);
+  EXPECT_LT(d.mean_away, 0.01);
+}
+
+// A real textured sample (Khronos BoxTextured, its PNG in a file beside the
+// .gltf): one material, six charts.
+TEST(TextureTransfer, KhronosBoxLooksTheSameBeforeAndAfter) {
+  const std::string box = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+  if (!std::filesystem::exists(box)) GTEST_SKIP() << box << " is absent (Debian package assimp-testmodels)";
+  TempDir dir;
+  const TextureTransferReport rep = transfer(box, dir / "out.glb", 512);
+  ASSERT_EQ(rep.baked.size(), 1u);
+  EXPECT_EQ(rep.baked[0].material_name, "Texture");
+  // The box's u runs over [0, 6] through a MIRRORED_REPEAT sampler, the
+  // renderer only repeats: the reference gets the six mirrored copies side by
+  // side and u / 6.
+  Drawn before = test::drawn(box);
+  ASSERT_LE(before.UV.col(0).maxCoeff(), 6.0);
+  ASSERT_GE(before.UV.col(0).minCoeff(), 0.0);
+  const Image& src = before.texture;
+  Image wide(6 * src.width, src.height);
+  for (int y = 0; y < src.height; ++y)
+    for (int x = 0; x < wide.width; ++x) {
+      const int k = x / src.width, sx = k % 2 ? src.width - 1 - x % src.width : x % src.width;
+      std::copy_n(src.pixel(sx, y), 3, wide.pixel(x, y));
+    }
+  before.texture = wide;
+  before.UV.col(0) /= 6;
+  const test::LookDifference d = test::look_difference(before, test::drawn(dir / "out.glb"), 400);
+  EXPECT_LT(d.mean, 0.02);
+  EXPECT_LT(d.mean_away, 0.01);
+}
+
+// The written document is valid glTF; the report names the bake; the old
+// transform extension is gone from the slot.
+TEST(TextureTransfer, CliWritesAValidDocumentAndReportsTheBake) {
+  TempDir dir;
+  write_textured_asset(dir / "in.glb", generate_textured_asset(small_asset()));
+  const auto r = test::run_cli("atlas " + (dir / "in.glb") + " -o " + (dir / "out.glb") +
+                                   " --uv-set 0 --transfer-textures --texture-size 256 -q --report " + (dir / "r.json"),
+                               dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(test::slurp(dir / "r.json"));
+  ASSERT_EQ(j["textures"]["baked"].size(), 1u);
+  EXPECT_EQ(j["textures"]["baked"][0]["width"], 256);
+  EXPECT_GT(j["textures"]["baked"][0]["texels_covered"].get<long>(), 256 * 256 / 4);
+  const tinygltf::Model m = test::load_model(dir / "out.glb");
+  const int tex = m.materials.at(0).pbrMetallicRoughness.baseColorTexture.index;
+  EXPECT_EQ(m.samplers.at(static_cast<std::size_t>(m.textures.at(static_cast<std::size_t>(tex)).sampler)).wrapS, 33071);
+  test::expect_valid_gltf(dir / "out.glb");
+}
+
+TEST(TextureTransfer, ReplacingAUsedSetWithoutTransferNamesTheFlag) {
+  TempDir dir;
+  write_textured_asset(dir / "in.glb", generate_textured_asset(small_asset()));
+  const auto r = test::run_cli("atlas " + (dir / "in.glb") + " -o " + (dir / "out.glb") + " --uv-set 0", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--transfer-textures"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.glb"));
+}
+
+// The generated asset as a .gltf whose JSON `edit` changes.
+void write_edited(const std::string& path, const std::function<void(json&)>& edit) {
+  TempDir tmp;
+  write_textured_asset(tmp / "a.gltf", generate_textured_asset(small_asset()));
+  json j = json::parse(test::slurp(tmp / "a.gltf"));
+  edit(j);
+  test::write_text(path, j.dump());
+}
+
+TEST(TextureTransfer, UnreadableImageIsRefusedNamingImageAndMaterial) {
+  TempDir dir;
+  write_edited(dir / "in.gltf", [](json& j) {
+    j["images"][0] = {{"uri", "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAA"}, {"name", "broken"}};
+  });
+  const auto r = test::run_cli("atlas " + (dir / "in.gltf") + " -o " + (dir / "out.gltf") +
+                                   " --uv-set 0 --transfer-textures --report " + (dir / "r.json"),
+                               dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("image 0 'broken'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("material 0 'textured'"), std::string::npos) << r.err;
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"in.gltf"});
+}
+
+TEST(TextureTransfer, MissingImageFileIsRefused) {
+  TempDir dir;
+  write_edited(dir / "in.gltf", [](json& j) { j["images"][0] = {{"uri", "absent.png"}}; });
+  const auto r = test::run_cli("atlas " + (dir / "in.gltf") + " -o " + (dir / "out.gltf") + " --uv-set 0 --transfer-textures", dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("absent.png"), std::string::npos) << r.err;
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"in.gltf"});
+}
+
+TEST(TextureTransfer, UnknownWrapModeIsRefused) {
+  TempDir dir;
+  write_edited(dir / "in.gltf", [](json& j) { j["samplers"][0]["wrapS"] = 1234; });
+  const auto r = test::run_cli("atlas " + (dir / "in.gltf") + " -o " + (dir / "out.gltf") + " --uv-set 0 --transfer-textures", dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("/samplers/0/wrapS"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("material 0"), std::string::npos) << r.err;
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"in.gltf"});
+}
+
+TEST(TextureTransfer, MaterialWithoutTextureOnTheSetGetsANote) {
+  TempDir dir;
+  write_edited(dir / "in.gltf", [](json& j) { j["materials"][0]["pbrMetallicRoughness"].erase("baseColorTexture"); });
+  const TextureTransferReport rep = transfer(dir / "in.gltf", dir / "out.gltf");
+  EXPECT_TRUE(rep.baked.empty());
+  ASSERT_EQ(rep.notes.size(), 1u);
+  EXPECT_NE(rep.notes[0].find("no texture on TEXCOORD_0"), std::string::npos) << rep.notes[0];
+  EXPECT_TRUE(std::filesystem::exists(dir / "out.gltf"));
+}
+
+TEST(TextureTransfer, TransferNeedsTheUvSet) {
+  TempDir dir;
+  write_textured_asset(dir / "in.glb", generate_textured_asset(small_asset()));
+  const auto r = test::run_cli("atlas " + (dir / "in.glb") + " -o " + (dir / "out.glb") + " --transfer-textures", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--uv-set"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace intrinsic
