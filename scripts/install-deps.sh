@@ -14,7 +14,7 @@ PACKAGES=(
   libcli11-dev             # command line
   nlohmann-json3-dev       # JSON reports and constraint files
   libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
-  libstb-dev               # stb_easy_font for picture labels
+  libstb-dev               # stb_easy_font for picture labels, stb_image for JPEG textures
   libtinygltf-dev          # glTF 2.0 binary (.glb) output of `intrinsic atlas`
   assimp-testmodels        # Khronos glTF sample models for tests/test_gltf.cpp (GltfSamples; skipped without)
   libgtest-dev libbenchmark-dev

@@ -26,9 +26,10 @@ struct Texture {
 // PNG or JPEG (told apart by their magic bytes). Malformed or truncated data,
 // or more than 16384 texels per side: Error(Input) naming `name`.
 Texture decode_texture(const std::string& bytes, const std::string& name);
-// Reads and decodes a file: Error(Input) with the errno when it cannot be
+// Reads and decodes a file (not `read_texture`: pictures.h has that name for
+// the render command's RGB8 checker texture): Error(Input) with the errno when it cannot be
 // read (a missing file has os_error ENOENT), Error(Input) when malformed.
-Texture read_texture(const std::string& path);
+Texture read_texture_file(const std::string& path);
 // PNG bytes with the texture's channels and bit depth (values rounded to the
 // nearest code, clamped to [0,1]). Error(Usage) for an inconsistent Texture.
 std::string encode_texture_png(const Texture& t);

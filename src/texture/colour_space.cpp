@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "texture/texture_internal.h"
+#include "util/parallel_for.h"
 
 namespace intrinsic::detail {
 
@@ -32,26 +33,30 @@ Texture linearized(const Texture& t) {
   std::vector<float> table(codes);
   for (int i = 0; i < codes; ++i) table[i] = srgb_to_linear(static_cast<float>(i) / (codes - 1));
   const int cc = colour_channels(t);
-  const std::size_t n = static_cast<std::size_t>(t.width) * t.height;
-  for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < cc; ++c) {
-      float& v = out.texels[i * t.channels + c];
-      // Decoded values are exact codes; others (a caller's floats) are
-      // rounded to the nearest code, well within the quantization they had.
-      const float x = v > 0 ? (v < 1 ? v : 1) : 0;
-      v = table[static_cast<int>(x * (codes - 1) + 0.5f)];
-    }
+  const std::int64_t n = static_cast<std::int64_t>(t.width) * t.height;
+  parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i)
+      for (int c = 0; c < cc; ++c) {
+        float& v = out.texels[i * t.channels + c];
+        // Decoded values are exact codes; others (a caller's floats) are
+        // rounded to the nearest code, well within the quantization they had.
+        const float x = v > 0 ? (v < 1 ? v : 1) : 0;
+        v = table[static_cast<int>(x * (codes - 1) + 0.5f)];
+      }
+  });
   return out;
 }
 
 void encode_srgb_in_place(Texture& t) {
   const int cc = colour_channels(t);
-  const std::size_t n = static_cast<std::size_t>(t.width) * t.height;
-  for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < cc; ++c) {
-      float& v = t.texels[i * t.channels + c];
-      v = linear_to_srgb(v > 0 ? (v < 1 ? v : 1) : 0);
-    }
+  const std::int64_t n = static_cast<std::int64_t>(t.width) * t.height;
+  parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i)
+      for (int c = 0; c < cc; ++c) {
+        float& v = t.texels[i * t.channels + c];
+        v = linear_to_srgb(v > 0 ? (v < 1 ? v : 1) : 0);
+      }
+  });
 }
 
 }  // namespace intrinsic::detail

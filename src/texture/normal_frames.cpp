@@ -4,6 +4,7 @@
 // the old frame, forms the object-space vector n.x T + n.y B + n.z N, and
 // re-expresses it in the new frame (docs/maths.md "Texture transfer").
 // Frames follow glTF's TANGENT: bitangent = w * cross(normal, tangent).
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "texture/texture_internal.h"

@@ -6,6 +6,7 @@
 // angle; faces of opposite uv orientation (mirrored charts) and faces with
 // degenerate uv are not averaged together. Handedness w says whether the
 // bitangent is +cross(n, t) or -cross(n, t) (docs/maths.md "Texture transfer").
+#include <Eigen/Geometry>
 #include <cmath>
 #include <algorithm>
 #include <array>

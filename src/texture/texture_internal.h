@@ -53,7 +53,8 @@ struct RasterSample {
 // The raster of the new layout for rows [row0, row1) of a width x height
 // image, `ss` x `ss` samples per texel: centre[(y - row0) * width + x] for
 // texel centres (a face only within half a texel of a triangle), and, when
-// ss > 1, sub[(sy) * width * ss + sx] for the sub-samples of those rows.
+// ss > 1, sub[(sy) * width * ss + sx] for the sub-samples of those rows (a
+// face only inside a triangle).
 // `faces` lists the faces that may touch these rows.
 struct RasterBand {
   std::vector<RasterSample> centre, sub;

@@ -32,7 +32,7 @@ Texture decode_texture(const std::string& bytes, const std::string& name) {
   throw_input("texture '" + name + "': neither PNG nor JPEG (unknown signature)");
 }
 
-Texture read_texture(const std::string& path) {
+Texture read_texture_file(const std::string& path) {
   return decode_texture(detail::read_text_file(path, "texture"), path);
 }
 

@@ -17,10 +17,11 @@ namespace intrinsic::detail {
 namespace {
 
 // A texel centre is filled when within half a texel of a triangle (it is
-// then at least partly covered). A sub-sample lies at most (1/2)sqrt(2) from
-// its texel's centre, so it finds a triangle within 0.5 + 0.71 texels.
+// then at least partly covered). A sub-sample counts only inside a triangle:
+// outside, the texel's centre sample stands in for it (transfer.cpp), so a
+// sub-sample never reaches across a gap into a neighbouring chart.
 constexpr double kCentreMargin = 0.5;
-constexpr double kSubMargin = 1.25;
+constexpr double kSubMargin = 0;
 
 struct Tri {
   Eigen::Vector2d p[3];
