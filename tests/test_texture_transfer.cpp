@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <map>
 
 #include "cli_support.h"
 #include "intrinsic/atlas.h"
@@ -233,6 +234,68 @@ TEST(TextureTransfer, TransferNeedsTheUvSet) {
   const auto r = test::run_cli("atlas " + (dir / "in.glb") + " -o " + (dir / "out.glb") + " --transfer-textures", dir);
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("--uv-set"), std::string::npos) << r.err;
+}
+
+std::vector<std::string> files_in(const std::string& folder) {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(folder)) out.push_back(e.path().filename().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// An OBJ (vt v up) as the renderer draws it: one vertex per (v, vt) pair,
+// so charts stay connected; the texture from `png`.
+Drawn drawn_obj(const std::string& obj, const std::string& png) {
+  const MeshData m = read_mesh(obj);
+  Drawn d;
+  std::map<std::pair<int, int>, int> id;
+  std::vector<Eigen::Vector3d> V;
+  std::vector<Eigen::Vector2d> UV;
+  d.F.resize(m.F.rows(), 3);
+  for (int f = 0; f < m.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const auto [it, fresh] = id.emplace(std::make_pair(m.F(f, k), m.FTC(f, k)), static_cast<int>(V.size()));
+      if (fresh) V.push_back(m.V.row(m.F(f, k)).transpose()), UV.push_back(m.TC.row(m.FTC(f, k)).transpose());
+      d.F(f, k) = it->second;
+    }
+  d.V.resize(static_cast<Eigen::Index>(V.size()), 3);
+  d.UV.resize(d.V.rows(), 2);
+  for (std::size_t v = 0; v < V.size(); ++v) d.V.row(v) = V[v].transpose(), d.UV.row(v) = UV[v].transpose();
+  d.texture = decode_png(test::slurp(png));
+  return d;
+}
+
+TEST(TextureTransfer, ObjMtlPngRoundTripKeepsTheLook) {
+  TempDir dir;
+  write_textured_asset(dir / "in.obj", generate_textured_asset(small_asset()));
+  std::filesystem::create_directory(dir / "out");
+  const auto r = test::run_cli("atlas " + (dir / "in.obj") + " -o " + (dir / "out/atlas.obj") +
+                                   " --transfer-textures --texture-size 1024 -q --report " + (dir / "r.json"),
+                               dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(files_in(dir / "out"), (std::vector<std::string>{"atlas.mtl", "atlas.obj", "atlas_textured_Kd.png"}));
+  const std::string mtl = test::slurp(dir / "out/atlas.mtl");
+  EXPECT_NE(mtl.find("map_Kd atlas_textured_Kd.png\n"), std::string::npos) << mtl;
+  EXPECT_NE(mtl.find("newmtl textured\n"), std::string::npos) << mtl;
+  EXPECT_NE(test::slurp(dir / "out/atlas.obj").find("mtllib atlas.mtl\n"), std::string::npos);
+  const json j = json::parse(test::slurp(dir / "r.json"));
+  EXPECT_EQ(j["textures"]["baked"][0]["slot"], "map_Kd");
+  const test::LookDifference d = test::look_difference(drawn_obj(dir / "in.obj", dir / "in.png"),
+                                                       drawn_obj(dir / "out/atlas.obj", dir / "out/atlas_textured_Kd.png"), 400);
+  EXPECT_GT(d.pixels_away, d.pixels / 4);
+  EXPECT_LT(d.mean, 0.02);
+  EXPECT_LT(d.mean_away, 0.01);
+}
+
+TEST(TextureTransfer, ObjWithAMissingMapIsRefusedAndWritesNothing) {
+  TempDir dir;
+  write_textured_asset(dir / "in.obj", generate_textured_asset(small_asset()));
+  std::filesystem::remove(dir / "in.png");
+  std::filesystem::create_directory(dir / "out");
+  const auto r = test::run_cli("atlas " + (dir / "in.obj") + " -o " + (dir / "out/atlas.obj") + " --transfer-textures", dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("in.mtl:4 (material 'textured', map_Kd)"), std::string::npos) << r.err;
+  EXPECT_TRUE(files_in(dir / "out").empty());
 }
 
 }  // namespace
