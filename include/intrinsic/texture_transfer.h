@@ -29,7 +29,7 @@ struct TextureTransferOptions {
 
 // One texture slot of one material that now reads a baked image.
 struct BakedTexture {
-  int material = -1;          // glTF material index, or the OBJ material's position in its .mtl
+  int material = -1;          // glTF material index, or for an OBJ the map line's position among the .mtl maps
   std::string material_name;  // "" when the material has none
   std::string slot;           // "pbrMetallicRoughness/baseColorTexture", "normalTexture", "map_Kd", ...
   std::string source;         // the source image: glTF "image 3 (name)" or the OBJ map's file
