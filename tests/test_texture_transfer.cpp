@@ -236,6 +236,91 @@ TEST(TextureTransfer, TransferNeedsTheUvSet) {
   EXPECT_NE(r.err.find("--uv-set"), std::string::npos) << r.err;
 }
 
+// A flat normal map (0.5, 0.5, 1 everywhere) says "the surface normal" in any
+// tangent frame, so it must stay flat in the new layout; the new frame is
+// written as TANGENT: unit, perpendicular to NORMAL, along the direction in
+// which the new u grows (glTF's tangent), and the document stays valid.
+TEST(TextureTransfer, NormalMapStaysFlatAndTangentsFollowTheNewU) {
+  TempDir dir;
+  Image flat(16, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) flat.pixel(x, y)[0] = 128, flat.pixel(x, y)[1] = 128, flat.pixel(x, y)[2] = 255;
+  test::write_text(dir / "flat.png", encode_png(flat));
+  write_edited(dir / "in.gltf", [](json& j) {
+    j["images"].push_back({{"uri", "flat.png"}});
+    j["textures"].push_back({{"source", 1}, {"sampler", 0}});
+    j["materials"][0]["normalTexture"] = {{"index", 1}};
+  });
+  const TextureTransferReport rep = transfer(dir / "in.gltf", dir / "out.glb", 256);
+  ASSERT_EQ(rep.baked.size(), 2u);
+  const tinygltf::Model m = test::load_model(dir / "out.glb");
+  const tinygltf::Primitive& p = m.meshes.at(0).primitives.at(0);
+  const int normal_texture = m.materials.at(0).normalTexture.index;
+  const Image baked = decode_png(test::image_bytes(m, m.textures.at(static_cast<std::size_t>(normal_texture)).source, ""));
+  long covered = 0;
+  for (int y = 0; y < baked.height; ++y)
+    for (int x = 0; x < baked.width; ++x) {
+      const std::uint8_t* t = baked.pixel(x, y);
+      if (t[0] == 0 && t[1] == 0 && t[2] == 0) continue;  // outside every chart and its padding
+      ++covered;
+      EXPECT_NEAR(t[0], 128, 2);
+      EXPECT_NEAR(t[1], 128, 2);
+      EXPECT_GE(t[2], 253);
+    }
+  EXPECT_GT(covered, 256 * 256 / 4);
+  ASSERT_TRUE(p.attributes.count("TANGENT"));
+  int c = 0;
+  const std::vector<double> T = test::read_values(m, p.attributes.at("TANGENT"), c), N = test::read_values(m, p.attributes.at("NORMAL"), c);
+  const Drawn after = test::drawn(dir / "out.glb");
+  for (Eigen::Index v = 0; v < after.V.rows(); ++v) {
+    const Eigen::Vector3d t(T[4 * v], T[4 * v + 1], T[4 * v + 2]), n(N[3 * v], N[3 * v + 1], N[3 * v + 2]);
+    EXPECT_NEAR(t.norm(), 1, 1e-5);
+    EXPECT_NEAR(std::abs(T[4 * v + 3]), 1, 0);
+    EXPECT_LT(std::abs(t.dot(n)), 1e-3);
+  }
+  long along = 0;
+  for (int f = 0; f < after.F.rows(); ++f) {
+    Eigen::Matrix<double, 3, 2> E;
+    Eigen::Matrix2d U;
+    for (int k = 0; k < 2; ++k) {
+      E.col(k) = (after.V.row(after.F(f, k + 1)) - after.V.row(after.F(f, 0))).transpose();
+      U.col(k) = (after.UV.row(after.F(f, k + 1)) - after.UV.row(after.F(f, 0))).transpose();
+    }
+    const Eigen::Vector3d dpdu = (E * U.inverse()).col(0).normalized();  // u is the same in both v conventions
+    Eigen::Vector3d t = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) t += Eigen::Vector3d(T[4 * after.F(f, k)], T[4 * after.F(f, k) + 1], T[4 * after.F(f, k) + 2]);
+    along += t.normalized().dot(dpdu) > 0.7;
+  }
+  EXPECT_GT(along, 0.95 * after.F.rows());
+  test::expect_valid_gltf(dir / "out.glb");
+}
+
+// A KHR_texture_transform on the slot is baked in: the slot loses it (and
+// the document its declaration) and the look through the transform is kept.
+TEST(TextureTransfer, TextureTransformIsBakedIn) {
+  TempDir dir;
+  write_edited(dir / "in.gltf", [](json& j) {
+    j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+        {"KHR_texture_transform", {{"offset", {0.2, 0.1}}, {"scale", {0.6, 0.7}}, {"texCoord", 0}}}};
+    j["extensionsUsed"] = {"KHR_texture_transform"};
+  });
+  transfer(dir / "in.gltf", dir / "out.glb", 1024);
+  const json out = json::parse(test::slurp(dir / "in.gltf"));  // the input still has it
+  ASSERT_TRUE(out.contains("extensionsUsed"));
+  const tinygltf::Model m = test::load_model(dir / "out.glb");
+  EXPECT_TRUE(m.extensionsUsed.empty());
+  EXPECT_TRUE(m.materials.at(0).pbrMetallicRoughness.baseColorTexture.extensions.empty());
+  Drawn before = test::drawn(dir / "in.gltf");
+  for (Eigen::Index v = 0; v < before.UV.rows(); ++v) {
+    // glTF's transform acts on v down: u' = 0.6 u + 0.2, v' = 0.7 v + 0.1.
+    const double u = before.UV(v, 0), vd = 1 - before.UV(v, 1);
+    before.UV.row(v) << 0.6 * u + 0.2, 1 - (0.7 * vd + 0.1);
+  }
+  const test::LookDifference d = test::look_difference(before, test::drawn(dir / "out.glb"), 400);
+  EXPECT_LT(d.mean, 0.02);
+  EXPECT_LT(d.mean_away, 0.01);
+}
+
 std::vector<std::string> files_in(const std::string& folder) {
   std::vector<std::string> out;
   for (const auto& e : std::filesystem::directory_iterator(folder)) out.push_back(e.path().filename().string());
