@@ -64,7 +64,7 @@ double texel_step(const Drawn& d, int f, int size) {
 // sampling both images can change it by: 8-bit rounding twice (3 codes),
 // plus the colour's change over a texel of the new image (supersampling)
 // and two texels of the old one (bilinear lookup reaching the neighbours).
-TEST(TextureTransfer, BakedTexelsAreTheAnalyticColourOfTheirSurfacePoint) {
+TEST(AssetTextureTransfer, BakedTexelsAreTheAnalyticColourOfTheirSurfacePoint) {
   TempDir dir;
   const TexturedAsset asset = generate_textured_asset(small_asset());
   write_textured_asset(dir / "in.glb", asset);
@@ -109,7 +109,7 @@ TEST(TextureTransfer, BakedTexelsAreTheAnalyticColourOfTheirSurfacePoint) {
   EXPECT_LE(worst, 0.0) << "a texel differs from the analytic colour by more than its allowance";
 }
 
-TEST(TextureTransfer, GeneratedAssetLooksTheSameBeforeAndAfter) {
+TEST(AssetTextureTransfer, GeneratedAssetLooksTheSameBeforeAndAfter) {
   TempDir dir;
   write_textured_asset(dir / "in.glb", generate_textured_asset(small_asset()));
   transfer(dir / "in.glb", dir / "out.glb", 1024);
@@ -121,7 +121,7 @@ TEST(TextureTransfer, GeneratedAssetLooksTheSameBeforeAndAfter) {
 
 // A real textured sample (Khronos BoxTextured, its PNG in a file beside the
 // .gltf): one material, six charts.
-TEST(TextureTransfer, KhronosBoxLooksTheSameBeforeAndAfter) {
+TEST(AssetTextureTransfer, KhronosBoxLooksTheSameBeforeAndAfter) {
   const std::string box = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
   if (!std::filesystem::exists(box)) GTEST_SKIP() << box << " is absent (Debian package assimp-testmodels)";
   TempDir dir;
@@ -150,7 +150,7 @@ TEST(TextureTransfer, KhronosBoxLooksTheSameBeforeAndAfter) {
 
 // The written document is valid glTF; the report names the bake; the old
 // transform extension is gone from the slot.
-TEST(TextureTransfer, CliWritesAValidDocumentAndReportsTheBake) {
+TEST(AssetTextureTransfer, CliWritesAValidDocumentAndReportsTheBake) {
   TempDir dir;
   write_textured_asset(dir / "in.glb", generate_textured_asset(small_asset()));
   const auto r = test::run_cli("atlas " + (dir / "in.glb") + " -o " + (dir / "out.glb") +
@@ -167,7 +167,7 @@ TEST(TextureTransfer, CliWritesAValidDocumentAndReportsTheBake) {
   test::expect_valid_gltf(dir / "out.glb");
 }
 
-TEST(TextureTransfer, ReplacingAUsedSetWithoutTransferNamesTheFlag) {
+TEST(AssetTextureTransfer, ReplacingAUsedSetWithoutTransferNamesTheFlag) {
   TempDir dir;
   write_textured_asset(dir / "in.glb", generate_textured_asset(small_asset()));
   const auto r = test::run_cli("atlas " + (dir / "in.glb") + " -o " + (dir / "out.glb") + " --uv-set 0", dir);
@@ -185,7 +185,7 @@ void write_edited(const std::string& path, const std::function<void(json&)>& edi
   test::write_text(path, j.dump());
 }
 
-TEST(TextureTransfer, UnreadableImageIsRefusedNamingImageAndMaterial) {
+TEST(AssetTextureTransfer, UnreadableImageIsRefusedNamingImageAndMaterial) {
   TempDir dir;
   write_edited(dir / "in.gltf", [](json& j) {
     j["images"][0] = {{"uri", "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAA"}, {"name", "broken"}};
@@ -199,7 +199,7 @@ TEST(TextureTransfer, UnreadableImageIsRefusedNamingImageAndMaterial) {
   EXPECT_EQ(dir.files(), std::vector<std::string>{"in.gltf"});
 }
 
-TEST(TextureTransfer, MissingImageFileIsRefused) {
+TEST(AssetTextureTransfer, MissingImageFileIsRefused) {
   TempDir dir;
   write_edited(dir / "in.gltf", [](json& j) { j["images"][0] = {{"uri", "absent.png"}}; });
   const auto r = test::run_cli("atlas " + (dir / "in.gltf") + " -o " + (dir / "out.gltf") + " --uv-set 0 --transfer-textures", dir);
@@ -208,7 +208,7 @@ TEST(TextureTransfer, MissingImageFileIsRefused) {
   EXPECT_EQ(dir.files(), std::vector<std::string>{"in.gltf"});
 }
 
-TEST(TextureTransfer, UnknownWrapModeIsRefused) {
+TEST(AssetTextureTransfer, UnknownWrapModeIsRefused) {
   TempDir dir;
   write_edited(dir / "in.gltf", [](json& j) { j["samplers"][0]["wrapS"] = 1234; });
   const auto r = test::run_cli("atlas " + (dir / "in.gltf") + " -o " + (dir / "out.gltf") + " --uv-set 0 --transfer-textures", dir);
@@ -218,7 +218,7 @@ TEST(TextureTransfer, UnknownWrapModeIsRefused) {
   EXPECT_EQ(dir.files(), std::vector<std::string>{"in.gltf"});
 }
 
-TEST(TextureTransfer, MaterialWithoutTextureOnTheSetGetsANote) {
+TEST(AssetTextureTransfer, MaterialWithoutTextureOnTheSetGetsANote) {
   TempDir dir;
   write_edited(dir / "in.gltf", [](json& j) { j["materials"][0]["pbrMetallicRoughness"].erase("baseColorTexture"); });
   const TextureTransferReport rep = transfer(dir / "in.gltf", dir / "out.gltf");
@@ -228,7 +228,7 @@ TEST(TextureTransfer, MaterialWithoutTextureOnTheSetGetsANote) {
   EXPECT_TRUE(std::filesystem::exists(dir / "out.gltf"));
 }
 
-TEST(TextureTransfer, TransferNeedsTheUvSet) {
+TEST(AssetTextureTransfer, TransferNeedsTheUvSet) {
   TempDir dir;
   write_textured_asset(dir / "in.glb", generate_textured_asset(small_asset()));
   const auto r = test::run_cli("atlas " + (dir / "in.glb") + " -o " + (dir / "out.glb") + " --transfer-textures", dir);
@@ -240,7 +240,7 @@ TEST(TextureTransfer, TransferNeedsTheUvSet) {
 // tangent frame, so it must stay flat in the new layout; the new frame is
 // written as TANGENT: unit, perpendicular to NORMAL, along the direction in
 // which the new u grows (glTF's tangent), and the document stays valid.
-TEST(TextureTransfer, NormalMapStaysFlatAndTangentsFollowTheNewU) {
+TEST(AssetTextureTransfer, NormalMapStaysFlatAndTangentsFollowTheNewU) {
   TempDir dir;
   Image flat(16, 16);
   for (int y = 0; y < 16; ++y)
@@ -297,7 +297,7 @@ TEST(TextureTransfer, NormalMapStaysFlatAndTangentsFollowTheNewU) {
 
 // A KHR_texture_transform on the slot is baked in: the slot loses it (and
 // the document its declaration) and the look through the transform is kept.
-TEST(TextureTransfer, TextureTransformIsBakedIn) {
+TEST(AssetTextureTransfer, TextureTransformIsBakedIn) {
   TempDir dir;
   write_edited(dir / "in.gltf", [](json& j) {
     j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
@@ -350,7 +350,7 @@ Drawn drawn_obj(const std::string& obj, const std::string& png) {
   return d;
 }
 
-TEST(TextureTransfer, ObjMtlPngRoundTripKeepsTheLook) {
+TEST(AssetTextureTransfer, ObjMtlPngRoundTripKeepsTheLook) {
   TempDir dir;
   write_textured_asset(dir / "in.obj", generate_textured_asset(small_asset()));
   std::filesystem::create_directory(dir / "out");
@@ -372,7 +372,7 @@ TEST(TextureTransfer, ObjMtlPngRoundTripKeepsTheLook) {
   EXPECT_LT(d.mean_away, 0.01);
 }
 
-TEST(TextureTransfer, ObjWithAMissingMapIsRefusedAndWritesNothing) {
+TEST(AssetTextureTransfer, ObjWithAMissingMapIsRefusedAndWritesNothing) {
   TempDir dir;
   write_textured_asset(dir / "in.obj", generate_textured_asset(small_asset()));
   std::filesystem::remove(dir / "in.png");
