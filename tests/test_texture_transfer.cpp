@@ -321,6 +321,41 @@ TEST(AssetTextureTransfer, TextureTransformIsBakedIn) {
   EXPECT_LT(d.mean_away, 0.01);
 }
 
+// Two materials sharing image, sampler and transform on different triangles
+// (two primitives): one image baked over the union, both slots point at it.
+TEST(AssetTextureTransfer, MaterialsSharingAnImageGetOneBakeOverTheirUnion) {
+  TempDir dir;
+  write_edited(dir / "in.gltf", [](json& j) {
+    json& prim = j["meshes"][0]["primitives"][0];
+    const int indices = prim["indices"];
+    json first = j["accessors"][indices], second = first;
+    const int count = first["count"].get<int>() / 6 * 3;  // a multiple of 3
+    first["count"] = count;
+    second["count"] = j["accessors"][indices]["count"].get<int>() - count;
+    second["byteOffset"] = count * 4;
+    j["accessors"].push_back(first);
+    j["accessors"].push_back(second);
+    json other = prim;
+    prim["indices"] = j["accessors"].size() - 2;
+    other["indices"] = j["accessors"].size() - 1;
+    other["material"] = 1;
+    j["meshes"][0]["primitives"].push_back(other);
+    json m = j["materials"][0];
+    m["name"] = "second";
+    j["materials"].push_back(m);
+  });
+  const TextureTransferReport rep = transfer(dir / "in.gltf", dir / "out.glb", 512);
+  ASSERT_EQ(rep.baked.size(), 2u);
+  EXPECT_EQ(rep.baked[0].output, rep.baked[1].output);
+  EXPECT_EQ(rep.baked[0].texels_covered, rep.baked[1].texels_covered);
+  EXPECT_NE(rep.baked[0].material, rep.baked[1].material);
+  const tinygltf::Model m = test::load_model(dir / "out.glb");
+  EXPECT_EQ(m.materials.at(0).pbrMetallicRoughness.baseColorTexture.index,
+            m.materials.at(1).pbrMetallicRoughness.baseColorTexture.index);
+  EXPECT_EQ(m.images.size(), 2u);  // the old one (unused now) and the one bake
+  test::expect_valid_gltf(dir / "out.glb");
+}
+
 std::vector<std::string> files_in(const std::string& folder) {
   std::vector<std::string> out;
   for (const auto& e : std::filesystem::directory_iterator(folder)) out.push_back(e.path().filename().string());
