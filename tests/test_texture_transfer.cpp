@@ -220,8 +220,13 @@ TEST(AssetTextureTransfer, UnknownWrapModeIsRefused) {
 
 TEST(AssetTextureTransfer, MaterialWithoutTextureOnTheSetGetsANote) {
   TempDir dir;
-  write_edited(dir / "in.gltf", [](json& j) { j["materials"][0]["pbrMetallicRoughness"].erase("baseColorTexture"); });
+  write_edited(dir / "in.gltf", [](json& j) {
+    j["materials"][0]["pbrMetallicRoughness"].erase("baseColorTexture");
+    for (const char* k : {"images", "textures", "samplers"}) j.erase(k);
+    j["bufferViews"].erase(j["bufferViews"].size() - 1);  // the image's, the last one
+  });
   const TextureTransferReport rep = transfer(dir / "in.gltf", dir / "out.gltf");
+  test::expect_valid_gltf(dir / "out.gltf");  // no empty images or textures array
   EXPECT_TRUE(rep.baked.empty());
   ASSERT_EQ(rep.notes.size(), 1u);
   EXPECT_NE(rep.notes[0].find("no texture on TEXCOORD_0"), std::string::npos) << rep.notes[0];

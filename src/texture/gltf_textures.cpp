@@ -330,6 +330,9 @@ int clamping_sampler(Context& cx, int old_sampler) {
 // The baked image, its texture, the group's slots pointed at it.
 void write_baked(Context& cx, const Group& g, const TransferResult& res) {
   const std::string png = encode_texture_png(res.texture);
+  // glTF refuses empty arrays: created only with their first entry.
+  if (!cx.out.contains("images")) cx.out["images"] = json::array();
+  if (!cx.out.contains("textures")) cx.out["textures"] = json::array();
   json image = {{"bufferView", add_view(cx.out, cx.bin, png, 0)}, {"mimeType", "image/png"}};
   const json& old_image = cx.doc.json["images"][static_cast<std::size_t>(g.image)];
   if (old_image.contains("name") && old_image["name"].is_string()) image["name"] = old_image["name"].get<std::string>() + " (atlas)";
@@ -406,8 +409,6 @@ GltfWriteHook texture_hook(const GltfDocument& doc, const AtlasResult& r, const 
   return [&doc, &r, &options, &report](json& out, std::string& bin, const std::vector<GltfWrittenPrimitive>& written) {
     const std::vector<Group> groups = collect_groups(doc, written, report);
     Context cx{doc, r, written, options, report, out, bin, {}, {}, {}, {}, {}};
-    if (!out.contains("images")) out["images"] = json::array();
-    if (!out.contains("textures")) out["textures"] = json::array();
     for (const Group& g : groups) bake_group(cx, g);
     for (const auto& [p, tangent] : cx.new_tangents)
       if (cx.corners_of(p).has_normal) write_tangents(out, bin, written[static_cast<std::size_t>(p)], tangent);
