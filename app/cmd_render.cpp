@@ -37,7 +37,7 @@ PictureSettings render_settings(const RenderArgs& a, PictureMode mode, Image& te
   s.render.fit_uv = a.texture.empty();
   if (!a.texture.empty()) {
     if (mode != PictureMode::Checker) throw_usage("--texture applies to --mode checker only");
-    texture = read_texture(a.texture);
+    texture = read_picture_texture(a.texture);
     s.render.texture = &texture;
   }
   if ((a.on_surface || a.log_scale) && (mode == PictureMode::Checker || mode == PictureMode::Layout))

@@ -103,9 +103,9 @@ def time_library(lib, obj, runs, padding, resolution):
     seconds, reports, own = [], [], []
     for _ in range(runs):
         t0 = time.perf_counter()
-        V, F, T = op_atlas.mesh_arrays(obj)
+        V, F, T, P = op_atlas.mesh_arrays(obj)
         t1 = time.perf_counter()
-        r = lib.atlas(V, F, padding=padding, resolution=resolution)
+        r = lib.atlas(V, F, padding=padding, resolution=resolution, face_groups=P)
         t2 = time.perf_counter()
         uv = op_atlas.loop_uvs(r, F, T, len(obj.data.loops))
         obj.data.uv_layers.active.data.foreach_set("uv", uv.ravel())

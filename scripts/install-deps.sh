@@ -14,7 +14,8 @@ PACKAGES=(
   libcli11-dev             # command line
   nlohmann-json3-dev       # JSON reports and constraint files
   libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
-  libstb-dev               # stb_easy_font for picture labels, stb_image for JPEG textures
+  libstb-dev               # stb_easy_font for picture labels
+  libjpeg62-turbo-dev      # JPEG textures (texture transfer): libjpeg-turbo, hardened against hostile files
   libtinygltf-dev          # glTF 2.0 binary (.glb) output of `intrinsic atlas`
   assimp-testmodels        # Khronos glTF sample models for tests/test_gltf.cpp (GltfSamples; skipped without)
   libgtest-dev libbenchmark-dev

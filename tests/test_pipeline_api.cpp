@@ -120,6 +120,8 @@ TEST(PipelineApi, NameTablesRoundTrip) {
   expect_round_trip<ChartOptimizer>("ChartOptimizer");
   expect_round_trip<BasisMode>("BasisMode");
   expect_round_trip<PictureMode>("PictureMode");
+  expect_round_trip<TextureRole>("TextureRole");
+  expect_round_trip<TextureWrap>("TextureWrap");
 }
 
 TEST(PipelineApi, BadChoiceNamesLabelAndList) {

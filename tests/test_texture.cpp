@@ -23,6 +23,10 @@
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 #include <stb/stb_image_write.h>
 #pragma GCC diagnostic pop
+// jpeglib.h uses size_t and FILE without including their headers.
+#include <cstddef>
+#include <cstdio>
+#include <jpeglib.h>
 
 using namespace intrinsic;
 
@@ -131,6 +135,46 @@ TEST(TextureCodec, JpegWithinJpegTolerance) {
   }
 }
 
+namespace {
+
+// A one-component (grey) JPEG written with libjpeg's compressor (the
+// library's decoder only reads).
+std::string grey_jpeg(int w, int h, const std::vector<unsigned char>& px) {
+  jpeg_compress_struct c;
+  jpeg_error_mgr err;
+  c.err = jpeg_std_error(&err);
+  jpeg_create_compress(&c);
+  unsigned char* buf = nullptr;
+  unsigned long size = 0;
+  jpeg_mem_dest(&c, &buf, &size);
+  c.image_width = w, c.image_height = h, c.input_components = 1, c.in_color_space = JCS_GRAYSCALE;
+  jpeg_set_defaults(&c);
+  jpeg_set_quality(&c, 95, TRUE);
+  jpeg_start_compress(&c, TRUE);
+  while (c.next_scanline < c.image_height) {
+    JSAMPROW row = const_cast<unsigned char*>(px.data()) + static_cast<std::size_t>(c.next_scanline) * w;
+    jpeg_write_scanlines(&c, &row, 1);
+  }
+  jpeg_finish_compress(&c);
+  jpeg_destroy_compress(&c);
+  std::string out(reinterpret_cast<char*>(buf), size);
+  free(buf);
+  return out;
+}
+
+}  // namespace
+
+TEST(TextureCodec, GreyJpegStaysOneChannel) {
+  const int w = 40, h = 24;
+  std::vector<unsigned char> px(static_cast<std::size_t>(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) px[y * w + x] = static_cast<unsigned char>(127.5 + 100 * std::sin(0.1 * x + 0.05 * y));
+  const Texture t = decode_texture(grey_jpeg(w, h, px), "grey.jpg");
+  ASSERT_EQ(t.channels, 1);
+  ASSERT_EQ(t.texels.size(), px.size());
+  for (std::size_t i = 0; i < px.size(); ++i) EXPECT_NEAR(t.texels[i], px[i] / 255.0, 12 / 255.0);
+}
+
 TEST(TextureCodec, MalformedDataRefusedWithTheName) {
   expect_input_error("", "empty.png", "neither PNG nor JPEG");
   expect_input_error("GIF89a......", "a.gif", "neither PNG nor JPEG");
@@ -142,6 +186,16 @@ TEST(TextureCodec, MalformedDataRefusedWithTheName) {
   expect_input_error(bad_crc, "crc.png", "malformed PNG");
   // A header announcing 20000 x 20000 texels: refused before allocating.
   expect_input_error(hand_png(20000, 1, 1, 8, std::vector<unsigned>(20000, 0)), "huge.png", "malformed PNG");
+  // A 16000 x 16000 header in front of a few bytes: refused without
+  // allocating the 1 GB it announces.
+  std::string big = png;  // IHDR: width at byte 16, height at 20, CRC of bytes 12..28 at 29
+  std::string dims;
+  put32(dims, 16000), put32(dims, 16000);
+  big.replace(16, 8, dims);
+  std::string crc;
+  put32(crc, static_cast<unsigned>(crc32(0, reinterpret_cast<const Bytef*>(big.data() + 12), 17)));
+  big.replace(29, 4, crc);
+  expect_input_error(big, "short.png", "too small");
   std::string jpg;
   std::vector<unsigned char> px(32 * 32 * 3, 90);
   stbi_write_jpg_to_func([](void* ctx, void* d, int n) { static_cast<std::string*>(ctx)->append(

@@ -6,16 +6,17 @@ conformal map and packed into [0,1]^2 without flips or overlaps.
 Each object is one atlas of its own (its own [0,1]^2), read from its
 evaluated-free mesh data (no modifiers) in the object's world scale and
 rotation, so charts are cut and sized as the surface appears in the scene.
-The atlas triangles are Blender's loop triangles; a face split across two
-charts gets, at the corner the charts share, the UV of the last of its
-triangles (rare: the charts follow the surface's bends, not the diagonals
-of flat quads). All objects are solved before any UV is written.
+The atlas triangles are Blender's loop triangles, grouped by polygon
+(the library's face groups), so every polygon lies in one chart: a loop
+stores one UV per polygon corner, and a quad cut along its diagonal would
+have its shared corners in one chart and stretch across the atlas. All
+objects are solved before any UV is written.
 """
 import bpy
 import numpy as np
 from bpy.props import BoolProperty, FloatProperty, IntProperty, StringProperty
 
-from . import library
+from . import library, texture_bake
 
 
 # The last run's UVs per loop in double precision, per object name (Blender
@@ -24,7 +25,8 @@ LAST_UVS = {}
 
 
 def mesh_arrays(obj):
-    """V (world-scaled, n x 3), F (loop triangles' vertices), T (their loops)."""
+    """V (world-scaled, n x 3), F (loop triangles' vertices), T (their loops),
+    P (each loop triangle's polygon)."""
     me = obj.data
     me.calc_loop_triangles()
     V = np.empty(len(me.vertices) * 3, dtype=np.float64)
@@ -34,7 +36,9 @@ def mesh_arrays(obj):
     me.loop_triangles.foreach_get("vertices", F)
     T = np.empty(len(me.loop_triangles) * 3, dtype=np.int64)
     me.loop_triangles.foreach_get("loops", T)
-    return np.ascontiguousarray(V), F.reshape(-1, 3), T.reshape(-1, 3)
+    P = np.empty(len(me.loop_triangles), dtype=np.int32)
+    me.loop_triangles.foreach_get("polygon_index", P)
+    return np.ascontiguousarray(V), F.reshape(-1, 3), T.reshape(-1, 3), P
 
 
 def loop_uvs(result, F, T, num_loops):
@@ -76,6 +80,11 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
     uv_map: StringProperty(name="UV Map", description="UV map to write (empty: the active one)", default="")
     new_uv_map: BoolProperty(name="New UV Map", description="Write a new UV map (e.g. a lightmap), keeping "
                              "the others", default=False)
+    bake_textures: BoolProperty(name="Bake Textures", description="Move the images the materials read through "
+                                "the replaced UV map (or, for a new map, the render-active one) into the new "
+                                "layout, so the object looks the same", default=False)
+    texture_size: IntProperty(name="Texture Size", description="Width and height of the baked images",
+                              default=2048, min=16, max=16384)
 
     @classmethod
     def poll(cls, context):
@@ -101,16 +110,31 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
             if (self.new_uv_map or (self.uv_map and self.uv_map not in obj.data.uv_layers)) and \
                     len(obj.data.uv_layers) >= 8:
                 raise ValueError(f"{obj.name}: the mesh has 8 UV maps already, Blender's limit")
-            V, F, T = mesh_arrays(obj)
+            V, F, T, P = mesh_arrays(obj)
             try:
                 r = lib.atlas(V, F, max_stretch=self.max_stretch, hard_angle=self.hard_angle,
-                              padding=self.padding, resolution=self.resolution)
+                              padding=self.padding, resolution=self.resolution, face_groups=P)
             except lib.Error as e:
                 raise ValueError(f"{obj.name}: {e}") from None
             work.append((obj, loop_uvs(r, F, T, len(obj.data.loops)), len(r.report["charts"])
-                         if isinstance(r.report.get("charts"), list) else r.report.get("charts")))
+                         if isinstance(r.report.get("charts"), list) else r.report.get("charts"), T, P))
             wm.progress_update(k + 1)
         return work
+
+    def texture_source(self, me):
+        """The UV map the textures read before the atlas is written (the one
+        it replaces, or the render-active one when a new map is made) and
+        its UVs per loop; (None, None) when the mesh has none."""
+        creating = self.new_uv_map or (self.uv_map and self.uv_map not in me.uv_layers)
+        if creating:
+            name = texture_bake.render_active_map(me)
+        else:
+            name = self.uv_map or (me.uv_layers.active.name if me.uv_layers.active else None)
+        if name is None:
+            return None, None
+        uv = np.empty(len(me.loops) * 2, dtype=np.float64)
+        me.uv_layers[name].data.foreach_get("uv", uv)
+        return name, uv.reshape(-1, 2)
 
     def execute(self, context):
         return library.execute_reporting(self, "Intrinsic Atlas", context)
@@ -128,9 +152,19 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
         try:
             work = self.solve(lib, objs, wm)
             LAST_UVS.clear()
-            for obj, uv, _ in work:
+            baked = []
+            for obj, uv, _, T, P in work:
                 LAST_UVS[obj.name] = uv
-                target_layer(obj.data, self.uv_map, self.new_uv_map).data.foreach_set("uv", uv.ravel())
+                source, old_uv = self.texture_source(obj.data) if self.bake_textures else (None, None)
+                layer = target_layer(obj.data, self.uv_map, self.new_uv_map)
+                layer.data.foreach_set("uv", uv.ravel())
+                if source is not None:
+                    padding = max(2, int(round(self.padding * self.texture_size / self.resolution)))
+                    images, notes = texture_bake.bake_object(lib, obj, source, layer.name, old_uv, uv, T, P,
+                                                             self.texture_size, padding)
+                    baked += images
+                    for note in notes:
+                        self.report({"WARNING"}, f"Intrinsic Atlas: {obj.name}: {note}")
         except ValueError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
@@ -138,5 +172,6 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
             wm.progress_end()
             if edit:
                 bpy.ops.object.mode_set(mode="EDIT")
-        self.report({"INFO"}, "Intrinsic Atlas: " + ", ".join(f"{o.name} {c} charts" for o, _, c in work))
+        self.report({"INFO"}, "Intrinsic Atlas: " + ", ".join(f"{o.name} {c} charts" for o, _, c, _, _ in work) +
+                    (f"; baked {len(baked)} images" if self.bake_textures else ""))
         return {"FINISHED"}

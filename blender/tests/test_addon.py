@@ -474,6 +474,113 @@ def test_atlas(lib):
     bpy.data.objects.remove(torus)
 
 
+def polygon_area_spread(me, uv):
+    """Largest factor by which a polygon's UV area over its 3D area departs
+    from the median of that ratio (inf for a flipped or collapsed polygon)."""
+    ratios = []
+    for poly in me.polygons:
+        p = uv[list(poly.loop_indices)]
+        q = np.roll(p, -1, axis=0)
+        ratios.append(0.5 * np.sum(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]) / poly.area)
+    ratios = np.array(ratios)
+    if ratios.min() <= 0:
+        return float("inf")
+    med = np.median(ratios)
+    return max(ratios.max() / med, med / ratios.min())
+
+
+def test_atlas_quads(lib):
+    """A quad mesh: every polygon must lie in one chart (loops hold one UV per
+    polygon corner), so no quad is stretched across the atlas. Checked on the
+    stored UVs against each polygon's own 3D area (UV area over 3D area near
+    the atlas's one texel density, the median; the per-face stretch bound of 2
+    allows 4x), and the same check on the atlas without polygon groups, written
+    to the loops the same way, must fail (the check can tell)."""
+    if bpy.context.mode != "OBJECT":
+        bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.ops.mesh.primitive_monkey_add()
+    obj = bpy.context.active_object
+    mod = obj.modifiers.new("subdivide", "SUBSURF")
+    mod.levels = 2
+    bpy.ops.object.modifier_apply(modifier=mod.name)
+    check(bpy.ops.uv.intrinsic_atlas(max_stretch=1.05) == {"FINISHED"}, "atlas of quads: finished")
+    me = obj.data
+    stored = np.array([d.uv[:] for d in me.uv_layers.active.data], dtype=np.float64)
+    spread = polygon_area_spread(me, stored)
+    print(f"atlas of quads: {len(me.polygons)} polygons, UV/3D area within {spread:.2f}x of the median", flush=True)
+    check(spread <= 4.5, f"atlas of quads: no polygon stretched across charts ({spread:.2f}x the median)")
+    from intrinsic_uv import op_atlas
+    V, F, T, P = op_atlas.mesh_arrays(obj)
+    ref = lib.atlas(V, F, max_stretch=1.05, face_groups=P)
+    check(ref.report["split_groups"] == 0, f"atlas of quads: no polygon split ({ref.report['split_groups']})")
+    plain = lib.atlas(V, F, max_stretch=1.05)
+    fc = np.asarray(plain.face_chart)
+    split = sum(1 for k in range(len(me.polygons)) if len(set(fc[P == k])) > 1)
+    plain_spread = polygon_area_spread(me, op_atlas.loop_uvs(plain, F, T, len(me.loops)))
+    print(f"atlas of quads: without polygon groups {split} polygons split, spread {plain_spread:.3g}x", flush=True)
+    check(split > 0 and plain_spread > 4.5, "atlas of quads: the check tells a split polygon")
+    bpy.data.objects.remove(obj)
+
+
+def bilinear(img, uv):
+    """Blender's convention: img (h, w, c) bottom row first, uv v up, texel
+    centres at (i + 0.5) / size, repeat wrap; written here apart from the
+    library's sampler."""
+    h, w = img.shape[:2]
+    x = uv[:, 0] * w - 0.5
+    y = uv[:, 1] * h - 0.5
+    x0, y0 = np.floor(x).astype(int), np.floor(y).astype(int)
+    fx, fy = (x - x0)[:, None], (y - y0)[:, None]
+    def at(i, j):
+        return img[j % h, i % w]
+    return ((1 - fx) * (1 - fy) * at(x0, y0) + fx * (1 - fy) * at(x0 + 1, y0) +
+            (1 - fx) * fy * at(x0, y0 + 1) + fx * fy * at(x0 + 1, y0 + 1))
+
+
+def test_atlas_bake(lib):
+    """Bake Textures: a sphere with Blender's own UVs and an image that is a
+    smooth function of them; after the atlas into a new map, the baked image
+    read through the new UVs gives what the old image gave through the old
+    ones, at every triangle's centroid (Blender's own sampling written here)."""
+    if bpy.context.mode != "OBJECT":
+        bpy.ops.object.mode_set(mode="OBJECT")
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24)
+    obj = bpy.context.active_object
+    size = 256
+    u, v = np.meshgrid((np.arange(size) + 0.5) / size, (np.arange(size) + 0.5) / size)  # rows: v up
+    rgba = np.stack([0.5 + 0.4 * np.sin(2 * np.pi * u), 0.5 + 0.4 * np.cos(2 * np.pi * v),
+                     0.5 + 0.3 * np.sin(2 * np.pi * (u + v)), np.ones_like(u)], axis=-1).astype(np.float32)
+    image = bpy.data.images.new("smooth", size, size, alpha=True)
+    image.pixels.foreach_set(rgba.ravel())
+    mat = bpy.data.materials.new("smooth")
+    mat.use_nodes = True
+    tex = mat.node_tree.nodes.new("ShaderNodeTexImage")
+    tex.image = image
+    mat.node_tree.links.new(tex.outputs["Color"], mat.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
+    obj.data.materials.append(mat)
+    me = obj.data
+    old_uv = np.array([d.uv[:] for d in me.uv_layers["UVMap"].data], dtype=np.float64)
+    check(bpy.ops.uv.intrinsic_atlas(new_uv_map=True, uv_map="Atlas", bake_textures=True, texture_size=512)
+          == {"FINISHED"}, "bake: finished")
+    node = next(n for n in obj.material_slots[0].material.node_tree.nodes if n.type == "TEX_IMAGE")
+    check(node.image.name != "smooth" and tuple(node.image.size) == (512, 512), f"bake: a new image {node.image.name}")
+    link = node.inputs["Vector"].links[0].from_node if node.inputs["Vector"].is_linked else None
+    check(link is not None and link.type == "UVMAP" and link.uv_map == "Atlas", "bake: the node reads the new map")
+    new_uv = np.array([d.uv[:] for d in me.uv_layers["Atlas"].data], dtype=np.float64)
+    baked = np.empty(512 * 512 * 4, dtype=np.float32)
+    node.image.pixels.foreach_get(baked)
+    baked = baked.reshape(512, 512, 4)
+    me.calc_loop_triangles()
+    L = np.array([list(t.loops) for t in me.loop_triangles])
+    before = bilinear(rgba, old_uv[L].mean(axis=1))[:, :3]
+    after = bilinear(baked, new_uv[L].mean(axis=1))[:, :3]
+    err = np.abs(after - before)
+    print(f"bake: {len(L)} triangles, centroid colour difference mean {err.mean():.4f}, max {err.max():.4f}",
+          flush=True)
+    check(err.mean() < 0.01 and err.max() < 0.05, "bake: the baked image shows what the old one showed")
+    bpy.data.objects.remove(obj)
+
+
 def main():
     lib = install()
     obj, verts, faces, cells = build_grid()
@@ -489,6 +596,8 @@ def main():
     test_errors(obj, faces)
     test_quads_and_winding()
     test_atlas(lib)
+    test_atlas_quads(lib)
+    test_atlas_bake(lib)
     if FAILURES:
         raise AssertionError(f"{len(FAILURES)} check(s) failed:\n" + "\n".join(FAILURES))
     print("blender add-on test: all checks passed", flush=True)

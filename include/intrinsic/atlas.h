@@ -124,6 +124,16 @@ struct ChartOptions {
   // neighbouring charts are merged, smallest first, past max_stretch while
   // the union stays valid. A bound that validity cannot meet is exceeded.
   int max_charts = 0;
+  // Faces that must share a chart: per face a group id (>= 0; -1: none),
+  // e.g. the polygon each triangle came from. A host that stores one UV per
+  // polygon corner (Blender's loops) cannot write a quad whose two triangles
+  // lie in different charts: the shared corners would take one chart's UVs
+  // and the other triangle would stretch across the atlas. After the charts
+  // are valid, a group split between charts goes whole to the chart holding
+  // most of its area and the charts that changed are flattened again (a few
+  // rounds, as a re-flattened chart may be split anew); groups still split
+  // are counted in AtlasCharts::split_groups. Empty: no groups.
+  std::vector<int> face_group;
 };
 
 // The pack stage (pack_charts): all that only packing uses. The same fields
@@ -154,6 +164,7 @@ struct AtlasOptions {
   bool reorient = true;
   std::vector<SeamEdge> seams;
   int max_charts = 0;
+  std::vector<int> face_group;
 };
 ChartOptions chart_options(const AtlasOptions& options);
 PackOptions pack_options(const AtlasOptions& options);
@@ -221,6 +232,7 @@ struct AtlasResult {
   int components = 0;
   int splits = 0;          // charts split: not disks, flipped, boundary crossing, or too sparse for packing
   AtlasSplits split_reasons;
+  int split_groups = 0;    // as AtlasCharts::split_groups
   double utilization = 0;  // UV area of the charts / area of [0,1]^2
   // Area-weighted mean of the per-chart L2 stretch (each chart's own
   // area-weighted mean of the per-triangle L2 of docs/maths.md §9.3, every
@@ -270,6 +282,7 @@ struct AtlasCharts {
   int components = 0;
   int splits = 0;  // as AtlasResult::splits; charts_from_ids also counts a given chart in k pieces as k - 1 not_disk splits
   AtlasSplits split_reasons;
+  int split_groups = 0;  // face groups (ChartOptions::face_group) still in more than one chart
   double stretch_l2_mean = 1;  // as AtlasResult::stretch_l2_mean
   AtlasCleaning cleaning;
   AtlasTimings timings;  // clean, segment, flatten, merge and their total; pack_charts adds pack_ms to it

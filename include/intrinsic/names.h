@@ -17,6 +17,7 @@
 #include "intrinsic/linear_solver.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
+#include "intrinsic/texture.h"
 #include "intrinsic/weights.h"
 
 namespace intrinsic {
@@ -81,6 +82,10 @@ template <>
 ChoiceTable<BasisMode> choice_table<BasisMode>();
 template <>
 ChoiceTable<PictureMode> choice_table<PictureMode>();
+template <>
+ChoiceTable<TextureRole> choice_table<TextureRole>();
+template <>
+ChoiceTable<TextureWrap> choice_table<TextureWrap>();
 
 // The names a user may give, in table order.
 template <class E>

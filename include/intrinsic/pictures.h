@@ -28,8 +28,10 @@ void parse_size(const std::string& text, const std::string& option, int& width, 
 void parse_view(const std::string& text, RenderOptions& o);
 // Throws Error(Usage) unless the path ends in .png (any case).
 void check_png_path(const std::string& path, const std::string& option);
-// Reads and decodes a PNG texture; Error(Input) naming the file on failure.
-Image read_texture(const std::string& path);
+// A texture for the checker picture (RenderOptions::texture): PNG or JPEG
+// read by read_texture_file (texture.h), as RGB8 with alpha composited on white.
+// Error(Input) naming the file on failure.
+Image read_picture_texture(const std::string& path);
 
 struct PictureSettings {
   RenderOptions render;

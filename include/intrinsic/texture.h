@@ -26,9 +26,9 @@ struct Texture {
 // PNG or JPEG (told apart by their magic bytes). Malformed or truncated data,
 // or more than 16384 texels per side: Error(Input) naming `name`.
 Texture decode_texture(const std::string& bytes, const std::string& name);
-// Reads and decodes a file (not `read_texture`: pictures.h has that name for
-// the render command's RGB8 checker texture): Error(Input) with the errno when it cannot be
+// Reads and decodes a file: Error(Input) with the errno when it cannot be
 // read (a missing file has os_error ENOENT), Error(Input) when malformed.
+// (pictures.h's read_picture_texture turns it into the renderer's RGB8.)
 Texture read_texture_file(const std::string& path);
 // PNG bytes with the texture's channels and bit depth (values rounded to the
 // nearest code, clamped to [0,1]). Error(Usage) for an inconsistent Texture.
@@ -108,6 +108,11 @@ std::array<float, 4> sample_texture(const Texture& t, const TextureSampler& s, d
 // accumulated angle-weighted, Gram-Schmidt against the normal, handedness
 // from the bitangent; faces with opposite handedness or degenerate uv are
 // not averaged together. Returns 3m x 4 (xyz unit, w = +-1).
+// The tangent points along increasing u and w * cross(n, t) along increasing
+// v of the uv given. glTF's TANGENT (and normal maps' green channel) points
+// up the image, so for TransferMesh tangents pass v-up uv: (u, 1 - v) of the
+// glTF image-convention uv, as MikkTSpace exporters do.
+// Error(Usage) for mismatched sizes, Error(Input) for non-finite values.
 Eigen::MatrixX4d compute_tangents(const Eigen::MatrixX3d& position, const Eigen::MatrixX3d& normal,
                                   const Eigen::MatrixX2d& uv);
 

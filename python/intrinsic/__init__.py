@@ -67,9 +67,11 @@ from ._intrinsic import (  # noqa: F401  (re-exported)
     SolverKind,
     Spacing,
     UsageError,
+    compute_tangents,
     metrics,
     read_mesh,
     render,
+    transfer_texture,
     write_atlas,
     write_mesh,
 )
@@ -89,6 +91,7 @@ _ENUMS = (
 __all__ = [
     *_ERRORS, *_ENUMS, "Atlas", "BoundaryEditor", "Parameterizer", "Result", "metrics", "optimal_lambda",
     "optimize_boundary", "parameterize", "read_mesh", "render", "write_atlas", "write_mesh", "atlas",
+    "transfer_texture", "compute_tangents",
 ]
 
 Path = Union[str, PathLike]
@@ -211,6 +214,7 @@ def atlas(
     reorient: Optional[bool] = None,
     atlas_stretch_budget: Optional[bool] = None,
     seams: Any = None,
+    face_groups: Any = None,
     boundary: Union[None, str, BoundaryShape] = None,
     method: Union[None, str, Method] = None,
     lambda_: Optional[float] = None,
@@ -241,7 +245,9 @@ def atlas(
     for the computation only; `seams`, a seams file's path or k x 2 vertex indices, cuts exactly
     those edges; `reorient=False` keeps the winding of faces listed against their piece (cut there)
     instead of writing them reversed; `atlas_stretch_budget=False` keeps every chart within
-    `max_stretch` (`--per-chart-stretch`).
+    `max_stretch` (`--per-chart-stretch`). `face_groups` (#F ints, -1: none) keeps faces of one
+    group in one chart, e.g. the triangles of each polygon of a host that stores one UV per polygon
+    corner; the report's "split_groups" counts groups that could not be kept whole.
     Each chart's map: the natural conformal map by default; `boundary="circle"` or `"square"` fixes
     the chart's boundary, with `method`/`lambda_`/`mu` weights and optionally `optimize_lambda`
     ("edge" | "area") or `optimize_boundary` ("edge" | "area" | "dirichlet"), as `parameterize`.
@@ -255,6 +261,7 @@ def atlas(
                  min_chart_faces=min_chart_faces, max_stretch=max_stretch, max_face_stretch=max_face_stretch,
                  hard_angle=hard_angle, isometric_iterations=isometric_iterations, max_charts=max_charts,
                  weld=weld, reorient=reorient, atlas_stretch_budget=atlas_stretch_budget, seams=seams,
+                 face_groups=face_groups,
                  boundary=boundary, method=method, optimize_lambda=optimize_lambda,
                  optimize_boundary=optimize_boundary, max_vertices=max_vertices, mu=mu, uv_set=uv_set,
                  replace_used_set=replace_used_set, transfer_textures=transfer_textures,

@@ -68,6 +68,7 @@ WeightOptions pop_weights(py::dict& options);
 void check_no_options_left(const py::dict& options);
 
 void register_errors(py::module_& m);
+void register_texture(py::module_& m);
 void register_io(py::module_& m);
 void register_param(py::module_& m);
 void register_render(py::module_& m);

@@ -19,5 +19,6 @@ PYBIND11_MODULE(_intrinsic, m) {
   intrinsic::python::register_param(m);
   intrinsic::python::register_render(m);
   intrinsic::python::register_atlas(m);
+  intrinsic::python::register_texture(m);
   m.attr("__version__") = "0.1.0";
 }

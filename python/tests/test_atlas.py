@@ -138,3 +138,27 @@ def test_atlas_seams_errors(tmp_path):
         intrinsic.atlas(V, F, seams=np.zeros((2, 3), dtype=np.int32))
     with pytest.raises(intrinsic.UsageError, match="stretch"):
         intrinsic.atlas(V, F, max_stretch=0.5)
+
+
+def test_face_groups_keep_pairs_in_one_chart():
+    """face_groups: each pair of triangles across an edge (a quad) ends in one
+    chart; a wrong length is a UsageError naming the count."""
+    path = str(mesh("torus"))
+    plain = intrinsic.atlas(path, max_stretch=1.02, min_chart_faces=0)
+    F = plain.F
+    edge_face = {}
+    groups = -np.ones(len(F), dtype=np.int32)
+    for f, tri in enumerate(F):
+        for k in range(3):
+            e = tuple(sorted((int(tri[k]), int(tri[(k + 1) % 3]))))
+            g = edge_face.get(e)
+            if g is not None and groups[g] < 0 and groups[f] < 0:
+                groups[g] = groups[f] = f
+            edge_face[e] = f
+    a = intrinsic.atlas(plain.V, F, max_stretch=1.02, min_chart_faces=0, face_groups=groups)
+    assert a.report["split_groups"] == 0
+    for g in set(groups[groups >= 0]):
+        assert len(set(a.face_chart[groups == g])) == 1
+    assert a.report["flipped"] == 0 and a.report["overlapping"] == 0
+    with pytest.raises(intrinsic.UsageError, match="face groups number"):
+        intrinsic.atlas(plain.V, F, face_groups=groups[:-1])

@@ -9,6 +9,8 @@
 // Fixed thresholds: thresholds.h.
 #pragma once
 
+#include <functional>
+
 #include <algorithm>
 #include <array>
 #include <vector>
@@ -170,6 +172,15 @@ double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& optio
 // below -1 or -1 on a face that is not degenerate (the length is checked by
 // the caller, before cleaning).
 std::vector<std::vector<int>> given_pieces(const CleanMesh& clean, const std::vector<int>& face_chart, int& splits);
+
+// Face groups kept in one chart (ChartOptions::face_group; face_groups.cpp).
+// `flatten` flattens lists of faces into valid charts (splitting where it
+// must), as the charts stage does.
+using FlattenCharts = std::function<std::vector<FlatChart>(std::vector<std::vector<int>>)>;
+void check_face_groups(const std::vector<int>& group, int faces);
+// Returns the number of groups still split after the last round.
+int keep_groups_whole(const std::vector<int>& group, const CleanMesh& clean, std::vector<FlatChart>& charts,
+                      const FlattenCharts& flatten);
 
 void place_degenerate_faces(const MatrixX3d& V, const MatrixX3i& F, const std::vector<int>& face_chart, MatrixX2d& UV,
                             MatrixX3i& FUV, int zero_row);

@@ -22,6 +22,7 @@ ChartOptions chart_options(const AtlasOptions& o) {
   c.reorient = o.reorient;
   c.seams = o.seams;
   c.max_charts = o.max_charts;
+  c.face_group = o.face_group;
   return c;
 }
 

@@ -150,10 +150,23 @@ void store(const MeshData& given, const std::vector<char>& reversed, const std::
     }
 }
 
+// ChartOptions::face_group: split groups gathered into one chart, the
+// changed charts flattened again as the user's (split only where invalid).
+void keep_groups(const MeshData& input, const detail::CleanMesh& clean, const ChartOptions& options,
+                 std::vector<detail::FlatChart>& charts, AtlasCharts& r) {
+  if (options.face_group.empty()) return;
+  const auto t = std::chrono::steady_clock::now();
+  r.split_groups = detail::keep_groups_whole(options.face_group, clean, charts, [&](std::vector<std::vector<int>> work) {
+    return flatten_all(input, clean, std::move(work), options, true, r);
+  });
+  r.timings.flatten_ms += ms_since(t);
+}
+
 }  // namespace
 
 AtlasCharts compute_charts(const MeshData& given, const ChartOptions& options) {
   detail::check_chart_options(options);
+  detail::check_face_groups(options.face_group, static_cast<int>(given.F.rows()));
   const auto t0 = std::chrono::steady_clock::now();
   AtlasCharts r;
   MeshData welded_mesh;
@@ -170,6 +183,7 @@ AtlasCharts compute_charts(const MeshData& given, const ChartOptions& options) {
   if ((!own && options.min_chart_faces > 0) || options.max_charts > 0)
     detail::merge_charts(input, clean, options, charts);
   r.timings.merge_ms = ms_since(t);
+  keep_groups(input, clean, options, charts, r);
   store(given, clean.reversed, charts, r);
   r.timings.total_ms = ms_since(t0);
   return r;
@@ -177,6 +191,7 @@ AtlasCharts compute_charts(const MeshData& given, const ChartOptions& options) {
 
 AtlasCharts charts_from_ids(const MeshData& given, const std::vector<int>& face_chart, const ChartOptions& options) {
   detail::check_chart_options(options);
+  detail::check_face_groups(options.face_group, static_cast<int>(given.F.rows()));
   if (face_chart.size() != static_cast<size_t>(given.F.rows()))
     throw_usage("the chart ids number " + std::to_string(face_chart.size()) + " for " +
                 std::to_string(given.F.rows()) + " faces (one per face)");
@@ -194,6 +209,7 @@ AtlasCharts charts_from_ids(const MeshData& given, const std::vector<int>& face_
   t = std::chrono::steady_clock::now();
   std::vector<detail::FlatChart> charts = flatten_all(input, clean, std::move(pieces), options, true, r);
   r.timings.flatten_ms = ms_since(t);
+  keep_groups(input, clean, options, charts, r);
   store(given, clean.reversed, charts, r);
   r.timings.total_ms = ms_since(t0);
   return r;

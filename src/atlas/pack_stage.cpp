@@ -120,6 +120,7 @@ AtlasResult pack_charts(const AtlasCharts& c, const PackOptions& options) {
   r.components = c.components;
   r.splits = c.splits;
   r.split_reasons = c.split_reasons;
+  r.split_groups = c.split_groups;
   r.stretch_l2_mean = c.stretch_l2_mean;
   r.stretch = summarize_stretch(c.V, r.F, r.UV, r.FUV);
   r.cleaning = c.cleaning;

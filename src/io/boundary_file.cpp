@@ -1,7 +1,6 @@
 // The boundary file format: "vertex_index u v" per line, '#' comments.
 #include <charconv>
 #include <cmath>
-#include <sstream>
 #include <unordered_set>
 
 #include "intrinsic/io.h"
@@ -14,18 +13,10 @@ namespace intrinsic {
 std::vector<FixedVertex> parse_boundary_text(const std::string& text, const std::string& name, int num_vertices) {
   std::vector<FixedVertex> out;
   std::unordered_set<int> seen;
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const std::string at = name + ":" + std::to_string(line_no) + ": ";
-    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    std::istringstream fields(line);
-    std::string a, b, c, extra;
-    if (!(fields >> a)) continue;  // blank or comment
-    if (!(fields >> b >> c)) throw_input(at + "expected 'vertex_index u v'");
-    if (fields >> extra) throw_input(at + "unexpected '" + extra + "' after 'vertex_index u v'");
+  detail::for_each_record(text, name, [&](const std::vector<std::string>& fields, const std::string& at, int) {
+    if (fields.size() < 3) throw_input(at + "expected 'vertex_index u v'");
+    if (fields.size() > 3) throw_input(at + "unexpected '" + fields[3] + "' after 'vertex_index u v'");
+    const std::string &a = fields[0], &b = fields[1], &c = fields[2];
     long long v = 0;
     auto [pv, ev] = std::from_chars(a.data(), a.data() + a.size(), v);
     if (ev != std::errc() || pv != a.data() + a.size()) throw_input(at + "'" + a + "' is not a vertex index");
@@ -39,7 +30,7 @@ std::vector<FixedVertex> parse_boundary_text(const std::string& text, const std:
       throw_input(at + "vertex " + a + " is out of range (the mesh has " + std::to_string(num_vertices) + " vertices)");
     if (!seen.insert(static_cast<int>(v)).second) throw_input(at + "vertex " + a + " is listed twice");
     out.push_back({static_cast<int>(v), Eigen::Vector2d(u, w)});
-  }
+  });
   if (out.empty()) throw_input(name + ": no boundary positions");
   return out;
 }

@@ -33,23 +33,15 @@ std::vector<SeamEdge> parse_seams_text(const std::string& text, const std::strin
   std::vector<SeamEdge> out;
   std::vector<int> line_of;  // per seam in `out`
   std::set<std::pair<int, int>> seen;
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const std::string at = name + ":" + std::to_string(line_no) + ": ";
-    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    std::istringstream fields(line);
-    std::string a, b, extra;
-    if (!(fields >> a)) continue;  // blank or comment
-    if (!(fields >> b)) throw_input(at + "expected 'i j' (two vertex indices of an edge)");
-    if (fields >> extra) throw_input(at + "unexpected '" + extra + "' after 'i j'");
+  detail::for_each_record(text, name, [&](const std::vector<std::string>& fields, const std::string& at, int line_no) {
+    if (fields.size() < 2) throw_input(at + "expected 'i j' (two vertex indices of an edge)");
+    if (fields.size() > 2) throw_input(at + "unexpected '" + fields[2] + "' after 'i j'");
+    const std::string &a = fields[0], &b = fields[1];
     const int i = parse_index(a, mesh.V.rows(), at), j = parse_index(b, mesh.V.rows(), at);
-    if (!seen.insert({std::min(i, j), std::max(i, j)}).second) continue;  // a repeated line changes nothing
+    if (!seen.insert({std::min(i, j), std::max(i, j)}).second) return;  // a repeated line changes nothing
     out.push_back({i, j});
     line_of.push_back(line_no);
-  }
+  });
   if (out.empty()) throw_input(name + ": no seam edges");
   const SeamProblem p = find_seam_problem(mesh, out);
   if (p.index >= 0) throw_input(name + ":" + std::to_string(line_of[p.index]) + ": " + p.message);

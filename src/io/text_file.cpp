@@ -23,4 +23,19 @@ std::string read_text_file(const std::string& path, const std::string& what) {
   return text.str();
 }
 
+void for_each_record(const std::string& text, const std::string& name, const RecordFn& record) {
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  std::vector<std::string> fields;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::istringstream words(line);
+    fields.clear();
+    for (std::string w; words >> w;) fields.push_back(w);
+    if (!fields.empty()) record(fields, name + ":" + std::to_string(line_no) + ": ", line_no);
+  }
+}
+
 }  // namespace intrinsic::detail

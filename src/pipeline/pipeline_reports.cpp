@@ -89,6 +89,7 @@ nlohmann::json atlas_report_json(const AtlasOutcome& o, const std::string& outpu
   j["split_reasons"] = {{"not_disk", sr.not_disk},         {"refused", sr.refused}, {"solve_failed", sr.solve_failed},
                         {"flipped", sr.flipped},           {"boundary_crossing", sr.boundary_crossing},
                         {"sparse", sr.sparse},             {"stretch", sr.stretch}};
+  if (!opt.face_group.empty()) j["split_groups"] = r.split_groups;
   j["utilization"] = r.utilization;
   j["stretch_l2_mean"] = r.stretch_l2_mean;  // area-weighted mean of per-chart mean L2, not Sander's RMS
   j["stretch"] = stretch_json(r.stretch);

@@ -1,5 +1,6 @@
 // Picture modes and their option parsing.
 #include "intrinsic/pictures.h"
+#include "intrinsic/texture.h"
 
 #include <algorithm>
 #include <cctype>
@@ -68,16 +69,22 @@ void check_png_path(const std::string& path, const std::string& option) {
     throw_usage(option + " '" + path + "': pictures are written as PNG; use a name ending in .png");
 }
 
-Image read_texture(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw_input("cannot open texture " + path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  try {
-    return decode_png(s.str());
-  } catch (const Error& e) {
-    throw_input("texture " + path + ": " + e.what());
-  }
+Image read_picture_texture(const std::string& path) {
+  const Texture t = read_texture_file(path);
+  Image img(t.width, t.height);
+  const int c = t.channels;
+  const bool alpha = c == 2 || c == 4;
+  for (int y = 0; y < t.height; ++y)
+    for (int x = 0; x < t.width; ++x) {
+      const float* p = &t.texels[(static_cast<std::size_t>(y) * t.width + x) * c];
+      const float a = alpha ? p[c - 1] : 1.0f;
+      for (int k = 0; k < 3; ++k) {
+        const float v = c >= 3 ? p[k] : p[0];
+        const float on_white = a * v + (1 - a);
+        img.pixel(x, y)[k] = static_cast<std::uint8_t>(std::lround(std::clamp(on_white, 0.0f, 1.0f) * 255));
+      }
+    }
+  return img;
 }
 
 const Eigen::VectorXd& mode_values(PictureMode m, const FaceDistortion& fd) {

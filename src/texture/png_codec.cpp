@@ -77,6 +77,10 @@ bool read_png(PngIo& io, PngPixels* out) {
       png_get_rowbytes(png, info) != static_cast<png_size_t>(out->width) * out->channels * (out->bits / 8))
     png_error(png, "unsupported PNG pixel layout");
   const std::size_t row = png_get_rowbytes(png, info);
+  // Deflate expands at most 1032:1, so a file too small to hold its rows is
+  // truncated: refused before allocating what its header announces.
+  if (static_cast<double>(row + 1) * out->height > 1032.0 * static_cast<double>(io.size) + 4096)
+    png_error(png, "the file is too small for the image its header announces (truncated)");
   out->bytes.resize(row * out->height);
   out->rows.resize(out->height);
   for (png_uint_32 y = 0; y < out->height; ++y) out->rows[y] = out->bytes.data() + row * y;

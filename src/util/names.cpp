@@ -150,6 +150,20 @@ ChoiceTable<PictureMode> choice_table<PictureMode>() {
   return table(rows);
 }
 
+template <>
+ChoiceTable<TextureRole> choice_table<TextureRole>() {
+  static const Choice<TextureRole> rows[] = {
+      {TextureRole::Color, "color"}, {TextureRole::Data, "data"}, {TextureRole::TangentNormal, "normal"}};
+  return table(rows);
+}
+
+template <>
+ChoiceTable<TextureWrap> choice_table<TextureWrap>() {
+  static const Choice<TextureWrap> rows[] = {
+      {TextureWrap::Repeat, "repeat"}, {TextureWrap::ClampToEdge, "clamp"}, {TextureWrap::MirroredRepeat, "mirror"}};
+  return table(rows);
+}
+
 }  // namespace intrinsic
 
 namespace intrinsic {
