@@ -283,7 +283,7 @@ TEST(AssetTextureTransfer, NormalMapStaysFlatAndTangentsFollowTheNewU) {
     EXPECT_NEAR(std::abs(T[4 * v + 3]), 1, 0);
     EXPECT_LT(std::abs(t.dot(n)), 1e-3);
   }
-  long along = 0;
+  long along = 0, up = 0;
   for (int f = 0; f < after.F.rows(); ++f) {
     Eigen::Matrix<double, 3, 2> E;
     Eigen::Matrix2d U;
@@ -291,12 +291,19 @@ TEST(AssetTextureTransfer, NormalMapStaysFlatAndTangentsFollowTheNewU) {
       E.col(k) = (after.V.row(after.F(f, k + 1)) - after.V.row(after.F(f, 0))).transpose();
       U.col(k) = (after.UV.row(after.F(f, k + 1)) - after.UV.row(after.F(f, 0))).transpose();
     }
-    const Eigen::Vector3d dpdu = (E * U.inverse()).col(0).normalized();  // u is the same in both v conventions
-    Eigen::Vector3d t = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) t += Eigen::Vector3d(T[4 * after.F(f, k)], T[4 * after.F(f, k) + 1], T[4 * after.F(f, k) + 2]);
+    // after.UV has v up: glTF's bitangent points up the image.
+    const Eigen::Vector3d dpdu = (E * U.inverse()).col(0).normalized(), dpdv = (E * U.inverse()).col(1).normalized();
+    Eigen::Vector3d t = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const int v = after.F(f, k);
+      const Eigen::Vector3d tv(T[4 * v], T[4 * v + 1], T[4 * v + 2]), nv(N[3 * v], N[3 * v + 1], N[3 * v + 2]);
+      t += tv, b += T[4 * v + 3] * nv.cross(tv);
+    }
     along += t.normalized().dot(dpdu) > 0.7;
+    up += b.normalized().dot(dpdv) > 0.7;
   }
   EXPECT_GT(along, 0.95 * after.F.rows());
+  EXPECT_GT(up, 0.95 * after.F.rows());
   test::expect_valid_gltf(dir / "out.glb");
 }
 

@@ -250,6 +250,13 @@ double uv_area(const Eigen::MatrixX2d& uv) {
   return a;
 }
 
+// glTF's TANGENT has its bitangent up the image (MikkTSpace on v up), so
+// tangents are computed on (u, 1 - v) of the image-convention UVs.
+Eigen::MatrixX2d v_up(Eigen::MatrixX2d uv) {
+  uv.col(1) = (1 - uv.col(1).array()).matrix();
+  return uv;
+}
+
 // Everything the bakes of one document share.
 struct Context {
   const GltfDocument& doc;
@@ -275,7 +282,7 @@ struct Context {
     auto it = new_tangents.find(p);
     if (it == new_tangents.end()) {
       const Corners& c = corners_of(p);
-      it = new_tangents.emplace(p, sane_tangents(compute_tangents(c.position, c.normal, c.new_uv), c.normal)).first;
+      it = new_tangents.emplace(p, sane_tangents(compute_tangents(c.position, c.normal, v_up(c.new_uv)), c.normal)).first;
     }
     return it->second;
   }
@@ -302,7 +309,8 @@ TransferMesh transfer_mesh(Context& cx, const Group& g) {
     append(tm.normal, c.normal);
     const Eigen::MatrixX4d old_tangent =
         c.old_tangent.rows() ? c.old_tangent
-                             : sane_tangents(compute_tangents(c.position, c.normal, transformed(c.old_uv, g.sampling.transform)),
+                             : sane_tangents(compute_tangents(c.position, c.normal,
+                                                              v_up(transformed(c.old_uv, g.sampling.transform))),
                                              c.normal);
     append(tm.old_tangent, old_tangent);
     append(tm.new_tangent, cx.new_tangent_of(p));
