@@ -12,6 +12,7 @@
 #include "intrinsic/io.h"
 #include "intrinsic/pictures.h"
 #include "intrinsic/pipeline.h"
+#include "intrinsic/texture_transfer.h"
 #include "weight_args.h"
 
 namespace intrinsic::app {
@@ -24,6 +25,7 @@ struct AtlasArgs {
   AtlasOptions options;
   GltfWriteOptions gltf;
   std::string scope = choice_name(AtlasScope::Whole);
+  TextureTransferOptions textures;
   bool quiet = false;
   std::int64_t max_vertices = ReadOptions().max_vertices;
 };
@@ -47,6 +49,22 @@ void set_chart_map(const AtlasArgs& a, ChartMapOptions& m) {
   }
 }
 
+// The library names its options as keywords; here they are flags.
+TextureTransferReport write_with_textures(const AtlasArgs& a, const AtlasOutcome& o) {
+  try {
+    return write_atlas_with_textures(a.output, o.data, o.result, a.gltf, a.textures);
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::Usage) throw;
+    std::string m = e.what();
+    for (const auto& [key, flag] : {std::pair<std::string, std::string>{"transfer_textures", "--transfer-textures"},
+                                    {"replace_used_set", "--replace-uv-set"}, {"texture_size", "--texture-size"},
+                                    {"texture_padding", "--texture-padding"}})
+      for (std::size_t at = m.find(key); at != std::string::npos; at = m.find(key, at + flag.size()))
+        m.replace(at, key.size(), flag);
+    throw_usage(m);
+  }
+}
+
 int run_atlas(const AtlasArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   AtlasRequest request;
@@ -57,13 +75,19 @@ int run_atlas(const AtlasArgs& a) {
   request.read.max_vertices = a.max_vertices;
   request.read.max_faces = faces_for_vertices(a.max_vertices);
   request.seams_file = a.seams;
+  request.textures = a.textures;
+  if (a.textures.enabled && a.gltf.texcoord_set < 0 && mesh_extension(a.output) != ".obj")
+    throw_usage("--transfer-textures replaces the set the textures read: add --uv-set N (usually 0)");
   const AtlasOutcome o = atlas_file(a.input, request);
   const auto t1 = std::chrono::steady_clock::now();
-  write_atlas_file(a.output, o.data, o.result, a.gltf);
+  const TextureTransferReport baked = write_with_textures(a, o);
   nlohmann::json j = atlas_report_json(o, a.output);
+  if (a.textures.enabled) j["textures"] = texture_transfer_json(baked);
   j["timings_ms"]["write"] = elapsed_ms(t1);
   j["timings_ms"]["total"] = elapsed_ms(t0);
-  if (!a.report.empty()) write_all({{a.report, j.dump(2) + "\n"}}, {a.output});
+  std::vector<std::string> written = baked.files;
+  written.push_back(a.output);
+  if (!a.report.empty()) write_all({{a.report, j.dump(2) + "\n"}}, written);
   const AtlasResult& r = o.result;
   if (!a.quiet)
     std::cout << a.output << ": " << o.data.V.rows() << " vertices, " << r.components << " components, "
@@ -96,7 +120,20 @@ void register_atlas(CLI::App& app, Runner& run) {
                   "glTF input: the TEXCOORD_n set the atlas goes to (default: the next free set of each primitive)")
       ->check(CLI::Range(0, 31));
   cmd->add_flag("--replace-uv-set", a->gltf.replace_used_set,
-                "glTF input: allow --uv-set to replace a set that the material's textures read");
+                "glTF input: allow --uv-set to replace a set that the material's textures read (they will no longer "
+                "match: see --transfer-textures)");
+  cmd->add_flag("--transfer-textures", a->textures.enabled,
+                "Bake every texture that reads the replaced set into the new layout (glTF: with --uv-set N, images "
+                "embedded, TANGENT written for normal maps; OBJ: map_Kd/map_Ks/map_Bump of the mtllib, PNGs and a "
+                "new .mtl beside the output)");
+  cmd->add_option("--texture-size", a->textures.size,
+                  "--transfer-textures: side of each baked texture in texels (0: each source's own texel density)")
+      ->check(CLI::Range(0, 16384))
+      ->capture_default_str();
+  cmd->add_option("--texture-padding", a->textures.padding,
+                  "--transfer-textures: texels of dilation around every chart (-1: fill the whole image)")
+      ->check(CLI::Range(-1, 1024))
+      ->capture_default_str();
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
   cmd->add_option("--boundary", a->boundary,
                   "Each chart's map: natural (the natural conformal map, default) or a fixed circle or square "

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "intrinsic/mesh_data.h"
+#include "intrinsic/render.h"
 
 namespace intrinsic {
 
@@ -41,6 +42,32 @@ MeshData generate_bumpy_sphere(const GenerateOptions& o);
 MeshData generate_torus(const GenerateOptions& o);
 // Two tori joined by a tube: genus 2, Euler characteristic -2; about 6 * rings^2 vertices.
 MeshData generate_genus2(const GenerateOptions& o);
+
+// A textured asset to re-atlas (src/mesh/textured_asset.cpp): a closed
+// ellipsoid (radii 1, 0.9, 0.8; a cube's six faces, each a cells x cells grid,
+// pushed onto it) cut into many tiny square charts (chart_cells x
+// chart_cells grid cells each: 6 * (cells / chart_cells)^2 charts), each
+// with its own UVs in a tile of a square grid, like a scan's or a badly
+// packed game asset's layout. Its texture is textured_asset_colour of the
+// surface point each texel shows (texels of a tile's gutter show the nearest
+// point of the chart), so a baked texture can be checked against the formula.
+struct TexturedAssetOptions {
+  int cells = 32;          // grid cells along each cube face's edge: 12 * cells^2 triangles
+  int chart_cells = 2;     // chart side in cells
+  int texture_size = 1024; // the texture's side in texels
+};
+struct TexturedAsset {
+  MeshData mesh;  // V, F (closed, outward), TC (OBJ convention: v up) and FTC per chart
+  Image texture;  // RGB8, top row first
+};
+TexturedAsset generate_textured_asset(const TexturedAssetOptions& o);
+// The texture's colour at a point of the surface, RGB in [0, 1]: smooth
+// (each channel changes by at most 0.75 per unit of length).
+Eigen::Vector3d textured_asset_colour(const Eigen::Vector3d& p);
+// Writes the asset as .glb/.gltf (one primitive with POSITION, NORMAL,
+// TEXCOORD_0, a material whose baseColorTexture is the PNG, embedded) or .obj
+// (with NAME.mtl, map_Kd NAME.png beside it); all files or none.
+void write_textured_asset(const std::string& path, const TexturedAsset& asset);
 
 // By name: "flat", "cap", "wave", "strip", "two-disks", "sphere", "torus",
 // "genus2". Throws Error(Usage).

@@ -24,6 +24,7 @@
 #include "intrinsic/metrics.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
+#include "intrinsic/texture_transfer.h"
 
 namespace intrinsic {
 
@@ -108,6 +109,10 @@ struct AtlasRequest {
   AtlasOptions options;
   std::string seams_file;  // read against the mesh into options.seams when set
   ReadOptions read;        // limits when reading a file
+  // Bake the textures that read the replaced UV set into the new layout
+  // when the atlas is written (write_atlas_with_textures, texture_transfer.h);
+  // checked with the request, before any work.
+  TextureTransferOptions textures;
 };
 
 struct AtlasOutcome {

@@ -222,6 +222,11 @@ def atlas(
     optimize_lambda: Union[None, str, LambdaEnergy] = None,
     optimize_boundary: Union[None, str, BoundaryEnergy] = None,
     max_vertices: Optional[int] = None,
+    uv_set: Optional[int] = None,
+    replace_used_set: Optional[bool] = None,
+    transfer_textures: Optional[bool] = None,
+    texture_size: Optional[int] = None,
+    texture_padding: Optional[int] = None,
 ) -> Atlas:
     """`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or a mesh file (atlas(path)).
 
@@ -246,6 +251,10 @@ def atlas(
     Each chart's map: the natural conformal map by default; `boundary="circle"` or `"square"` fixes
     the chart's boundary, with `method`/`lambda_`/`mu` weights and optionally `optimize_lambda`
     ("edge" | "area") or `optimize_boundary` ("edge" | "area" | "dirichlet"), as `parameterize`.
+    How write_atlas writes it: `uv_set` (glTF input: the TEXCOORD_n the atlas goes to, `--uv-set`),
+    `replace_used_set`, and `transfer_textures=True` (`--transfer-textures`, docs/textures.md): the
+    textures reading the replaced set are baked into the new layout, `texture_size` texels a side
+    (0: each source's density), `texture_padding` texels of dilation.
     Raises UsageError for bad options and InputError for unreadable or invalid input.
     """
     given = dict(padding=padding, resolution=resolution, max_normal_deviation=max_normal_deviation,
@@ -254,6 +263,8 @@ def atlas(
                  weld=weld, reorient=reorient, atlas_stretch_budget=atlas_stretch_budget, seams=seams,
                  face_groups=face_groups,
                  boundary=boundary, method=method, optimize_lambda=optimize_lambda,
-                 optimize_boundary=optimize_boundary, max_vertices=max_vertices, mu=mu)
+                 optimize_boundary=optimize_boundary, max_vertices=max_vertices, mu=mu, uv_set=uv_set,
+                 replace_used_set=replace_used_set, transfer_textures=transfer_textures,
+                 texture_size=texture_size, texture_padding=texture_padding)
     given["lambda"] = lambda_
     return _intrinsic.atlas(V, F, **{k: v for k, v in given.items() if v is not None})

@@ -3,7 +3,9 @@
 // the same OBJ bytes.
 #include "common.h"
 #include "intrinsic/error.h"
+#include "intrinsic/gltf.h"
 #include "intrinsic/io.h"
+#include "intrinsic/texture_transfer.h"
 
 namespace intrinsic::python {
 namespace {
@@ -12,6 +14,9 @@ struct AtlasOutput {
   MeshData data;
   AtlasResult result;
   py::object uv, uv_index, face_chart, report;
+  // How write_atlas writes it: the glTF set (uv_set) and the texture transfer.
+  GltfWriteOptions gltf;
+  TextureTransferOptions textures;
 };
 
 // seams: a path to a seams file (read against the mesh, errors name its
@@ -61,7 +66,8 @@ std::vector<int> to_face_groups(const py::handle& obj) {
 }
 
 // Range checks are atlas()'s own (Error(Usage)), as for the command line.
-AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices, SeamsArg& seams) {
+AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices, SeamsArg& seams,
+                           AtlasOutput& out) {
   AtlasOptions o;
   // The chart map first, spelled as parameterize()'s options.
   py::dict rest = py::dict(kwargs).attr("copy")();
@@ -83,19 +89,34 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices,
     else if (k == "seams") seams.value = py::reinterpret_borrow<py::object>(value);
     else if (k == "face_groups") o.face_group = to_face_groups(value);
     else if (k == "max_vertices") max_vertices = value.cast<std::int64_t>();
+    else if (k == "uv_set") out.gltf.texcoord_set = value.is_none() ? -1 : value.cast<int>();
+    else if (k == "replace_used_set") out.gltf.replace_used_set = value.cast<bool>();
+    else if (k == "transfer_textures") out.textures.enabled = value.cast<bool>();
+    else if (k == "texture_size") out.textures.size = value.cast<int>();
+    else if (k == "texture_padding") out.textures.padding = value.cast<int>();
     else throw_usage("unknown option '" + k + "'");
   }
   if (!seams.value.is_none() && !seams.is_path()) o.seams = to_seams(seams.value);
   return o;
 }
 
+// A glTF file given by path (transfer_textures then needs uv_set).
+bool from_gltf_path(const py::object& V, const py::object& F) {
+  if (!F.is_none()) return false;
+  const std::string ext = mesh_extension(to_path(V));
+  return ext == ".glb" || ext == ".gltf";
+}
+
 AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs& kwargs) {
   AtlasRequest request;
   SeamsArg seams;
-  request.options = atlas_options(kwargs, request.read.max_vertices, seams);
+  AtlasOutput out;
+  request.options = atlas_options(kwargs, request.read.max_vertices, seams, out);
+  request.textures = out.textures;
+  if (out.textures.enabled && out.gltf.texcoord_set < 0 && from_gltf_path(V, F))
+    throw_usage("transfer_textures replaces the set the textures read: give uv_set (usually 0)");
   request.read.max_faces = faces_for_vertices(request.read.max_vertices);
   if (seams.is_path()) request.seams_file = to_path(seams.value);
-  AtlasOutput out;
   const bool from_file = F.is_none();
   const std::string path = from_file ? to_path(V) : "";
   MeshData data;
@@ -145,7 +166,8 @@ void register_atlas(py::module_& m) {
         "atlas(V, F=None, *, padding=2, resolution=1024, max_normal_deviation=60, min_chart_faces=20,\n"
         "      max_stretch=1.08, max_face_stretch=2, hard_angle=0, isometric_iterations=10, max_charts=0, weld=1e-7, reorient=True, atlas_stretch_budget=True, seams=None, face_groups=None,\n"
         "      boundary='natural', method='conformal', lambda_=None, mu=None, optimize_lambda=None,\n"
-        "      optimize_boundary=None, max_vertices=50000000) -> Atlas\n\n"
+        "      optimize_boundary=None, max_vertices=50000000, uv_set=None, replace_used_set=False,\n"
+        "      transfer_textures=False, texture_size=2048, texture_padding=4) -> Atlas\n\n"
         "`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or on a mesh file (atlas(path)):\n"
         "any triangle mesh (closed, higher genus, several components, non-manifold bits) cut into disk\n"
         "charts, each flattened by the natural conformal map, packed into [0,1]^2 without flips or\n"
@@ -154,16 +176,25 @@ void register_atlas(py::module_& m) {
         "UsageError / InputError as the command line exits 1 / 2.");
   m.def(
       "write_atlas",
-      [](const py::object& path, const AtlasOutput& a) {
+      [](const py::object& path, const AtlasOutput& a) -> py::object {
         const std::string p = to_path(path);
         check_atlas_output(p);
-        py::gil_scoped_release release;
-        write_atlas_file(p, a.data, a.result);
+        TextureTransferReport baked;
+        {
+          py::gil_scoped_release release;
+          baked = write_atlas_with_textures(p, a.data, a.result, a.gltf, a.textures);
+        }
+        if (!a.textures.enabled) return py::none();
+        return to_python(texture_transfer_json(baked));
       },
       py::arg("path"), py::arg("atlas"),
       "write_atlas(path, atlas)\n\nWrites the file `intrinsic atlas -o path` writes (same bytes): .obj (the\n"
       "input's vertices in input order, one vt per atlas UV, faces f v/vt) or .glb (glTF 2.0 binary,\n"
-      "vertices split at seams); atomically. Raises UsageError for another extension, OutputError.");
+      "vertices split at seams; a glTF input: its own document with the atlas as TEXCOORD_<uv_set>); atomically.\n"
+      "With atlas(..., transfer_textures=True): the textures reading the replaced set are baked into the new\n"
+      "layout (docs/textures.md) and the report's 'textures' dict ({'baked': [...], 'notes': [...]}) is\n"
+      "returned (else None). Raises UsageError for another extension, InputError for an image it cannot\n"
+      "read, OutputError.");
 }
 
 }  // namespace intrinsic::python

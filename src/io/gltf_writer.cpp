@@ -20,6 +20,7 @@
 
 #include "intrinsic/gltf.h"
 #include "io/gltf_document.h"
+#include "io/gltf_write_hook.h"
 
 namespace intrinsic {
 
@@ -113,7 +114,7 @@ int choose_set(const GltfDocument& doc, const json& prim, const std::string& pat
     used_sets(materials[static_cast<std::size_t>(m)], sets);
     if (sets.count(o.texcoord_set))
       throw_usage(doc.name + ": " + path + ": TEXCOORD_" + std::to_string(o.texcoord_set) + " is read by a texture of material " +
-                  std::to_string(m) + " (replace_used_set to replace it anyway)");
+                  std::to_string(m) + " (transfer_textures to bake the textures into the atlas, or replace_used_set to replace it anyway)");
   }
   return o.texcoord_set;
 }
@@ -184,10 +185,9 @@ using AccessorCache = std::map<int, gltf::Accessor>;
 
 // The primitive rewritten: the same JSON object with new accessors for
 // indices, attributes, morph targets and the atlas set.
-json rewrite_primitive(Output& out, const GltfDocument& doc, const GltfDocument::Primitive& p, const MeshData& data,
+json rewrite_primitive(Output& out, const GltfDocument& doc, const GltfDocument::Primitive& p, const Split& s,
                        const AtlasResult& r, int set, AccessorCache& cache) {
   const json& prim = doc.json["meshes"][static_cast<std::size_t>(p.mesh)]["primitives"][static_cast<std::size_t>(p.primitive)];
-  const Split s = split_primitive(doc, p, data, r);
   auto accessor = [&](int i) -> const gltf::Accessor& {
     auto it = cache.find(i);
     if (it == cache.end()) it = cache.emplace(i, gltf::read_accessor(doc, i, INT64_MAX)).first;
@@ -271,7 +271,7 @@ std::string glb_bytes(const json& j, const std::string& bin) {
 }
 
 GltfWriteResult write_document(const std::string& path, const MeshData& data, const AtlasResult& r,
-                               const GltfWriteOptions& o) {
+                               const GltfWriteOptions& o, const GltfWriteHook& hook) {
   const std::string ext = mesh_extension(path);
   if (ext != ".glb" && ext != ".gltf") throw_usage("output '" + path + "': a glTF document is written as .glb or .gltf");
   if (!data.gltf) throw_usage("output '" + path + "': " + data.path + " was not read from a glTF document");
@@ -282,14 +282,20 @@ GltfWriteResult write_document(const std::string& path, const MeshData& data, co
     throw_input(doc.name + ": the atlas does not belong to this document (face or vertex counts differ)");
   Output out = merge_buffers(doc);
   AccessorCache cache;
+  std::vector<GltfWrittenPrimitive> written;
   for (const GltfDocument::Primitive& p : doc.primitives) {
     if (p.face_count == 0) continue;  // nothing drawn: left as it was
     const std::string where = "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive);
     const json& prim = doc.json["meshes"][static_cast<std::size_t>(p.mesh)]["primitives"][static_cast<std::size_t>(p.primitive)];
     const int set = choose_set(doc, prim, where, o);
+    Split s = split_primitive(doc, p, data, r);
     out.j["meshes"][static_cast<std::size_t>(p.mesh)]["primitives"][static_cast<std::size_t>(p.primitive)] =
-        rewrite_primitive(out, doc, p, data, r, set, cache);
+        rewrite_primitive(out, doc, p, s, r, set, cache);
+    if (hook) written.push_back({&p, set, std::move(s.source), std::move(s.uv), std::move(s.index)});
   }
+  // The hook (texture transfer) adds images and their buffer views before
+  // pruning, so they count as referenced.
+  if (hook) hook(out.j, out.bin, written);
   drop_unused_draco(out.j);
   GltfWriteResult result;
   if (o.prune) {
@@ -319,10 +325,15 @@ GltfWriteResult write_document(const std::string& path, const MeshData& data, co
 
 GltfWriteResult write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& r,
                                  const GltfWriteOptions& o) {
+  return write_gltf_atlas_hooked(path, data, r, o, {});
+}
+
+GltfWriteResult write_gltf_atlas_hooked(const std::string& path, const MeshData& data, const AtlasResult& r,
+                                        const GltfWriteOptions& o, const GltfWriteHook& hook) {
   // Every JSON access above checks its type first; should one have been
   // missed, the document is refused, not the program ended.
   try {
-    return write_document(path, data, r, o);
+    return write_document(path, data, r, o, hook);
   } catch (const nlohmann::json::exception& e) {
     throw_input((data.gltf ? data.gltf->name : path) + ": unexpected JSON in the document: " + e.what());
   }

@@ -23,11 +23,13 @@ AtlasOutcome run(MeshData data, const AtlasRequest& request, Clock::time_point t
 }  // namespace
 
 AtlasOutcome atlas_file(const std::string& path, const AtlasRequest& request) {
+  if (request.textures.enabled) check_texture_transfer(request.textures);
   const auto t0 = Clock::now();
   return run(read_mesh(path, request.read), request, t0);
 }
 
 AtlasOutcome atlas_data(MeshData data, const AtlasRequest& request) {
+  if (request.textures.enabled) check_texture_transfer(request.textures);
   return run(std::move(data), request, Clock::now());
 }
 

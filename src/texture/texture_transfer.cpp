@@ -1,0 +1,58 @@
+// write_atlas_with_textures (texture_transfer.h): the atlas written with its
+// textures following it, through the glTF writer's hook or the OBJ side
+// (docs/textures.md), and the report's "textures" object.
+#include "intrinsic/texture_transfer.h"
+
+#include "intrinsic/error.h"
+#include "intrinsic/io.h"
+#include "texture/gltf_textures.h"
+#include "texture/obj_textures.h"
+
+namespace intrinsic {
+
+void check_texture_transfer(const TextureTransferOptions& o) {
+  if (o.size < 0 || o.size > 16384) throw_usage("texture_size must be 0 (each source's own density) or 1..16384");
+  if (o.padding < -1 || o.padding > 1024) throw_usage("texture_padding must be -1 (fill the image) or 0..1024");
+  if (o.supersample < 1 || o.supersample > 4) throw_usage("texture_supersample must be between 1 and 4");
+}
+
+TextureTransferReport write_atlas_with_textures(const std::string& path, const MeshData& m, const AtlasResult& r,
+                                                const GltfWriteOptions& gltf, const TextureTransferOptions& textures) {
+  TextureTransferReport report;
+  if (!textures.enabled) {
+    write_atlas_file(path, m, r, gltf);
+    return report;
+  }
+  check_texture_transfer(textures);
+  check_atlas_output(path);
+  const std::string ext = mesh_extension(path);
+  if (m.gltf) {
+    if (ext == ".obj") throw_usage("transfer_textures: a glTF input is written back as .glb or .gltf");
+    if (gltf.texcoord_set < 0)
+      throw_usage("transfer_textures replaces the set the textures read: give the uv set (usually 0)");
+    GltfWriteOptions o = gltf;
+    o.replace_used_set = true;
+    write_gltf_atlas_hooked(path, m, r, o, gltf_textures::texture_hook(*m.gltf, r, textures, report));
+    return report;
+  }
+  if (ext != ".obj" || m.material_libraries.empty())
+    throw_usage("transfer_textures needs a glTF input, or an OBJ input with mtllib materials written as .obj");
+  if (!m.has_uv()) throw_usage("transfer_textures: " + m.path + " has no texture coordinates on every face to bake from");
+  return write_obj_with_textures(path, m, r, textures);
+}
+
+nlohmann::json texture_transfer_json(const TextureTransferReport& report) {
+  nlohmann::json baked = nlohmann::json::array();
+  for (const BakedTexture& b : report.baked)
+    baked.push_back({{"material", b.material},
+                     {"material_name", b.material_name},
+                     {"slot", b.slot},
+                     {"source", b.source},
+                     {"output", b.output},
+                     {"width", b.width},
+                     {"height", b.height},
+                     {"texels_covered", b.texels_covered}});
+  return {{"baked", baked}, {"notes", report.notes}};
+}
+
+}  // namespace intrinsic
