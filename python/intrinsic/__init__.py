@@ -37,6 +37,7 @@ from typing import Any, Dict, Optional, Sequence, Tuple, Union
 from . import _intrinsic
 from ._intrinsic import (  # noqa: F401  (re-exported)
     Atlas,
+    AtlasScope,
     BasisMode,
     BoundaryEditor,
     BoundaryEnergy,
@@ -86,7 +87,7 @@ _ERRORS = (
 )
 _ENUMS = (
     "Method", "BoundaryShape", "Spacing", "ScaleMode", "HoleRule", "SolverKind", "LambdaEnergy", "BoundaryEnergy",
-    "GradientRoute", "Descent", "Segmentation", "BasisMode",
+    "GradientRoute", "Descent", "Segmentation", "BasisMode", "AtlasScope",
 )
 __all__ = [
     *_ERRORS, *_ENUMS, "Atlas", "BoundaryEditor", "Parameterizer", "Result", "metrics", "optimal_lambda",
@@ -215,6 +216,7 @@ def atlas(
     atlas_stretch_budget: Optional[bool] = None,
     seams: Any = None,
     face_groups: Any = None,
+    scope: Union[None, str, AtlasScope] = None,
     boundary: Union[None, str, BoundaryShape] = None,
     method: Union[None, str, Method] = None,
     lambda_: Optional[float] = None,
@@ -247,7 +249,8 @@ def atlas(
     instead of writing them reversed; `atlas_stretch_budget=False` keeps every chart within
     `max_stretch` (`--per-chart-stretch`). `face_groups` (#F ints, -1: none) keeps faces of one
     group in one chart, e.g. the triangles of each polygon of a host that stores one UV per polygon
-    corner; the report's "split_groups" counts groups that could not be kept whole.
+    corner; the report's "split_groups" counts groups that could not be kept whole. `scope="per-mesh"`
+    (`--atlas per-mesh`) gives each glTF mesh or OBJ object its own atlas in [0,1]^2.
     Each chart's map: the natural conformal map by default; `boundary="circle"` or `"square"` fixes
     the chart's boundary, with `method`/`lambda_`/`mu` weights and optionally `optimize_lambda`
     ("edge" | "area") or `optimize_boundary` ("edge" | "area" | "dirichlet"), as `parameterize`.
@@ -261,7 +264,7 @@ def atlas(
                  min_chart_faces=min_chart_faces, max_stretch=max_stretch, max_face_stretch=max_face_stretch,
                  hard_angle=hard_angle, isometric_iterations=isometric_iterations, max_charts=max_charts,
                  weld=weld, reorient=reorient, atlas_stretch_budget=atlas_stretch_budget, seams=seams,
-                 face_groups=face_groups,
+                 face_groups=face_groups, scope=scope,
                  boundary=boundary, method=method, optimize_lambda=optimize_lambda,
                  optimize_boundary=optimize_boundary, max_vertices=max_vertices, mu=mu, uv_set=uv_set,
                  replace_used_set=replace_used_set, transfer_textures=transfer_textures,

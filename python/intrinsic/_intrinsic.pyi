@@ -121,6 +121,11 @@ class BasisMode(_Enum):
     LAZY: ClassVar[BasisMode]
     __members__: ClassVar[Dict[str, BasisMode]]
 
+class AtlasScope(_Enum):
+    WHOLE: ClassVar[AtlasScope]
+    PER_MESH: ClassVar[AtlasScope]
+    __members__: ClassVar[Dict[str, AtlasScope]]
+
 def read_mesh(path: _Path, max_vertices: int = ...) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int32]]: ...
 def write_mesh(path: _Path, V: npt.ArrayLike, F: npt.ArrayLike, uv: Optional[npt.ArrayLike] = None,
                binary: bool = False) -> None: ...

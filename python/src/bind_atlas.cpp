@@ -88,6 +88,7 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices,
     else if (k == "atlas_stretch_budget") o.atlas_stretch_budget = value.cast<bool>();
     else if (k == "seams") seams.value = py::reinterpret_borrow<py::object>(value);
     else if (k == "face_groups") o.face_group = to_face_groups(value);
+    else if (k == "scope") o.scope = to_choice<AtlasScope>(value, "scope");
     else if (k == "max_vertices") max_vertices = value.cast<std::int64_t>();
     else if (k == "uv_set") out.gltf.texcoord_set = value.is_none() ? -1 : value.cast<int>();
     else if (k == "replace_used_set") out.gltf.replace_used_set = value.cast<bool>();
@@ -164,7 +165,7 @@ void register_atlas(py::module_& m) {
       });
   m.def("atlas", &run_atlas, py::arg("V"), py::arg("F") = py::none(),
         "atlas(V, F=None, *, padding=2, resolution=1024, max_normal_deviation=60, min_chart_faces=20,\n"
-        "      max_stretch=1.08, max_face_stretch=2, hard_angle=0, isometric_iterations=10, max_charts=0, weld=1e-7, reorient=True, atlas_stretch_budget=True, seams=None, face_groups=None,\n"
+        "      max_stretch=1.08, max_face_stretch=2, hard_angle=0, isometric_iterations=10, max_charts=0, weld=1e-7, reorient=True, atlas_stretch_budget=True, seams=None, face_groups=None, scope=\"whole\",\n"
         "      boundary='natural', method='conformal', lambda_=None, mu=None, optimize_lambda=None,\n"
         "      optimize_boundary=None, max_vertices=50000000, uv_set=None, replace_used_set=False,\n"
         "      transfer_textures=False, texture_size=2048, texture_padding=4) -> Atlas\n\n"

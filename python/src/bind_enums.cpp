@@ -82,6 +82,8 @@ void register_enums(py::module_& m) {
                      {{"LBFGS", Descent::LBFGS}, {"GRADIENT", Descent::GradientDescent}});
   bind_enum<Segmentation>(m, "Segmentation", "How an atlas groups faces into charts before the validity splits.",
                           {{"NORMAL_CONES", Segmentation::NormalCones}, {"COMPONENTS", Segmentation::Components}});
+  bind_enum<AtlasScope>(m, "AtlasScope", "One atlas for the whole file or one per mesh (scope=, --atlas).",
+                        {{"WHOLE", AtlasScope::Whole}, {"PER_MESH", AtlasScope::PerMesh}});
   bind_enum<BasisMode>(m, "BasisMode", "The boundary editor's response basis (basis=, intrinsic edit --basis).",
                        {{"FULL", BasisMode::Full}, {"LAZY", BasisMode::Lazy}});
 }

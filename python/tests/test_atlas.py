@@ -162,3 +162,28 @@ def test_face_groups_keep_pairs_in_one_chart():
     assert a.report["flipped"] == 0 and a.report["overlapping"] == 0
     with pytest.raises(intrinsic.UsageError, match="face groups number"):
         intrinsic.atlas(plain.V, F, face_groups=groups[:-1])
+
+
+def test_scope_per_mesh_is_the_cli_flag(tmp_path):
+    """scope="per-mesh" equals `--atlas per-mesh` on an OBJ with two objects, and
+    a mesh without objects to tell apart is a UsageError (the CLI's exit 1)."""
+    V, F = intrinsic.read_mesh(str(mesh("torus")))
+    obj = tmp_path / "two.obj"
+    with open(obj, "w") as f:
+        for x, y, z in np.vstack([V, V + [5.0, 0, 0]]):
+            f.write(f"v {x!r} {y!r} {z!r}\n")
+        for k, part in enumerate([F, F + len(V)]):
+            f.write(f"o part{k}\n")
+            for a, b, c in part + 1:
+                f.write(f"f {a} {b} {c}\n")
+    a = intrinsic.atlas(str(obj), scope=intrinsic.AtlasScope.PER_MESH)
+    b = intrinsic.atlas(str(obj), scope="per-mesh")
+    assert np.array_equal(a.uv, b.uv)
+    out, rep = str(tmp_path / "cli.obj"), str(tmp_path / "cli.json")
+    r = run_cli("atlas", str(obj), "-o", out, "--atlas", "per-mesh", "--report", rep, "-q")
+    assert r.returncode == 0, r.stderr
+    mine = str(tmp_path / "py.obj")
+    intrinsic.write_atlas(mine, a)
+    assert open(mine, "rb").read() == open(out, "rb").read()
+    with pytest.raises(intrinsic.UsageError):
+        intrinsic.atlas(V, F, scope="per-mesh")
