@@ -75,6 +75,8 @@ Accessor read_accessor(const GltfDocument& doc, int index, std::int64_t max_coun
 std::string base64_decode(const std::string& text, std::size_t begin, const std::string& name,
                           const std::string& path);
 std::string base64_encode(const std::string& bytes);
+// A URI's %XX escapes decoded (a file name beside a .gltf, e.g. "my%20tex.png").
+std::string percent_decode(const std::string& s);
 
 // Parses .gltf or .glb bytes: JSON, buffers (GLB chunk, data URIs, and files
 // under `folder` when `files_allowed`), buffer views checked against them.

@@ -125,19 +125,6 @@ void split_glb(const std::string& b, const std::string& name, std::string& text,
   if (chunk == 0) throw_input(name + ": GLB without a JSON chunk");
 }
 
-std::string percent_decode(const std::string& s) {
-  std::string out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
-      out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += s[i];
-    }
-  }
-  return out;
-}
 
 std::string read_buffer_file(const std::string& uri, std::uint64_t length, const std::string& name,
                              const std::string& folder, const std::string& path) {
@@ -237,6 +224,20 @@ void check_required_extensions(const GltfDocument& doc) {
 }
 
 }  // namespace
+
+std::string percent_decode(const std::string& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
+      out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
 
 GltfDocument load_document(const std::string& bytes, const std::string& name, const std::string& folder,
                            bool files_allowed) {

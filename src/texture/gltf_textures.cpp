@@ -18,6 +18,7 @@
 
 #include "intrinsic/error.h"
 #include "texture/gltf_textures.h"
+#include "texture/texture_internal.h"
 
 namespace intrinsic::gltf_textures {
 namespace {
@@ -121,20 +122,6 @@ std::string image_label(const GltfDocument& doc, int image) {
   return s;
 }
 
-std::string percent_decode(const std::string& s) {
-  std::string out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
-      out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += s[i];
-    }
-  }
-  return out;
-}
-
 // The bytes of an image file beside the document (the errno kept for the message).
 std::string read_image_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -166,7 +153,7 @@ Texture decode_image(const GltfDocument& doc, int image, const std::string& wher
       if (comma == std::string::npos) gltf::fail(doc.name, path + "/uri", "data URI that is not base64");
       return decode_texture(gltf::base64_decode(uri, comma + 8, doc.name, path + "/uri"), label);
     }
-    const std::filesystem::path file = std::filesystem::path(doc.name).parent_path() / percent_decode(uri);
+    const std::filesystem::path file = std::filesystem::path(doc.name).parent_path() / gltf::percent_decode(uri);
     return decode_texture(read_image_file(file.string()), label);
   } catch (const Error& e) {
     throw Error(ErrorKind::Input, label + ": cannot use the image: " + e.what(), e.os_error());
@@ -239,15 +226,6 @@ std::vector<Group> collect_groups(const GltfDocument& doc, const std::vector<Glt
                              ": nothing baked for it");
   }
   return groups;
-}
-
-double uv_area(const Eigen::MatrixX2d& uv) {
-  double a = 0;
-  for (Eigen::Index f = 0; f + 2 < uv.rows(); f += 3) {
-    const Eigen::Vector2d e1 = uv.row(f + 1) - uv.row(f), e2 = uv.row(f + 2) - uv.row(f);
-    a += 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
-  }
-  return a;
 }
 
 // glTF's TANGENT has its bitangent up the image (MikkTSpace on v up), so
@@ -388,7 +366,8 @@ void bake_group(Context& cx, const Group& g) {
   to.width = to.height = cx.options.size;
   if (cx.options.size == 0) {
     const TextureTransform& t = g.sampling.transform;
-    const double scale = std::sqrt(uv_area(tm.old_uv) * std::abs(t.scale_u * t.scale_v) / std::max(uv_area(tm.new_uv), 1e-30));
+    const double scale = std::sqrt(detail::corner_uv_area(tm.old_uv) * std::abs(t.scale_u * t.scale_v) /
+                                   std::max(detail::corner_uv_area(tm.new_uv), 1e-30));
     to.width = static_cast<int>(std::clamp<double>(std::lround(source.width * scale), 16, 16384));
     to.height = static_cast<int>(std::clamp<double>(std::lround(source.height * scale), 16, 16384));
   }

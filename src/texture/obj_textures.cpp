@@ -15,6 +15,7 @@
 #include "intrinsic/io.h"
 #include "intrinsic/texture.h"
 #include "texture/obj_textures.h"
+#include "texture/texture_internal.h"
 
 namespace intrinsic {
 namespace {
@@ -94,15 +95,6 @@ std::string file_safe(const std::string& s) {
   return out;
 }
 
-double uv_area(const Eigen::MatrixX2d& uv) {
-  double a = 0;
-  for (Eigen::Index f = 0; f + 2 < uv.rows(); f += 3) {
-    const Eigen::Vector2d e1 = uv.row(f + 1) - uv.row(f), e2 = uv.row(f + 2) - uv.row(f);
-    a += 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
-  }
-  return a;
-}
-
 // The faces of `material` through both layouts (v down), corners in the
 // result's order (a face the atlas reoriented lists its input corners 0, 2, 1).
 TransferMesh material_mesh(const MeshData& m, const AtlasResult& r, const std::string& material) {
@@ -152,7 +144,7 @@ TextureTransferReport write_obj_with_textures(const std::string& path, const Mes
     to.padding = options.padding, to.supersample = options.supersample;
     to.width = to.height = options.size;
     if (options.size == 0) {
-      const double scale = std::sqrt(uv_area(tm.old_uv) / std::max(uv_area(tm.new_uv), 1e-30));
+      const double scale = std::sqrt(detail::corner_uv_area(tm.old_uv) / std::max(detail::corner_uv_area(tm.new_uv), 1e-30));
       to.width = static_cast<int>(std::clamp<double>(std::lround(src.width * scale), 16, 16384));
       to.height = static_cast<int>(std::clamp<double>(std::lround(src.height * scale), 16, 16384));
     }

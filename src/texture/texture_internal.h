@@ -22,6 +22,11 @@ constexpr int kMaxTextureSide = 16384;
 // a texel buffer of exactly width * height * channels values.
 void check_texture(const Texture& t, const char* what);
 
+// The UV area of a triangle soup given per corner (3m x 2, row 3f+k corner
+// k of face f): with the 3D area, a layout's texel density, which
+// `--texture-size 0` keeps from the source layout.
+double corner_uv_area(const Eigen::MatrixX2d& uv);
+
 Texture decode_png_texture(const std::string& bytes, const std::string& name);
 Texture decode_jpeg_texture(const std::string& bytes, const std::string& name);
 

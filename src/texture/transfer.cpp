@@ -171,4 +171,17 @@ TransferResult transfer_texture(const TransferMesh& mesh, const Texture& source,
   return result;
 }
 
+namespace detail {
+
+double corner_uv_area(const Eigen::MatrixX2d& uv) {
+  double a = 0;
+  for (Eigen::Index f = 0; f + 2 < uv.rows(); f += 3) {
+    const Eigen::Vector2d e1 = uv.row(f + 1) - uv.row(f), e2 = uv.row(f + 2) - uv.row(f);
+    a += 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+  }
+  return a;
+}
+
+}  // namespace detail
+
 }  // namespace intrinsic
