@@ -26,7 +26,11 @@ cmake --build build -j"$JOBS"
 if [ "${INTRINSIC_SKIP_SANITIZERS:-0}" != 1 ]; then
   # No Python module here (INTRINSIC_SANITIZE turns it off: an ASan-instrumented
   # module cannot load into a plain python3), so no Python or consumer tests.
-  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DINTRINSIC_SANITIZE=ON -DINTRINSIC_BUILD_BENCH=OFF
+  # -g1 (line tables, enough for the sanitizers' stack traces) instead of -g:
+  # the same code, about a quarter less compile time (20 s -> 14 s for
+  # tests/test_atlas_stages.cpp), which the CI budget needs.
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
+    -DINTRINSIC_SANITIZE=ON -DINTRINSIC_BUILD_BENCH=OFF
   cmake --build build-asan -j"$JOBS"
   # The large shared mesh is exercised by the Release run; under the
   # sanitizers it would take most of the CI budget.
