@@ -13,6 +13,7 @@
 #include "intrinsic/linear_solver.h"
 #include "intrinsic/parameterize.h"
 #include "solve/supernodal_cholesky.h"
+#include "solve/supernodal_lu.h"
 #include "test_support.h"
 
 namespace intrinsic {
@@ -25,8 +26,8 @@ struct System {
 
 // The conformal matrix with every boundary loop fixed on a circle (each
 // component of the mesh its own, so disconnected meshes stay definite).
-System conformal_system(const Mesh& mesh) {
-  const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, WeightOptions());
+System conformal_system(const Mesh& mesh, const WeightOptions& w = WeightOptions()) {
+  const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, w);
   std::vector<char> fixed(mesh.V.rows(), 0);
   Eigen::MatrixXd all = Eigen::MatrixXd::Zero(mesh.V.rows(), 2);
   for (const std::vector<int>& loop : mesh.topology.boundary_loops) {
@@ -132,6 +133,29 @@ TEST(SupernodalCholeskySolver, SameBitsWithOneTwoAndThreeThreads) {
   for (int threads : {2, 3}) {
     EXPECT_TRUE((factor_and_solve(s.A, s.B, threads).array() == X1.array()).all()) << threads;
     EXPECT_TRUE((factor_and_solve(D, BD, threads).array() == D1.array()).all()) << threads;
+  }
+#endif
+}
+
+TEST(SupernodalCholeskySolver, LUSubtreesGiveTheSameBitsWithOneTwoAndThreeThreads) {
+#ifndef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
+  GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+#else
+  // The supernodal LU shares the subtree schedule (authalic: not symmetric).
+  WeightOptions w;
+  w.method = Method::Authalic;
+  const System s = conformal_system(test::wavy(90), w);
+  Eigen::SparseLU<SparseMatrix> lu(s.A);
+  ASSERT_EQ(lu.info(), Eigen::Success);
+  const Eigen::MatrixXd ref = lu.solve(s.B);
+  Eigen::MatrixXd X1;
+  for (int threads : {1, 2, 3}) {
+    detail::SupernodalLU f(threads);
+    ASSERT_TRUE(f.factor(s.A));
+    const Eigen::MatrixXd X = f.solve(s.B);
+    EXPECT_LT(relative_difference(X, ref), 1e-9);
+    if (threads == 1) X1 = X;
+    else EXPECT_TRUE((X.array() == X1.array()).all()) << threads;
   }
 #endif
 }
