@@ -27,7 +27,7 @@ namespace {
 long first_inside(const Bitmap& bm, const Mask& m, long from, int extent) {
   const int side = bm.side();
   for (int y = static_cast<int>(from / side); y + m.h <= extent; ++y) {
-    if (!bm.may_fit(m, y)) continue;
+    if (!bm.may_fit(m, y, true)) continue;
     const int x = bm.first_fit(m, y, y == from / side ? static_cast<int>(from % side) : 0, extent);
     if (x >= 0) return static_cast<long>(y) * side + x;
   }
@@ -142,7 +142,10 @@ bool place_all(const std::vector<std::vector<Mask>>& masks, int side, int poses,
     if (p.x < 0) return false;
     bm.take(masks[c][p.pose], p.x, p.y);
     at[c] = p;
-    if (e != extent) cursors.reset();  // positions past the old extent are open now
+    if (e != extent) {
+      cursors.reset();  // positions past the old extent are open now
+      bm.set_extent(e);
+    }
     extent = e;
   }
   return true;
