@@ -43,9 +43,20 @@ void Bitmap::update_widest(int y) {
   if (y < extent_) inside_[y] = widest_run(y, extent_);
 }
 
+// Nothing is taken outside the old extent's square: a row's run within the
+// new extent is its old one or its free run ending at the old extent,
+// lengthened by the columns added (rows above the old extent are all free).
 void Bitmap::set_extent(int e) {
-  extent_ = std::min(e, side_);
-  for (int y = 0; y < extent_; ++y) inside_[y] = widest_run(y, extent_);
+  e = std::min(e, side_);
+  if (e < extent_) {
+    extent_ = e;
+    for (int y = 0; y < extent_; ++y) inside_[y] = widest_run(y, extent_);
+    return;
+  }
+  for (int y = 0; y < extent_; ++y)
+    inside_[y] = std::max(inside_[y], extent_ - 1 - last_taken(y, 0, extent_) + (e - extent_));
+  for (int y = extent_; y < e; ++y) inside_[y] = e;
+  extent_ = e;
 }
 
 int Bitmap::last_taken(int y, int a, int b) const {

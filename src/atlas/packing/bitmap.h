@@ -38,7 +38,8 @@ class Bitmap {
   // widest free run within [0, e) is kept as well. The runs over the whole
   // row tell almost nothing while the layout is smaller than the bitmap
   // (the free room right of it passes every mask), so the search inside
-  // scanned every row with first_fit.
+  // scanned every row with first_fit. Called before the texels past the
+  // old extent are taken.
   void set_extent(int e);
 
  private:

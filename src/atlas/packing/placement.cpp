@@ -140,12 +140,12 @@ bool place_all(const std::vector<std::vector<Mask>>& masks, int side, int poses,
     int e = extent;
     if (p.x < 0) p = best_placement(bm, masks[c], n, extent, e);
     if (p.x < 0) return false;
-    bm.take(masks[c][p.pose], p.x, p.y);
-    at[c] = p;
     if (e != extent) {
       cursors.reset();  // positions past the old extent are open now
-      bm.set_extent(e);
+      bm.set_extent(e);  // before the take: it relies on nothing taken past the old extent
     }
+    bm.take(masks[c][p.pose], p.x, p.y);
+    at[c] = p;
     extent = e;
   }
   return true;
