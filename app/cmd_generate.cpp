@@ -12,12 +12,14 @@ void register_generate(CLI::App& app, Runner& run) {
     std::string name, output;
     GenerateOptions options;
     TexturedAssetOptions textured;
+    PartsOptions parts;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("generate", "Write a built-in irregular test surface");
   cmd->add_option("surface", a->name, "wave | cap | flat | strip | two-disks | sphere | torus | genus2 (closed: for `intrinsic atlas`) | "
-                  "textured (a closed surface in many tiny textured charts, for `atlas --transfer-textures`)")
-      ->check(CLI::IsMember({"wave", "cap", "flat", "strip", "two-disks", "sphere", "torus", "genus2", "textured"}))
+                  "textured (a closed surface in many tiny textured charts, for `atlas --transfer-textures`) | "
+                  "parts (many closed and open machine-like parts, for `atlas` at scale)")
+      ->check(CLI::IsMember({"wave", "cap", "flat", "strip", "two-disks", "sphere", "torus", "genus2", "textured", "parts"}))
       ->required();
   cmd->add_option("-o,--output", a->output, "Output mesh (.obj or .ply; textured: .glb, .gltf or .obj with .mtl and .png)")
       ->required();
@@ -29,6 +31,10 @@ void register_generate(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--texture-size", a->textured.texture_size, "textured: texture side in texels")
       ->check(CLI::Range(16, 16384))
+      ->capture_default_str();
+  cmd->add_option("--parts", a->parts.parts, "parts: how many parts")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--faces", a->parts.faces, "parts: about how many faces in all (at least 48 per part)")
+      ->check(CLI::Range(48L, 100000000L))
       ->capture_default_str();
   cmd->add_option("--rings", a->options.rings, "Radial resolution (about 3*rings^2 vertices)")
       ->check(CLI::Range(1, 5000))
@@ -45,7 +51,8 @@ void register_generate(CLI::App& app, Runner& run) {
         return 0;
       }
       check_output_mesh_path(a->output);
-      const MeshData m = generate_surface(a->name, a->options);
+      a->parts.seed = a->options.seed;
+      const MeshData m = a->name == "parts" ? generate_parts(a->parts).mesh : generate_surface(a->name, a->options);
       write_mesh(a->output, m.V, m.F, MatrixX2d());
       std::cout << a->output << ": " << m.V.rows() << " vertices, " << m.F.rows() << " faces\n";
       return 0;

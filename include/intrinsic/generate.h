@@ -73,4 +73,29 @@ void write_textured_asset(const std::string& path, const TexturedAsset& asset);
 // "genus2". Throws Error(Usage).
 MeshData generate_surface(const std::string& name, const GenerateOptions& o);
 
+// A machine-like asset of many parts (src/mesh/generate_parts.cpp), the
+// scale test of `intrinsic atlas` (generate surface "parts"): `parts`
+// disjoint pieces of varied shape and size, side by side on a grid, each a
+// jittered grid of its own. Closed pieces are outward-oriented.
+enum class PartShape {
+  Ellipsoid,   // closed, genus 0 (bumpy, squashed): Euler characteristic 2
+  RoundedBox,  // closed, genus 0 (a superellipsoid): 2
+  Torus,       // closed, genus 1 (a ring, a washer): 0
+  Tube,        // open, two boundary loops (a pipe, bent): 0
+  Plate,       // open, one boundary loop (a wavy bracket): 1
+  Bowl,        // open, one boundary loop (a cap, a cup): 1
+};
+struct PartsOptions {
+  int parts = 500;
+  long faces = 1000000;  // about this many in all (each part at least 48)
+  std::uint64_t seed = 1;
+};
+struct GeneratedParts {
+  MeshData mesh;
+  std::vector<PartShape> shape;  // per part
+  std::vector<int> face_part;    // per face of mesh.F; parts are in face order, one block each
+};
+// Throws Error(Usage) for parts outside [1, 100000] or faces outside [48 * parts, 1e8].
+GeneratedParts generate_parts(const PartsOptions& o);
+
 }  // namespace intrinsic

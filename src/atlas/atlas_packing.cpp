@@ -88,10 +88,12 @@ double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& optio
   for (size_t c = 0; c < charts.size(); ++c) {
     const packing::Placement& p = l.at[c];
     const int angle = p.pose / 4, turns = p.pose % 4;
-    charts[c].UV = packing::texel_coordinates(pack[c].poses[angle], l.scale, turns);
+    charts[c].UV = packing::texel_coordinates(pack[c].poses[angle], l.scale / l.zoom, turns);
     charts[c].summary.rotated = p.pose != 0;
-    charts[c].UV.col(0).array() += p.x + pad - edge;
-    charts[c].UV.col(1).array() += p.y + pad - edge;
+    charts[c].UV.col(0).array() += p.x + l.pad;
+    charts[c].UV.col(1).array() += p.y + l.pad;
+    charts[c].UV = charts[c].UV * l.zoom;
+    charts[c].UV.array() -= edge;
     charts[c].UV /= square;
     charts[c].UV = charts[c].UV.cwiseMax(0.0).cwiseMin(1.0);  // rounding only
   }

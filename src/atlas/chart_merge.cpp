@@ -13,12 +13,14 @@
 // pairs can use. The unions solved are bounded in total size (a work budget).
 // Unions are solved lazily, in the order the pass applies them: a union one
 // of whose charts an earlier union of the pass has just changed is not
-// solved (it would be thrown away). In the passes past the stretch bound
-// that saves the work outright (on ogre 60% of that phase's union faces). In
-// a stretch-bounded pass such a union is put aside as the face set it was
-// proposed with, since whether it is hopeless (never retried) matters, and
-// solved at the start of the next pass unless a chart of it is gone. The
-// charts are thus exactly those of solving every union proposed.
+// solved (it would be thrown away), nor solved later only to learn whether
+// the pair is hopeless: its charts are no longer those it was proposed
+// with, and the pair is proposed afresh if it is still the best. Solving
+// those stale unions at the next pass (to keep the charts exactly those of
+// solving every union proposed) was 28-62% of the union faces solved on
+// spot, truck, cheburashka, horse_quad and decimated-max (truck 63k -> 46k,
+// horse_quad 149k -> 57k), for the same charts, utilization and stretch on
+// four of them and one chart fewer on cheburashka.
 // A last phase merges past the per-chart bound, unions under 1% of the
 // surface only, while the whole atlas's 95th percentile of face stretch stays
 // within it (docs/maths.md §9.7): a small closed part (ogre's ~30 small
@@ -66,14 +68,11 @@ UnionResult solve_union(const MeshData& input, const CleanMesh& clean, const Cha
   return r;
 }
 
-// What one merge phase remembers about pairs: failed ones (true: hopeless,
-// never retried; false: retried once a chart changes) and, in a
-// stretch-bounded phase, the unions proposed but not solved because a chart
-// changed first (whether they are hopeless is decided at the next pass).
+// What one merge phase remembers about failed pairs (true: hopeless, never
+// retried; false: retried once a chart changes).
 struct PairMemory {
   double bound = INFINITY;
   std::map<Pair, bool> failed;
-  std::map<Pair, UnionTask> unsolved;
   bool hopeless(double stretch) const {
     return std::isfinite(stretch) && stretch - 1 > kHopelessStretchFactor * (bound - 1);
   }
@@ -84,28 +83,6 @@ struct MergeContext {
   const CleanMesh& clean;
   const ChartOptions& options;
 };
-
-// Solves, in parallel, the unions put aside in the last pass whose charts
-// both live, and marks the hopeless ones: the memory is then what solving
-// every proposed union would have left (a pair with a merged-away chart is
-// never proposed again).
-void settle_unsolved(const MergeContext& ctx, const std::vector<char>& gone, PairMemory& memory) {
-  std::vector<std::pair<Pair, const UnionTask*>> tasks;
-  for (const auto& [k, task] : memory.unsolved)
-    if (!gone[k.first] && !gone[k.second]) tasks.push_back({k, &task});
-  const std::int64_t n = static_cast<std::int64_t>(tasks.size());
-  std::vector<char> hopeless(tasks.size(), 0);
-  const int parts = parallel_parts(n, 1);
-  parallel_for_parts(parts, parts, [&](int part, std::int64_t, std::int64_t) {
-    for (std::int64_t i = part; i < n; i += parts) {
-      const UnionResult r = solve_union(ctx.input, ctx.clean, ctx.options, *tasks[i].second);
-      hopeless[i] = !r.valid && memory.hopeless(r.stretch);
-    }
-  });
-  for (std::int64_t i = 0; i < n; ++i)
-    if (hopeless[i]) memory.failed[tasks[i].first] = true;
-  memory.unsolved.clear();
-}
 
 // The neighbour chart `c` shares most glued edges with, among the pairs not failed; -1 if none.
 int best_neighbour(const MergeContext& ctx, const std::vector<int>& owner, const FlatChart& chart, int c,
@@ -258,18 +235,13 @@ void decide(Proposal& p, Pass& pass) {
 // batches of those surely needed. Returns the merges made.
 int merge_pass(const MergeContext& ctx, double bound, int wanted, long& budget, std::vector<FlatChart>& charts,
                std::vector<char>& gone, std::vector<int>& owner, PairMemory& memory, AtlasStretch* atlas = nullptr) {
-  settle_unsolved(ctx, gone, memory);
   Pass pass{charts, gone, owner, memory, atlas, std::vector<char>(charts.size(), 0)};
   std::vector<Proposal> props = propose(ctx, bound, wanted, budget, pass);
   for (size_t next = 0; next < props.size(); ++next) {
     Proposal& p = props[next];
     if (wanted > 0 && pass.live <= wanted) break;
-    if (pass.touched[p.c] || pass.touched[p.d]) {
-      // Solved against a chart that has just changed, it would not be kept:
-      // put aside where it could be hopeless (settle_unsolved).
-      if (std::isfinite(memory.bound)) memory.unsolved[key(p.c, p.d)] = std::move(p.task);
-      continue;
-    }
+    // Solved against a chart that has just changed, it would not be kept.
+    if (pass.touched[p.c] || pass.touched[p.d]) continue;
     if (!p.solved) solve_needed(ctx, props, next, pass);
     decide(p, pass);
   }

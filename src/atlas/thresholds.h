@@ -102,7 +102,10 @@ constexpr int kHalfBitmapMinSide = 256;
 constexpr double kCoarseRatio = 1.02;
 constexpr double kGuessAbove = 1.03;
 constexpr double kGuessStep = 1.015;
-constexpr int kGuessTries = 6;
+// Three tries: on the shared assets a layout better than the coarse one was
+// found at the first, second or third scale or at none of six (knight,
+// screwdriver: six full packings for nothing).
+constexpr int kGuessTries = 3;
 
 // --- Texel masks (packing/texel_mask.cpp, packing/scale_search.cpp) ---
 // Masks placed as their whole frame (BoxCursors in placement.cpp): frames

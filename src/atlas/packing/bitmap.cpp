@@ -6,7 +6,7 @@
 namespace intrinsic::detail::packing {
 
 Bitmap::Bitmap(int side)
-    : side_(side), words_((side + 63) / 64), bits_(static_cast<size_t>(words_) * side, 0), widest_(side, side) {}
+    : side_(side), words_((side + 63) / 64), bits_(static_cast<size_t>(words_) * side, 0), widest_(side, side), inside_(side, 0) {}
 
 namespace {
 
@@ -21,13 +21,13 @@ int longest_ones(std::uint64_t x) {
 
 // Word by word: a free run grows across zero words, ends at a word's lowest
 // taken bit and restarts after its highest; runs inside a word are counted too.
-void Bitmap::update_widest(int y) {
+int Bitmap::widest_run(int y, int n) const {
   const std::uint64_t* r = row(y);
   int best = 0, run = 0;
-  for (int w = 0; w < words_; ++w) {
+  for (int w = 0; w < (n + 63) / 64; ++w) {
     std::uint64_t word = r[w];
-    const int valid = std::min(64, side_ - 64 * w);
-    if (valid < 64) word |= ~std::uint64_t{0} << valid;  // past the side: taken
+    const int valid = std::min(64, n - 64 * w);
+    if (valid < 64) word |= ~std::uint64_t{0} << valid;  // past n: taken
     if (word == 0) {
       run += 64;
       continue;
@@ -35,7 +35,28 @@ void Bitmap::update_widest(int y) {
     best = std::max({best, run + __builtin_ctzll(word), longest_ones(~word)});
     run = __builtin_clzll(word);
   }
-  widest_[y] = std::max(best, run);
+  return std::max(best, run);
+}
+
+void Bitmap::update_widest(int y) {
+  widest_[y] = widest_run(y, side_);
+  if (y < extent_) inside_[y] = widest_run(y, extent_);
+}
+
+// Nothing is taken outside the old extent's square: a row's run within the
+// new extent is its old one or its free run ending at the old extent,
+// lengthened by the columns added (rows above the old extent are all free).
+void Bitmap::set_extent(int e) {
+  e = std::min(e, side_);
+  if (e < extent_) {
+    extent_ = e;
+    for (int y = 0; y < extent_; ++y) inside_[y] = widest_run(y, extent_);
+    return;
+  }
+  for (int y = 0; y < extent_; ++y)
+    inside_[y] = std::max(inside_[y], extent_ - 1 - last_taken(y, 0, extent_) + (e - extent_));
+  for (int y = extent_; y < e; ++y) inside_[y] = e;
+  extent_ = e;
 }
 
 int Bitmap::last_taken(int y, int a, int b) const {
@@ -69,9 +90,10 @@ bool Bitmap::fits(const Mask& m, int x, int y) const {
   return true;
 }
 
-bool Bitmap::may_fit(const Mask& m, int y) const {
+bool Bitmap::may_fit(const Mask& m, int y, bool inside) const {
+  const int* widest = inside ? inside_.data() : widest_.data();
   for (int r : m.by_width)  // widest first: the likeliest to fail
-    if (m.widest[r] > widest_[y + r]) return false;
+    if (m.widest[r] > widest[y + r]) return false;
   return true;
 }
 

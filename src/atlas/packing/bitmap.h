@@ -29,18 +29,27 @@ class Bitmap {
   // in the band of rows starting at y, or -1.
   int first_fit(const Mask& m, int y, int x0, int limit) const;
   // False when some row of the mask's band at y is wider than its row's
-  // widest free run: the mask fits nowhere in that band.
-  bool may_fit(const Mask& m, int y) const;
+  // widest free run (`inside`: the run within the extent, see set_extent):
+  // the mask fits nowhere in that band (inside the extent).
+  bool may_fit(const Mask& m, int y, bool inside = false) const;
   // The widest run of free texels in row y.
   int widest_free(int y) const { return widest_[y]; }
-
+  // The square [0, e)^2 a search inside the extent looks at: each row's
+  // widest free run within [0, e) is kept as well. The runs over the whole
+  // row tell almost nothing while the layout is smaller than the bitmap
+  // (the free room right of it passes every mask), so the search inside
+  // scanned every row with first_fit. Called before the texels past the
+  // old extent are taken.
+  void set_extent(int e);
 
  private:
   const std::uint64_t* row(int y) const { return &bits_[static_cast<size_t>(y) * words_]; }
+  // The widest free run of row y within [0, n).
+  int widest_run(int y, int n) const;
   void update_widest(int y);
-  int side_ = 0, words_ = 0;
+  int side_ = 0, words_ = 0, extent_ = 0;
   std::vector<std::uint64_t> bits_;
-  std::vector<int> widest_;
+  std::vector<int> widest_, inside_;
 };
 
 }  // namespace intrinsic::detail::packing

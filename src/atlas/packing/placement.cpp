@@ -27,7 +27,7 @@ namespace {
 long first_inside(const Bitmap& bm, const Mask& m, long from, int extent) {
   const int side = bm.side();
   for (int y = static_cast<int>(from / side); y + m.h <= extent; ++y) {
-    if (!bm.may_fit(m, y)) continue;
+    if (!bm.may_fit(m, y, true)) continue;
     const int x = bm.first_fit(m, y, y == from / side ? static_cast<int>(from % side) : 0, extent);
     if (x >= 0) return static_cast<long>(y) * side + x;
   }
@@ -140,9 +140,12 @@ bool place_all(const std::vector<std::vector<Mask>>& masks, int side, int poses,
     int e = extent;
     if (p.x < 0) p = best_placement(bm, masks[c], n, extent, e);
     if (p.x < 0) return false;
+    if (e != extent) {
+      cursors.reset();  // positions past the old extent are open now
+      bm.set_extent(e);  // before the take: it relies on nothing taken past the old extent
+    }
     bm.take(masks[c][p.pose], p.x, p.y);
     at[c] = p;
-    if (e != extent) cursors.reset();  // positions past the old extent are open now
     extent = e;
   }
   return true;

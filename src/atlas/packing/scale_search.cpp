@@ -45,6 +45,7 @@ bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int
   add_masks(charts, scale, pad, 0, n, masks);
   Layout l;
   l.scale = scale;
+  l.pad = pad;
   if (!place_all(masks, side, static_cast<int>(4 * n), l.at, l.extent)) return false;
   out = std::move(l);
   return true;
@@ -123,28 +124,31 @@ Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side
 }  // namespace
 
 // The bisection on a bitmap of half the size first (a quarter of the texels
-// to place, twice the tolerance), then on the full bitmap around twice that
-// scale: a few full-size packings instead of a dozen.
+// to place, twice the tolerance). Its best layout, each cell taken as 2 x 2
+// texels, is a valid layout of the full bitmap (padding rounded up to whole
+// cells); the full bitmap is then tried only where it could beat it: down
+// from 3% above twice the coarse scale in steps of 1.5%, each packing on a
+// bitmap just small enough that a layout fitting it has a larger scale /
+// extent (a worse one fails early, once the placed charts pass that side).
+// The searches packed the full bitmap 3-6 times before, each failure as
+// costly as a success.
 Layout search_layout(const std::vector<PackChart>& charts, double area, int& side, int pad) {
   if (side < kHalfBitmapMinSide) return bisect_scale(charts, area, side, pad, kFineRatio, true);
   int half = side / 2;
   double coarse = 0;  // the largest scale that fitted (the best layout may be at a smaller one)
-  bisect_scale(charts, area, half, (pad + 1) / 2, kCoarseRatio, false, &coarse);
-  if (half == side / 2) {  // the half bitmap held them: its scale, doubled, is close
-    Search s{charts, side, pad, false, {}};
-    // Down from 3% above twice that scale in steps of 1.5% until one fits
-    // (as packing is not monotone in the scale, a few scales near the top
-    // beat a bisection). No refinement after it, nor the extra pose angles
-    // here: on the shared assets the two bisection steps and the two angle
-    // packings doubled the packing time (truck 360 -> 770 ms, spot 120 ->
-    // 225 ms) for under 1% of utilization on most of them.
-    const double guess = 2 * coarse;
-    if (!s.bracket(guess * kGuessAbove, 1 / kGuessStep, kGuessTries))
-      return bisect_scale(charts, area, side, pad, kFineRatio, true);
-    if (s.hi == INFINITY) s.hi = s.lo * kGuessAbove;
-    return std::move(s.best);
+  Layout best = bisect_scale(charts, area, half, (pad + 1) / 2, kCoarseRatio, false, &coarse);
+  if (half != side / 2) return bisect_scale(charts, area, side, pad, kFineRatio, true);
+  // The half bitmap held them: its layout at twice the scale.
+  best.scale *= 2, best.extent *= 2, best.zoom *= 2;
+  const double guess = 2 * coarse;
+  double s = guess * kGuessAbove;
+  for (int i = 0; i < kGuessTries; ++i, s /= kGuessStep) {
+    // Better than `best`: extent < s * best.extent / best.scale.
+    const int limit = static_cast<int>(std::ceil(s * best.extent / best.scale)) - 1;
+    Layout l;
+    if (try_scale(charts, s, std::min(side, limit), pad, false, l)) return l;
   }
-  return bisect_scale(charts, area, side, pad, kFineRatio, true);
+  return best;
 }
 
 }  // namespace intrinsic::detail::packing

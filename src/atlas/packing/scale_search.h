@@ -22,7 +22,13 @@ struct PackChart {
 struct Layout {
   double scale = 0;  // texels per unit of surface
   int extent = 0;    // side of the square the layout needs, texels
-  std::vector<Placement> at;  // per chart; pose = 4 * angle index + quarter turns
+  std::vector<Placement> at;  // per chart, on the layout's grid; pose = 4 * angle index + quarter turns
+  // The grid the charts were placed on: `zoom` texels a side per cell (a
+  // layout of the half-size bitmap taken as it is: every texel a chart
+  // covers lies in a cell its coarse mask covers), masks dilated by `pad`
+  // cells. Chart c's texel coordinates are zoom * (texel_coordinates(pose,
+  // scale / zoom, turns) + at[c] + pad).
+  int zoom = 1, pad = 0;
 };
 
 // Every chart's masks at `scale`: 4 quarter turns per pose angle, for the
