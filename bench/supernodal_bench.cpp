@@ -1,7 +1,8 @@
 // supernodal_bench: the numeric factorization and the two-column solve of
 // the conformal system (circle boundary eliminated) of a generated wavy
 // disk by CHOLMOD and by the library's supernodal Cholesky with 1 and with
-// the machine's threads, and of the authalic system by the supernodal LU;
+// the machine's threads, and of the authalic system by the supernodal LU
+// (1 thread and the machine's);
 // the variants alternate within each round (the machine is shared), and each
 // row is the median of the rounds. Same analysis for all (CHOLMOD's on the
 // level-set nested dissection), so the flops are the same: the kernel
@@ -57,7 +58,7 @@ SparseMatrix interior_system(const Mesh& mesh, Method method) {
 }
 
 struct Row {
-  std::vector<double> factor, solve;
+  std::vector<double> analyse, factor, solve;
   double flops = 0, nnz = 0;
 };
 
@@ -78,6 +79,7 @@ int main(int argc, char** argv) {
   auto time = [&](const std::string& name, auto&& f, const SparseMatrix& A) {
     Row& r = rows[name];
     if (!f.factor(A)) { std::cerr << name << ": factor failed\n"; return; }
+    r.analyse.push_back(f.analyse_ms);
     r.factor.push_back(f.factor_ms);
     const auto t = std::chrono::steady_clock::now();
     f.solve(rhs);
@@ -89,14 +91,15 @@ int main(int argc, char** argv) {
     { detail::CholmodFactor f; time("conformal CHOLMOD", f, C); }
     { detail::SupernodalCholesky f(1); time("conformal ours, 1 thread", f, C); }
     { detail::SupernodalCholesky f(threads); time("conformal ours, " + std::to_string(threads) + " threads", f, C); }
-    { detail::SupernodalLU f; time("authalic supernodal LU", f, U); }
+    { detail::SupernodalLU f(1); time("authalic supernodal LU, 1 thread", f, U); }
+    { detail::SupernodalLU f(threads); time("authalic supernodal LU, " + std::to_string(threads) + " threads", f, U); }
   }
   std::printf("n = %d unknowns (%d vertices), %d rounds, medians\n\n", static_cast<int>(C.rows()),
               static_cast<int>(mesh.V.rows()), rounds);
-  std::printf("| system / factorization | numeric factor s | GFlop | GFlop/s | solve (2 rhs) s | nnz(factor) |\n|---|---|---|---|---|---|\n");
+  std::printf("| system / factorization | ordering + analysis s | numeric factor s | GFlop | GFlop/s | solve (2 rhs) s | nnz(factor) |\n|---|---|---|---|---|---|---|\n");
   for (const auto& [name, r] : rows) {
     const double f = median(r.factor);
-    std::printf("| %s | %.3f | %.2f | %.2f | %.3f | %.0f |\n", name.c_str(), f / 1000, r.flops / 1e9,
+    std::printf("| %s | %.3f | %.3f | %.2f | %.2f | %.3f | %.0f |\n", name.c_str(), median(r.analyse) / 1000, f / 1000, r.flops / 1e9,
                 r.flops / 1e6 / f, median(r.solve) / 1000, r.nnz);
   }
   return 0;
