@@ -59,29 +59,42 @@ struct ObjState {
 // file is then read again by it (which also gives every error its message).
 struct NotInPieces {};
 
-// Counting 'v', 'vn' and 'f' lines first costs one memchr pass but spares
-// the repeated regrowth (and page faults) of the big arrays.
-void reserve_from_line_counts(const char* data, std::size_t size, ObjState& st) {
-  std::size_t nv_hint = 0, nf_hint = 0, nn_hint = 0;
+// Counting 'v', 'vt', 'vn' and 'f' lines first costs one memchr pass but
+// spares the repeated regrowth (and page faults) of the big arrays.
+struct LineCounts {
+  std::size_t v = 0, vt = 0, vn = 0, f = 0;
+};
+
+LineCounts count_lines(const char* data, std::size_t size) {
+  LineCounts n;
   const char* q = data;
   const char* end = data + size;
   while (q < end) {
     if (end - q > 1 && q[1] == ' ') {
-      if (q[0] == 'v') ++nv_hint;
-      if (q[0] == 'f') ++nf_hint;
-    } else if (end - q > 2 && q[0] == 'v' && q[1] == 'n' && q[2] == ' ') {
-      ++nn_hint;
+      if (q[0] == 'v') ++n.v;
+      if (q[0] == 'f') ++n.f;
+    } else if (end - q > 2 && q[0] == 'v' && q[2] == ' ') {
+      if (q[1] == 't') ++n.vt;
+      if (q[1] == 'n') ++n.vn;
     }
     const void* nl = std::memchr(q, '\n', static_cast<std::size_t>(end - q));
     q = nl ? static_cast<const char*>(nl) + 1 : end;
   }
-  nv_hint = std::min<std::size_t>(nv_hint, static_cast<std::size_t>(st.max_v));
-  nf_hint = std::min<std::size_t>(nf_hint, static_cast<std::size_t>(st.max_f));
-  st.b.xyz.reserve(nv_hint * 3);
-  st.b.tri.reserve(nf_hint * 3);
-  st.b.line.reserve(nf_hint);
-  st.extras.normal.reserve(std::min<std::size_t>(nn_hint, static_cast<std::size_t>(st.max_v)) * 3);
-  st.extras.triangle_hint = nf_hint;  // per-face arrays, if the file needs them
+  return n;
+}
+
+void reserve_for(const LineCounts& n, ObjState& st) {
+  const std::size_t limit_v = static_cast<std::size_t>(st.max_v), limit_f = static_cast<std::size_t>(st.max_f);
+  const std::size_t nf = std::min(n.f, limit_f);
+  st.b.xyz.reserve(std::min(n.v, limit_v) * 3);
+  st.b.tri.reserve(nf * 3);
+  st.b.line.reserve(nf);
+  if (n.vt > 0) {
+    st.b.uv.reserve(std::min(n.vt, limit_v) * 2);
+    st.b.tri_uv.reserve(nf * 3);
+  }
+  st.extras.normal.reserve(std::min(n.vn, limit_v) * 3);
+  st.extras.triangle_hint = nf;  // per-face arrays, if the file needs them
 }
 
 // Reads the x y z of a 'v' line (keyword already consumed).
@@ -307,17 +320,26 @@ std::optional<MeshData> read_obj_in_pieces(const char* data, std::size_t size, c
   if (parts < 2) return std::nullopt;
   const std::vector<std::size_t> cut = piece_starts(data, size, parts);
   std::vector<ObjState> pieces(parts);
-  std::vector<int> lines(parts, 0);
-  std::atomic<bool> ok{true};
+  std::vector<LineCounts> counts(parts);
   detail::parallel_for_parts(parts, parts, [&](int k, std::int64_t, std::int64_t) {
+    counts[k] = count_lines(data + cut[k], cut[k + 1] - cut[k]);
+  });
+  // The arrays are reserved on this thread: memory a worker allocates stays
+  // in its own malloc arena after it is freed, as resident memory.
+  for (int k = 0; k < parts; ++k) {
     ObjState& st = pieces[k];
     st.piece = true;
     st.max_v = vertex_limit(opt);
     st.max_f = face_limit(opt);
     st.poly.reserve(16);
+    reserve_for(counts[k], st);
+  }
+  std::vector<int> lines(parts, 0);
+  std::atomic<bool> ok{true};
+  detail::parallel_for_parts(parts, parts, [&](int k, std::int64_t, std::int64_t) {
+    ObjState& st = pieces[k];
     try {
       TextScanner s(data + cut[k], data + cut[k + 1], name);
-      reserve_from_line_counts(data + cut[k], cut[k + 1] - cut[k], st);
       parse_lines(s, st);
       lines[k] = s.line() - 1;  // the piece ends just after a newline
       if (!st.extras.tri_n.empty()) ok = false;
@@ -338,7 +360,7 @@ MeshData read_obj(const char* data, std::size_t size, const std::string& name, c
   st.max_v = vertex_limit(opt);
   st.max_f = face_limit(opt);
   st.poly.reserve(16);
-  reserve_from_line_counts(data, size, st);
+  reserve_for(count_lines(data, size), st);
   parse_lines(s, st);
   st.b.had_texcoords = st.n_tc > 0;
   check_face_indices(s, st);
