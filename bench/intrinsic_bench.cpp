@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -44,6 +45,8 @@
 #include "core/natural_system.h"  // assemble_natural_system
 #if __has_include("solve/suitesparse.h")  // absent when measuring older trees
 #include "solve/suitesparse.h"
+#include "solve/complex_form.h"
+#include "solve/ordering.h"
 #define INTRINSIC_BENCH_ORDERINGS 1
 #endif
 #ifdef INTRINSIC_HAVE_SUITESPARSE
@@ -350,16 +353,43 @@ std::string fmt(double ms) {
 }
 
 #if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_BENCH_ORDERINGS)
+// --orderings-time: the library's ordering alone on the conformal and the
+// complex natural pattern, no factorization (before/after timing runs).
+bool g_order_time_only = false;
+
+// The library's ordering alone on `pattern` (median of 3 runs, ms of this
+// thread's CPU time: it runs on one thread, and CPU time is what other jobs
+// on a shared machine disturb least), for the nested-dissection rows:
+// CHOLMOD's analyse time adds its symbolic analysis.
+double thread_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+double nd_order_ms(const SparseMatrix& pattern, detail::Ordering ord) {
+  if (ord != detail::Ordering::NestedDissection) return -1;
+  std::vector<double> t;
+  for (int run = 0; run < 3; ++run) {
+    const double t0 = thread_cpu_ms();
+    const std::vector<int> p = detail::level_set_nested_dissection(pattern);
+    t.push_back(thread_cpu_ms() - t0);
+  }
+  std::sort(t.begin(), t.end());
+  return t[1];
+}
+
 // One table row: factor A with f, time one solve of two right-hand sides.
 template <typename Factor>
-void ordering_row(const std::string& system, Factor&& f, const SparseMatrix& A, detail::Ordering ord) {
+void ordering_row(const std::string& system, Factor&& f, const SparseMatrix& A, detail::Ordering ord,
+                  double order_ms) {
   const Eigen::MatrixXd rhs = Eigen::MatrixXd::Random(A.rows(), 2);
   const auto t = Clock::now();
   f.solve(rhs);
   const double solve = ms_since(t);
-  std::cout << "| " << system << " | " << detail::ordering_name(ord) << " | " << fmt(f.analyse_ms) << " | "
+  std::cout << "| " << system << " | " << detail::ordering_name(ord) << " | "
+            << (order_ms < 0 ? std::string("-") : fmt(order_ms)) << " | " << fmt(f.analyse_ms) << " | "
             << fmt(f.factor_ms) << " | " << fmt(solve) << " | " << static_cast<long>(f.factor_nonzeros()) << " | "
-            << std::fixed << std::setprecision(1) << f.flops() / 1e9 << std::defaultfloat << " |" << std::endl;
+            << std::fixed << std::setprecision(2) << f.flops() / 1e9 << std::defaultfloat << " |" << std::endl;
 }
 
 // The conformal and authalic systems (circle boundary eliminated) and the
@@ -367,6 +397,7 @@ void ordering_row(const std::string& system, Factor&& f, const SparseMatrix& A, 
 // in its complex Hermitian form (docs/maths.md §3.6).
 void ordering_rows(const Mesh& mesh, detail::Ordering ord) {
   for (const char* method : {"conformal", "authalic"}) {
+    if (g_order_time_only && std::string(method) == "authalic") continue;
     const ParamOptions o = options_for(method);
     const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, o.weights);
     std::vector<char> fixed(mesh.V.rows(), 0);
@@ -375,14 +406,18 @@ void ordering_rows(const Mesh& mesh, detail::Ordering ord) {
     SparseMatrix A, B;
     split_matrix(K, p, A, B);
     const std::string n = ", n = " + std::to_string(A.rows()) + ")";
+    if (g_order_time_only) {
+      std::cout << method << " order s " << fmt(nd_order_ms(A, ord)) << std::endl;
+      continue;
+    }
     if (is_symmetric(o.weights)) {
       detail::CholmodFactor f(ord);
       f.factor(A);
-      ordering_row(std::string(method) + " (CHOLMOD" + n, f, A, ord);
+      ordering_row(std::string(method) + " (CHOLMOD" + n, f, A, ord, nd_order_ms(A, ord));
     } else {
       detail::UmfpackFactor f(ord);
       f.factor(A);
-      ordering_row(std::string(method) + " (UMFPACK" + n, f, A, ord);
+      ordering_row(std::string(method) + " (UMFPACK" + n, f, A, ord, nd_order_ms(A, ord));
     }
   }
   const int nv = static_cast<int>(mesh.V.rows());
@@ -393,12 +428,22 @@ void ordering_rows(const Mesh& mesh, detail::Ordering ord) {
   const Partition p = partition(2 * nv, known, used);
   SparseMatrix A, B;
   split_matrix(assemble_natural_system(mesh), p, A, B);
+  if (g_order_time_only) {
+    detail::ComplexSparse M;
+    if (detail::hermitian_from_real_form(A, M))
+      std::cout << "natural complex order s " << fmt(nd_order_ms(SparseMatrix(M.cwiseAbs()), ord)) << std::endl;
+    return;
+  }
   for (detail::Structure st : {detail::Structure::Real, detail::Structure::ComplexPairs}) {
     detail::CholmodFactor f(ord);
     f.factor(A, st);
     const std::string form = f.complex() ? "complex, n = " + std::to_string(A.rows() / 2)
                                          : "real, n = " + std::to_string(A.rows());
-    ordering_row("natural (CHOLMOD " + form + ")", f, A, ord);
+    detail::ComplexSparse M;
+    const double order_ms = !f.complex()                           ? nd_order_ms(A, ord)
+                            : detail::hermitian_from_real_form(A, M) ? nd_order_ms(SparseMatrix(M.cwiseAbs()), ord)
+                                                                     : -1;
+    ordering_row("natural (CHOLMOD " + form + ")", f, A, ord, order_ms);
   }
 }
 #endif
@@ -413,8 +458,8 @@ int orderings(const std::string& what, bool nested_dissection_only) {
   } else {
     mesh = make_mesh(read_mesh(what));
   }
-  std::cout << "| system | ordering | analyse s | factor s | solve s | nnz(factor) | GFlop |\n"
-               "|---|---|---|---|---|---|---|\n";
+  std::cout << "| system | ordering | order s (CPU) | analyse s | factor s | solve s | nnz(factor) | GFlop |\n"
+               "|---|---|---|---|---|---|---|---|\n";
   for (detail::Ordering ord : {detail::Ordering::NestedDissection, detail::Ordering::AMD, detail::Ordering::METIS})
     if (!nested_dissection_only || ord == detail::Ordering::NestedDissection) ordering_rows(mesh, ord);
   return 0;
@@ -449,7 +494,11 @@ int main(int argc, char** argv) {
     else if (a == "--workdir") workdir = next();
     else if (a == "--check-max") check_max = std::stoi(next());
     else if (a == "--orderings") return orderings(next(), false);
-    else if (a == "--orderings-nd") return orderings(next(), true);  // the library's ordering only (fast at 1M)
+    else if (a == "--orderings-nd") return orderings(next(), true);
+    else if (a == "--orderings-time") {  // the library's ordering's time only
+      g_order_time_only = true;
+      return orderings(next(), true);
+    }  // the library's ordering only (fast at 1M)
     else {
       std::cerr << "usage: intrinsic_bench [--sizes N,N,...] [--runs R] [--methods m,...] [--mesh FILE]... "
                    "[--workdir DIR] [--check-max N] | --orderings N|FILE | --orderings-nd N|FILE\n";

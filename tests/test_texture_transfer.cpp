@@ -161,10 +161,10 @@ TEST(AssetTextureTransfer, CliWritesAValidDocumentAndReportsTheBake) {
   ASSERT_EQ(j["textures"]["baked"].size(), 1u);
   EXPECT_EQ(j["textures"]["baked"][0]["width"], 256);
   EXPECT_GT(j["textures"]["baked"][0]["texels_covered"].get<long>(), 256 * 256 / 4);
-  const tinygltf::Model m = test::load_model(dir / "out.glb");
+  const tinygltf::Model m = gltf_test::load(dir / "out.glb");
   const int tex = m.materials.at(0).pbrMetallicRoughness.baseColorTexture.index;
   EXPECT_EQ(m.samplers.at(static_cast<std::size_t>(m.textures.at(static_cast<std::size_t>(tex)).sampler)).wrapS, 33071);
-  test::expect_valid_gltf(dir / "out.glb");
+  gltf_test::expect_valid(dir / "out.glb");
 }
 
 TEST(AssetTextureTransfer, ReplacingAUsedSetWithoutTransferNamesTheFlag) {
@@ -226,7 +226,7 @@ TEST(AssetTextureTransfer, MaterialWithoutTextureOnTheSetGetsANote) {
     j["bufferViews"].erase(j["bufferViews"].size() - 1);  // the image's, the last one
   });
   const TextureTransferReport rep = transfer(dir / "in.gltf", dir / "out.gltf");
-  test::expect_valid_gltf(dir / "out.gltf");  // no empty images or textures array
+  gltf_test::expect_valid(dir / "out.gltf");  // no empty images or textures array
   EXPECT_TRUE(rep.baked.empty());
   ASSERT_EQ(rep.notes.size(), 1u);
   EXPECT_NE(rep.notes[0].find("no texture on TEXCOORD_0"), std::string::npos) << rep.notes[0];
@@ -258,7 +258,7 @@ TEST(AssetTextureTransfer, NormalMapStaysFlatAndTangentsFollowTheNewU) {
   });
   const TextureTransferReport rep = transfer(dir / "in.gltf", dir / "out.glb", 256);
   ASSERT_EQ(rep.baked.size(), 2u);
-  const tinygltf::Model m = test::load_model(dir / "out.glb");
+  const tinygltf::Model m = gltf_test::load(dir / "out.glb");
   const tinygltf::Primitive& p = m.meshes.at(0).primitives.at(0);
   const int normal_texture = m.materials.at(0).normalTexture.index;
   const Image baked = decode_png(test::image_bytes(m, m.textures.at(static_cast<std::size_t>(normal_texture)).source, ""));
@@ -304,7 +304,7 @@ TEST(AssetTextureTransfer, NormalMapStaysFlatAndTangentsFollowTheNewU) {
   }
   EXPECT_GT(along, 0.95 * after.F.rows());
   EXPECT_GT(up, 0.95 * after.F.rows());
-  test::expect_valid_gltf(dir / "out.glb");
+  gltf_test::expect_valid(dir / "out.glb");
 }
 
 // A KHR_texture_transform on the slot is baked in: the slot loses it (and
@@ -319,7 +319,7 @@ TEST(AssetTextureTransfer, TextureTransformIsBakedIn) {
   transfer(dir / "in.gltf", dir / "out.glb", 1024);
   const json out = json::parse(test::slurp(dir / "in.gltf"));  // the input still has it
   ASSERT_TRUE(out.contains("extensionsUsed"));
-  const tinygltf::Model m = test::load_model(dir / "out.glb");
+  const tinygltf::Model m = gltf_test::load(dir / "out.glb");
   EXPECT_TRUE(m.extensionsUsed.empty());
   EXPECT_TRUE(m.materials.at(0).pbrMetallicRoughness.baseColorTexture.extensions.empty());
   Drawn before = test::drawn(dir / "in.gltf");
@@ -361,11 +361,11 @@ TEST(AssetTextureTransfer, MaterialsSharingAnImageGetOneBakeOverTheirUnion) {
   EXPECT_EQ(rep.baked[0].output, rep.baked[1].output);
   EXPECT_EQ(rep.baked[0].texels_covered, rep.baked[1].texels_covered);
   EXPECT_NE(rep.baked[0].material, rep.baked[1].material);
-  const tinygltf::Model m = test::load_model(dir / "out.glb");
+  const tinygltf::Model m = gltf_test::load(dir / "out.glb");
   EXPECT_EQ(m.materials.at(0).pbrMetallicRoughness.baseColorTexture.index,
             m.materials.at(1).pbrMetallicRoughness.baseColorTexture.index);
   EXPECT_EQ(m.images.size(), 2u);  // the old one (unused now) and the one bake
-  test::expect_valid_gltf(dir / "out.glb");
+  gltf_test::expect_valid(dir / "out.glb");
 }
 
 std::vector<std::string> files_in(const std::string& folder) {

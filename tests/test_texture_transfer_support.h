@@ -7,35 +7,15 @@
 
 #include <gtest/gtest.h>
 
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
-
 #include <filesystem>
 #include <numeric>
 
 #include "cli_support.h"
+#include "gltf_support.h"  // tinygltf, load() and the validator
 #include "intrinsic/render.h"
 
 namespace intrinsic::test {
 
-inline tinygltf::Model load_model(const std::string& path) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader([](tinygltf::Image*, int, std::string*, std::string*, int, int, const unsigned char*, int,
-                           void*) { return true; },
-                        nullptr);
-  std::string err, warn;
-  const bool ok = path.size() > 4 && path.compare(path.size() - 4, 4, ".glb") == 0
-                      ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                      : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-  EXPECT_TRUE(ok) << path << ": " << err;
-  return model;
-}
-
-// Accessor `i` as doubles, `components` per element (floats, or unsigned
-// integers as stored).
 inline std::vector<double> read_values(const tinygltf::Model& m, int i, int& components) {
   const tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(i)];
   const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
@@ -75,7 +55,7 @@ inline std::string image_bytes(const tinygltf::Model& m, int image, const std::s
 }
 
 inline Drawn drawn(const std::string& path, int set = 0) {
-  const tinygltf::Model m = load_model(path);
+  const tinygltf::Model m = gltf_test::load(path);
   const tinygltf::Primitive& p = m.meshes.at(0).primitives.at(0);
   Drawn d;
   int c = 0;
@@ -193,23 +173,6 @@ inline LookDifference look_difference(const Drawn& before, const Drawn& after, i
   d.mean = sum / std::max(1L, d.pixels) / 255;
   d.mean_away = sum_away / std::max(1L, d.pixels_away) / 255;
   return d;
-}
-
-// The Khronos validator (tests/gltf_validator) finds no error in `path`;
-// only this check is left out (with a note) where node or its npm package is
-// missing.
-inline void expect_valid_gltf(const std::string& path) {
-  const std::string script = std::string(INTRINSIC_SOURCE_DIR) + "/tests/gltf_validator/validate.mjs";
-  const std::string out = path + ".validator.txt";
-  const int status = std::system(("node " + script + " '" + path + "' >'" + out + "' 2>&1").c_str());
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  const std::string text = slurp(out);
-  std::filesystem::remove(out);
-  if (code == 77 || code == 127) {
-    std::printf("glTF validator not run on %s: needs node and `npm ci` in tests/gltf_validator\n", path.c_str());
-    return;
-  }
-  EXPECT_EQ(code, 0) << path << ":\n" << text;
 }
 
 }  // namespace intrinsic::test

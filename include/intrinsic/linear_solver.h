@@ -1,5 +1,6 @@
 // One sparse linear solver behind a small interface: factor once, solve many
-// right-hand sides (u and v together). Backends: CHOLMOD supernodal Cholesky,
+// right-hand sides (u and v together). Backends: our supernodal Cholesky on
+// CHOLMOD's analysis (both cores), CHOLMOD supernodal Cholesky,
 // a supernodal LU without pivoting on CHOLMOD's analysis (for the
 // non-symmetric systems, whose pattern is still symmetric; checked by the
 // residual, UMFPACK when it fails) and UMFPACK LU when SuiteSparse is built
@@ -20,7 +21,11 @@ using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, int indices
 // residual is checked and the solver switches to UMFPACK (kind() then says
 // so) when the factorization needs pivoting. Auto uses it for
 // non-symmetric systems when SuiteSparse and OpenBLAS are built in.
-enum class SolverKind { Auto, Cholmod, Umfpack, EigenLLT, EigenLU, CG, BiCGSTAB, SupernodalLU };
+// SupernodalCholesky: the library's own supernodal Cholesky on CHOLMOD's
+// analysis, subtrees of the elimination tree on separate cores; Auto uses it
+// for symmetric systems (CHOLMOD when it finds the matrix not positive
+// definite, and for the natural map's complex form).
+enum class SolverKind { Auto, Cholmod, Umfpack, EigenLLT, EigenLU, CG, BiCGSTAB, SupernodalLU, SupernodalCholesky };
 
 std::string solver_name(SolverKind k);
 SolverKind parse_solver(const std::string& name);  // throws Error(Usage)

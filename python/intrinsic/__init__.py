@@ -143,7 +143,7 @@ def parameterize(
     - ``boundary``: circle | square | natural | a boundary file path.
     - ``spacing`` (arclength | uniform), ``scale`` (unit | surface),
       ``holes`` (fill | free | natural), ``largest_component``.
-    - ``solver``: auto | cholmod | umfpack | eigen-llt | eigen-lu | cg | bicgstab | supernodal-lu.
+    - ``solver``: auto | cholmod | umfpack | eigen-llt | eigen-lu | cg | bicgstab | supernodal-lu | supernodal-cholesky.
     - ``pins``: natural boundary, ``[(vertex, u, v), ...]`` or ``["V:U,V", ...]``.
     - ``max_residual``: NumericalError above this relative residual.
     - ``constraints``: a dict shaped like the JSON constraint file

@@ -88,6 +88,7 @@ class SolverKind(_Enum):
     CG: ClassVar[SolverKind]
     BICGSTAB: ClassVar[SolverKind]
     SUPERNODAL_LU: ClassVar[SolverKind]
+    SUPERNODAL_CHOLESKY: ClassVar[SolverKind]
     __members__: ClassVar[Dict[str, SolverKind]]
 
 class LambdaEnergy(_Enum):

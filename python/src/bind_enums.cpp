@@ -68,7 +68,8 @@ void register_enums(py::module_& m) {
                          {"EIGEN_LU", SolverKind::EigenLU},
                          {"CG", SolverKind::CG},
                          {"BICGSTAB", SolverKind::BiCGSTAB},
-                         {"SUPERNODAL_LU", SolverKind::SupernodalLU}});
+                         {"SUPERNODAL_LU", SolverKind::SupernodalLU},
+                         {"SUPERNODAL_CHOLESKY", SolverKind::SupernodalCholesky}});
   bind_enum<LambdaEnergy>(m, "LambdaEnergy", "The energy the optimal lambda minimises (optimize_lambda=; paper 5.1).",
                           {{"EDGE", LambdaEnergy::EdgeLength}, {"AREA", LambdaEnergy::Area}});
   bind_enum<BoundaryEnergy>(m, "BoundaryEnergy",

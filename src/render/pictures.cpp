@@ -13,6 +13,7 @@
 
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
+#include "render/image.h"
 
 namespace intrinsic {
 
@@ -69,23 +70,7 @@ void check_png_path(const std::string& path, const std::string& option) {
     throw_usage(option + " '" + path + "': pictures are written as PNG; use a name ending in .png");
 }
 
-Image read_picture_texture(const std::string& path) {
-  const Texture t = read_texture_file(path);
-  Image img(t.width, t.height);
-  const int c = t.channels;
-  const bool alpha = c == 2 || c == 4;
-  for (int y = 0; y < t.height; ++y)
-    for (int x = 0; x < t.width; ++x) {
-      const float* p = &t.texels[(static_cast<std::size_t>(y) * t.width + x) * c];
-      const float a = alpha ? p[c - 1] : 1.0f;
-      for (int k = 0; k < 3; ++k) {
-        const float v = c >= 3 ? p[k] : p[0];
-        const float on_white = a * v + (1 - a);
-        img.pixel(x, y)[k] = static_cast<std::uint8_t>(std::lround(std::clamp(on_white, 0.0f, 1.0f) * 255));
-      }
-    }
-  return img;
-}
+Image read_picture_texture(const std::string& path) { return render::picture_from_texture(read_texture_file(path)); }
 
 const Eigen::VectorXd& mode_values(PictureMode m, const FaceDistortion& fd) {
   switch (m) {

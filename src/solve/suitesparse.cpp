@@ -60,6 +60,57 @@ cholmod_sparse symmetric_view(Long n, Long nonzeros, LongPattern& pattern, const
 
 }  // namespace
 
+// The analysis the library's own numeric factorizations share (see the
+// header): CHOLMOD's supernodes, relaxed amalgamation and postorder on the
+// ordering the conformal system gets.
+bool supernodal_analysis(const SparseMatrix& A, SupernodalSymbolic& out) {
+  out = SupernodalSymbolic();
+  const int n = static_cast<int>(A.rows());
+  out.n = n;
+  out.super = {0};
+  out.pi = out.px = {0};
+  if (n == 0) return true;
+  const std::vector<int> order = level_set_nested_dissection(A);
+  std::vector<Long> given(order.begin(), order.end());
+  LongPattern pattern(A);
+  cholmod_common c;
+  cholmod_l_start(&c);
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  c.postorder = 1;
+  c.print = 0;
+  cholmod_sparse cs = symmetric_view(n, A.nonZeros(), pattern, nullptr, CHOLMOD_PATTERN);
+  cholmod_factor* L = cholmod_l_analyze_p(&cs, given.data(), nullptr, 0, &c);
+  if (!L || !L->is_super) {
+    if (L) cholmod_l_free_factor(&L, &c);
+    cholmod_l_finish(&c);
+    return false;
+  }
+  const int nsuper = static_cast<int>(L->nsuper);
+  const Long* Lsuper = static_cast<const Long*>(L->super);
+  const Long* Lpi = static_cast<const Long*>(L->pi);
+  const Long* Lpx = static_cast<const Long*>(L->px);
+  const Long* Ls = static_cast<const Long*>(L->s);
+  const Long* Lperm = static_cast<const Long*>(L->Perm);
+  out.nsuper = nsuper;
+  out.super.assign(Lsuper, Lsuper + nsuper + 1);
+  out.pi.assign(Lpi, Lpi + nsuper + 1);
+  out.px.assign(Lpx, Lpx + nsuper + 1);
+  out.rows.assign(Ls, Ls + out.pi[nsuper]);
+  out.perm.assign(Lperm, Lperm + n);
+  cholmod_l_free_factor(&L, &c);
+  cholmod_l_finish(&c);
+  out.super_of.resize(n);
+  out.parent.assign(nsuper, -1);
+  for (int s = 0; s < nsuper; ++s) {
+    for (int k = out.super[s]; k < out.super[s + 1]; ++k) out.super_of[k] = s;
+  }
+  for (int s = 0; s < nsuper; ++s)
+    if (out.nsrow(s) > out.nscol(s)) out.parent[s] = out.super_of[out.rows[out.pi[s] + out.nscol(s)]];
+  return true;
+}
+
 std::string ordering_name(Ordering o) {
   switch (o) {
     case Ordering::NestedDissection: return "nested-dissection";

@@ -7,6 +7,7 @@
 
 #ifdef INTRINSIC_HAVE_SUITESPARSE
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,6 +28,26 @@ enum class Structure {
   Real,          // the matrix as given
   ComplexPairs,  // its complex Hermitian form when it is [K -B; B K] (complex_form.h), else as given
 };
+
+// CHOLMOD's supernodal symbolic analysis of a symmetric pattern on the
+// level-set nested dissection ordering, copied out with 32-bit row indices
+// (the factor is freed at once): what the library's own numeric
+// factorizations (supernodal_cholesky.h, supernodal_lu.h) work on.
+// Supernodes are postordered, so each subtree is a contiguous range.
+struct SupernodalSymbolic {
+  int n = 0, nsuper = 0;
+  std::vector<int> perm;             // perm[k]: the row and column of A eliminated k-th
+  std::vector<int> super;            // first column of each supernode, and n
+  std::vector<std::int64_t> pi, px;  // offsets of each supernode's row indices and values (nsrow x nscol)
+  std::vector<int> rows;             // row indices (permuted numbering), supernode by supernode, ascending
+  std::vector<int> super_of;         // the supernode of each column
+  std::vector<int> parent;           // supernodal elimination tree (-1 at roots)
+  int nscol(int s) const { return super[s + 1] - super[s]; }
+  std::int64_t nsrow(int s) const { return pi[s + 1] - pi[s]; }
+};
+// False when CHOLMOD cannot (out of memory); A's pattern must be symmetric
+// (the lower triangle is read). A 0 x 0 matrix gives no supernodes.
+bool supernodal_analysis(const SparseMatrix& A, SupernodalSymbolic& out);
 
 // Supernodal Cholesky of a symmetric positive definite matrix (both
 // triangles stored; the lower one is used).

@@ -8,8 +8,6 @@
 
 #ifdef INTRINSIC_HAVE_SUPERNODAL_LU
 
-#include <cholmod.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,8 +15,9 @@
 #include <vector>
 
 #include "intrinsic/error.h"
-#include "solve/ordering.h"
 #include "solve/solver_threads.h"
+#include "solve/suitesparse.h"
+#include "solve/supernodal_schedule.h"
 
 extern "C" {
 void dgemm_(const char* ta, const char* tb, const int* m, const int* n, const int* k, const double* alpha,
@@ -31,7 +30,7 @@ void dtrsm_(const char* side, const char* uplo, const char* ta, const char* diag
 namespace intrinsic::detail {
 namespace {
 
-using Long = SuiteSparse_long;
+using Long = std::int64_t;
 constexpr double kOne = 1, kMinusOne = -1, kZero = 0;
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
@@ -90,67 +89,47 @@ struct SupernodalLU::Impl {
   // x nscol; U_s itself sits in L's diagonal block).
   std::vector<double> Lx, Ux;
   double flops = 0;
+  int threads = 1;
+  // Who updates each supernode (ascending: a fixed order), and the subtrees
+  // that run in parallel (supernodal_schedule.h; the top supernodes run on
+  // one thread).
+  DescendantLists updates;
+  SupernodalSchedule schedule;
 
   bool analyse(const SparseMatrix& A);
   Long position(int s, int row) const;
   bool assemble(const SparseMatrix& A, const std::vector<int>& iperm);
-  void update_from(int d, int s, std::vector<Long>& lpos, const std::vector<int>& map, std::vector<double>& work);
+  double update_from(int d, int s, Long p1, const std::vector<int>& map, std::vector<double>& work);
+  bool factor_node(int s, const std::vector<double>& floor, std::vector<int>& map, std::vector<double>& work,
+                   double& node_flops);
   bool numeric(const SparseMatrix& A);
   void forward(double* Y, int nrhs, bool transposed) const;
   void backward(double* Y, int nrhs, bool transposed) const;
 };
 
-// CHOLMOD's supernodal symbolic analysis of A's (symmetric) pattern on the
-// level-set nested dissection ordering, the one the conformal system gets.
-// False when CHOLMOD cannot (out of memory): UMFPACK may still.
+// CHOLMOD's supernodal symbolic analysis (suitesparse.h), the one the
+// supernodal Cholesky of the conformal system gets. False when CHOLMOD
+// cannot (out of memory): UMFPACK may still.
 bool SupernodalLU::Impl::analyse(const SparseMatrix& A) {
-  n = static_cast<int>(A.rows());
-  const std::vector<int> order = level_set_nested_dissection(A);
-  std::vector<Long> given(order.begin(), order.end());
-  std::vector<Long> p(A.outerIndexPtr(), A.outerIndexPtr() + n + 1), i(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-  cholmod_common c;
-  cholmod_l_start(&c);
-  c.supernodal = CHOLMOD_SUPERNODAL;
-  c.nmethods = 1;
-  c.method[0].ordering = CHOLMOD_GIVEN;
-  c.postorder = 1;
-  c.print = 0;
-  cholmod_sparse cs{};
-  cs.nrow = cs.ncol = n;
-  cs.nzmax = A.nonZeros();
-  cs.p = p.data();
-  cs.i = i.data();
-  cs.stype = -1;  // the lower triangle's pattern; the whole pattern is symmetric
-  cs.itype = CHOLMOD_LONG;
-  cs.xtype = CHOLMOD_PATTERN;
-  cs.dtype = CHOLMOD_DOUBLE;
-  cs.sorted = 1;
-  cs.packed = 1;
-  cholmod_factor* L = cholmod_l_analyze_p(&cs, given.data(), nullptr, 0, &c);
-  if (!L || !L->is_super) {
-    if (L) cholmod_l_free_factor(&L, &c);
-    cholmod_l_finish(&c);
-    return false;
-  }
-  nsuper = static_cast<int>(L->nsuper);
-  const Long* Lsuper = static_cast<const Long*>(L->super);
-  const Long* Lpi = static_cast<const Long*>(L->pi);
-  const Long* Lpx = static_cast<const Long*>(L->px);
-  const Long* Ls = static_cast<const Long*>(L->s);
-  const Long* Lperm = static_cast<const Long*>(L->Perm);
-  super.assign(Lsuper, Lsuper + nsuper + 1);
-  pi.assign(Lpi, Lpi + nsuper + 1);
-  px.assign(Lpx, Lpx + nsuper + 1);
-  rows.assign(Ls, Ls + pi[nsuper]);
-  perm.assign(Lperm, Lperm + n);
-  cholmod_l_free_factor(&L, &c);
-  cholmod_l_finish(&c);
+  SupernodalSymbolic S;
+  if (!supernodal_analysis(A, S)) return false;
+  updates = descendant_lists(S);
+  std::vector<double> cost(S.nsuper, 0.0);
+  for (int s = 0; s < S.nsuper; ++s)
+    for (int j = 0; j < S.nscol(s); ++j) cost[s] += 2.0 * (S.nsrow(s) - j) * (S.nsrow(s) - j);
+  schedule = subtree_schedule(S, cost);
+  n = S.n;
+  nsuper = S.nsuper;
+  perm = std::move(S.perm);
+  super = std::move(S.super);
+  pi = std::move(S.pi);
+  px = std::move(S.px);
+  rows = std::move(S.rows);
+  super_of = std::move(S.super_of);
   ux.assign(nsuper + 1, 0);
-  super_of.resize(n);
   for (int s = 0; s < nsuper; ++s) {
     const Long nscol = super[s + 1] - super[s];
     ux[s + 1] = ux[s] + (pi[s + 1] - pi[s] - nscol) * nscol;
-    for (int k = super[s]; k < super[s + 1]; ++k) super_of[k] = s;
   }
   return true;
 }
@@ -190,15 +169,14 @@ bool SupernodalLU::Impl::assemble(const SparseMatrix& A, const std::vector<int>&
 }
 
 // Subtracts descendant d's contribution from supernode s: with d's rows from
-// lpos[d] on split into those among s's columns (n1) and those after (n3),
+// p1 (its first row in s) on split into those among s's columns (n1) and those after (n3),
 // L_s -= L_d[rows] U_d[:, cols] and U_s^T -= U_d^T[rows after] L_d[cols]^T.
-void SupernodalLU::Impl::update_from(int d, int s, std::vector<Long>& lpos, const std::vector<int>& map,
-                                     std::vector<double>& work) {
+double SupernodalLU::Impl::update_from(int d, int s, Long p1, const std::vector<int>& map,
+                                       std::vector<double>& work) {
   const int k1 = super[s], k2 = super[s + 1];
   const Long nsrow = pi[s + 1] - pi[s];
   const int ndcol = super[d + 1] - super[d];
   const Long pdi = pi[d], ndrow = pi[d + 1] - pdi;
-  const Long p1 = lpos[d];  // at least ndcol: past d's diagonal block
   Long p2 = p1;
   while (p2 < ndrow && rows[pdi + p2] < k2) ++p2;
   const int n1 = static_cast<int>(p2 - p1), n2 = static_cast<int>(ndrow - p1), n3 = n2 - n1;
@@ -210,7 +188,6 @@ void SupernodalLU::Impl::update_from(int d, int s, std::vector<Long>& lpos, cons
   double* CU = CL + static_cast<size_t>(n2) * n1;
   gemm('N', 'T', n2, n1, ndcol, 1, Ld, ld, Ud, ldu, 0, CL, n2);
   gemm('N', 'T', n3, n1, ndcol, 1, Ud + n1, ldu, Ld, ld, 0, CU, n3);
-  flops += 2.0 * ndcol * n1 * (n2 + n3);
   const int* drows = rows.data() + pdi + p1;
   const Long nscol = k2 - k1, below = nsrow - nscol;
   double* L = Lx.data() + px[s];
@@ -220,11 +197,31 @@ void SupernodalLU::Impl::update_from(int d, int s, std::vector<Long>& lpos, cons
     for (int i = 0; i < n2; ++i) L[col * nsrow + map[drows[i]]] -= CL[i + static_cast<Long>(j) * n2];
     for (int i = 0; i < n3; ++i) U[col * below + map[drows[n1 + i]] - nscol] -= CU[i + static_cast<Long>(j) * n3];
   }
-  lpos[d] = p2;
+  return 2.0 * ndcol * n1 * (n2 + n3);
+}
+
+// Supernode s: its descendants' updates in ascending order, then the LU of
+// its diagonal block and the two panels beside it. False at a bad pivot.
+bool SupernodalLU::Impl::factor_node(int s, const std::vector<double>& floor, std::vector<int>& map,
+                                     std::vector<double>& work, double& node_flops) {
+  const int k1 = super[s], nscol = super[s + 1] - k1;
+  const Long psi = pi[s], nsrow = pi[s + 1] - psi;
+  for (Long r = 0; r < nsrow; ++r) map[rows[psi + r]] = static_cast<int>(r);
+  for (Long u = updates.start[s]; u < updates.start[s + 1]; ++u)
+    node_flops += update_from(updates.d[u], s, updates.p[u], map, work);
+  double* L = Lx.data() + px[s];
+  double* U = Ux.data() + ux[s];
+  const int lda = static_cast<int>(nsrow), below = static_cast<int>(nsrow - nscol);
+  if (!dense_lu(nscol, L, lda, floor.data() + k1)) return false;
+  node_flops += 2.0 * nscol * nscol * nscol / 3;
+  trsm('R', 'U', 'N', 'N', below, nscol, L, lda, L + nscol, lda);  // L below = A below U_s^{-1}
+  trsm('R', 'L', 'T', 'U', below, nscol, L, lda, U, std::max(below, 1));  // U right^T = A right^T L_s^{-T}
+  node_flops += 2.0 * below * nscol * nscol;
+  return true;
 }
 
 bool SupernodalLU::Impl::numeric(const SparseMatrix& A) {
-  std::vector<int> iperm(n), map(n, 0);
+  std::vector<int> iperm(n);
   for (int k = 0; k < n; ++k) iperm[perm[k]] = k;
   // A pivot must stand out of rounding relative to its column of A.
   std::vector<double> floor(n, 0.0);
@@ -234,44 +231,30 @@ bool SupernodalLU::Impl::numeric(const SparseMatrix& A) {
   Lx.assign(px[nsuper], 0.0);
   Ux.assign(ux[nsuper], 0.0);
   if (!assemble(A, iperm)) return false;
-  // head[s]: descendants whose next unused row lies in s, linked by next.
-  std::vector<int> head(nsuper, -1), next(nsuper, -1);
-  std::vector<Long> lpos(nsuper, 0);
-  std::vector<double> work;
+  // The subtrees on `threads` workers, each with its own scratch, then the
+  // top supernodes on this thread.
+  std::vector<std::vector<int>> maps(threads, std::vector<int>(n, 0));
+  std::vector<std::vector<double>> works(threads);
+  const int tasks = static_cast<int>(schedule.subtrees.size());
+  std::vector<double> task_flops(tasks, 0.0);
+  std::vector<char> failed(tasks, 0);
+  run_tasks(tasks, threads, [&](int t, int worker) {
+    for (int s = schedule.subtrees[t].first; s <= schedule.subtrees[t].second && !failed[t]; ++s)
+      failed[t] = !factor_node(s, floor, maps[worker], works[worker], task_flops[t]);
+  });
   flops = 0;
-  for (int s = 0; s < nsuper; ++s) {
-    const int k1 = super[s], nscol = super[s + 1] - k1;
-    const Long psi = pi[s], nsrow = pi[s + 1] - psi;
-    for (Long r = 0; r < nsrow; ++r) map[rows[psi + r]] = static_cast<int>(r);
-    for (int d = head[s]; d >= 0;) {
-      const int following = next[d];
-      update_from(d, s, lpos, map, work);
-      if (lpos[d] < pi[d + 1] - pi[d]) {
-        const int t = super_of[rows[pi[d] + lpos[d]]];
-        next[d] = head[t];
-        head[t] = d;
-      }
-      d = following;
-    }
-    double* L = Lx.data() + px[s];
-    double* U = Ux.data() + ux[s];
-    const int lda = static_cast<int>(nsrow), below = static_cast<int>(nsrow - nscol);
-    if (!dense_lu(nscol, L, lda, floor.data() + k1)) return false;
-    flops += 2.0 * nscol * nscol * nscol / 3;
-    trsm('R', 'U', 'N', 'N', below, nscol, L, lda, L + nscol, lda);  // L below = A below U_s^{-1}
-    trsm('R', 'L', 'T', 'U', below, nscol, L, lda, U, std::max(below, 1));  // U right^T = A right^T L_s^{-T}
-    flops += 2.0 * below * nscol * nscol;
-    if (below > 0) {
-      lpos[s] = nscol;
-      const int t = super_of[rows[psi + nscol]];
-      next[s] = head[t];
-      head[t] = s;
-    }
+  for (int t = 0; t < tasks; ++t) {
+    if (failed[t]) return false;
+    flops += task_flops[t];
   }
+  for (int s : schedule.top)
+    if (!factor_node(s, floor, maps[0], works[0], flops)) return false;
   return true;
 }
 
-SupernodalLU::SupernodalLU() : impl_(std::make_unique<Impl>()) {}
+SupernodalLU::SupernodalLU(int threads) : impl_(std::make_unique<Impl>()) {
+  impl_->threads = threads > 0 ? threads : hardware_threads();
+}
 SupernodalLU::~SupernodalLU() = default;
 
 bool SupernodalLU::factor(const SparseMatrix& A) {
@@ -279,7 +262,9 @@ bool SupernodalLU::factor(const SparseMatrix& A) {
   if (A.rows() != A.cols() || !A.isCompressed()) throw_numerical("internal: supernodal LU needs a compressed square matrix");
   const auto t0 = std::chrono::steady_clock::now();
   if (A.rows() == 0) {  // nothing to factor (every vertex fixed)
+    const int threads = s.threads;
     s = Impl();
+    s.threads = threads;
     s.super = {0};
     s.pi = s.px = s.ux = {0};
     return true;

@@ -28,7 +28,10 @@ namespace intrinsic::detail {
 
 class SupernodalLU {
  public:
-  SupernodalLU();
+  // threads: how many run independent subtrees of the elimination tree
+  // (supernodal_schedule.h); 0 = the machine's cores. The result does not
+  // depend on it.
+  explicit SupernodalLU(int threads = 0);
   ~SupernodalLU();
   SupernodalLU(const SupernodalLU&) = delete;
   SupernodalLU& operator=(const SupernodalLU&) = delete;

@@ -1,8 +1,8 @@
-// Texture images as PNG through libpng, at full fidelity: grey, grey+alpha,
+// Texture images as PNG through libpng (the only libpng code: the pictures
+// of render.h are RGB8 views of it), at full fidelity: grey, grey+alpha,
 // RGB and RGBA at 8 or 16 bits are kept as they are (palette and low-bit grey
 // expand to 8 bits, a tRNS chunk becomes an alpha channel); no gamma or
-// colour-space conversion. render/image.cpp has the RGB8 pictures' codec;
-// this one is for textures that go back into assets. libpng reports errors
+// colour-space conversion. libpng reports errors
 // by longjmp, so each libpng call sequence lives in a function whose frame
 // holds no objects with destructors between setjmp and the calls.
 #include <png.h>

@@ -78,7 +78,8 @@ ChoiceTable<SolverKind> choice_table<SolverKind>() {
                                             {SolverKind::Umfpack, "umfpack"},   {SolverKind::EigenLLT, "eigen-llt"},
                                             {SolverKind::EigenLU, "eigen-lu"},  {SolverKind::CG, "cg"},
                                             {SolverKind::BiCGSTAB, "bicgstab"},
-                                            {SolverKind::SupernodalLU, "supernodal-lu"}};
+                                            {SolverKind::SupernodalLU, "supernodal-lu"},
+                                            {SolverKind::SupernodalCholesky, "supernodal-cholesky"}};
   return table(rows);
 }
 

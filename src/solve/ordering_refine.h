@@ -1,0 +1,55 @@
+// Vertex-separator refinement for the nested dissection (internal; see
+// ordering.h). A breadth-first level is a separator, but a jagged one: it
+// follows the search's distance, not the shortest way across the piece. A
+// Fiduccia-Mattheyses pass (the vertex-separator form METIS uses for its
+// nested dissection) moves separator vertices into one half and pulls their
+// neighbours in the other half into the separator whenever that shrinks it,
+// within a balance bound, and keeps the smallest separator seen. The
+// separator's size is what the factorization pays for (its dense block costs
+// size^3/3 flops), so each vertex taken off the top separators matters.
+#pragma once
+
+#include <vector>
+
+namespace intrinsic::detail {
+
+class SeparatorRefiner {
+ public:
+  // The graph in compressed-column form (end non-null for an uncompressed
+  // matrix, as in ordering.cpp); n vertices.
+  SeparatorRefiner(const int* begin, const int* end, const int* index, int n);
+
+  // Improves the separator of one piece: the vertices w with owner[w] == tag,
+  // side[w] = 0 or 1 (the halves) or 2 (the separator, listed in
+  // `separator`). No edge joins side 0 to side 1 before or after. Keeps
+  // max(|side 0|, |side 1|) <= max_fraction * (|side 0| + |side 1|) if the
+  // start does. At most `passes` passes; each is linear in the vertices it
+  // touches (near the separator) times log of the separator size.
+  void refine(std::vector<int>& separator, std::vector<signed char>& side, const std::vector<int>& owner,
+              int tag, long size0, long size1, double max_fraction, int passes);
+
+ private:
+  struct Move {
+    int vertex;
+    signed char to;
+    int pulled_end;  // end of the vertices this move pulled into the separator
+  };
+  class Heap;
+
+  bool pass(std::vector<int>& separator, std::vector<signed char>& side, const std::vector<int>& owner, int tag,
+            long weight[3], double max_fraction);
+  int end_of(int v) const { return end_ ? begin_[v] + end_[v] : begin_[v + 1]; }
+
+  const int* begin_;
+  const int* end_;
+  const int* index_;
+  // Per-vertex counts of a separator vertex's neighbours in side 0 and 1,
+  // and whether it moved in this pass. Reused across pieces.
+  std::vector<int> in0_, in1_;
+  std::vector<char> moved_;
+  std::vector<int> pos0_, pos1_;  // heap positions (-1: absent)
+  std::vector<Move> moves_;
+  std::vector<int> pulled_;
+};
+
+}  // namespace intrinsic::detail
