@@ -73,6 +73,34 @@ TEST(ComplexForm, HermitianFormHasTheSameQuadraticForm) {
   }
 }
 
+// The product from the lower triangle alone against Eigen's product with
+// both triangles, and the merge into compressed storage against Eigen's
+// triplet assembly of the same entries.
+TEST(ComplexForm, LowerTriangleProductAndDirectAssembly) {
+  const Mesh mesh = curved_disk();
+  const SparseMatrix Q = assemble_natural_system(mesh);
+  detail::ComplexSparse M;
+  ASSERT_TRUE(detail::hermitian_from_real_form(Q, M));
+  const Eigen::Index m = Q.rows() / 2;
+  std::vector<Eigen::Triplet<std::complex<double>>> t;
+  for (Eigen::Index j = 0; j < m; ++j)
+    for (SparseMatrix::InnerIterator it(Q, j); it; ++it)
+      t.emplace_back(it.row() % m, j, it.row() < m ? std::complex<double>(it.value(), 0)
+                                                   : std::complex<double>(0, it.value()));
+  detail::ComplexSparse by_triplets(m, m);
+  by_triplets.setFromTriplets(t.begin(), t.end());
+  EXPECT_EQ(Eigen::MatrixXcd(M - by_triplets).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(M.nonZeros(), by_triplets.nonZeros());
+  const detail::ComplexSparse lower = M.triangularView<Eigen::Lower>();
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXcd Z(m, 2);
+  for (Eigen::Index k = 0; k < Z.size(); ++k) Z.data()[k] = {normal(rng), normal(rng)};
+  const Eigen::MatrixXcd expected = M * Z;
+  EXPECT_LT((detail::hermitian_lower_product(lower, Z) - expected).cwiseAbs().maxCoeff(),
+            1e-13 * expected.cwiseAbs().maxCoeff());
+}
+
 TEST(ComplexForm, MatricesWithoutTheStructureAreRefused) {
   const Mesh mesh = curved_disk();
   SparseMatrix Q = assemble_natural_system(mesh);

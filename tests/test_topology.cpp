@@ -2,7 +2,10 @@
 // orientation repair, loops and components are counted right.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "intrinsic/error.h"
+#include "intrinsic/generate.h"
 #include "test_support.h"
 
 namespace intrinsic {
@@ -53,6 +56,28 @@ TEST(Topology, InconsistentOrientationIsRepairedAndCounted) {
   const Mesh m = make_mesh(grid_vertices(4), F);
   EXPECT_EQ(m.validation.reoriented_faces, 3);
   EXPECT_EQ(m.F, grid_faces(4));
+}
+
+// Twins against a plain map of directed edges, whether validation kept the
+// adjacency of its orientation pass (nothing flipped) or rebuilt it (faces
+// flipped), on a generated irregular disk.
+TEST(Topology, TwinsMatchADirectedEdgeMap) {
+  const MeshData d = generate_wavy_patch([] { GenerateOptions g; g.rings = 30; return g; }());
+  MatrixX3i flipped = d.F;
+  for (int f = 0; f < flipped.rows(); f += 97) std::swap(flipped(f, 1), flipped(f, 2));
+  for (const MatrixX3i& F : {d.F, flipped}) {
+    const Mesh m = make_mesh(d.V, F);
+    EXPECT_EQ(m.F, d.F);
+    std::map<std::pair<int, int>, int> directed;
+    for (int h = 0; h < 3 * static_cast<int>(m.F.rows()); ++h) directed[{m.source(h), m.target(h)}] = h;
+    int boundary = 0;
+    for (int h = 0; h < 3 * static_cast<int>(m.F.rows()); ++h) {
+      const auto it = directed.find({m.target(h), m.source(h)});
+      EXPECT_EQ(m.topology.twin[h], it == directed.end() ? -1 : it->second);
+      boundary += it == directed.end();
+    }
+    EXPECT_EQ(static_cast<size_t>(boundary), m.topology.boundary_loops[0].size());
+  }
 }
 
 TEST(Topology, UnreferencedVerticesAreCounted) {

@@ -11,6 +11,7 @@
 #include <deque>
 #include <functional>
 #include <future>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -20,37 +21,49 @@ namespace intrinsic {
 
 namespace {
 
-// Appends formatted numbers to one growing buffer (a chunk of the file).
+// One chunk of the file being formatted: a raw byte buffer written through a
+// pointer. Each row first asks for room for its longest possible text (a
+// shortest round-trip double is at most 24 characters), so the number
+// formatting itself never checks for space; buffers are reused from chunk to
+// chunk (fresh ones would cost a page fault per 4 KB).
 class OutBuffer {
  public:
-  explicit OutBuffer(std::size_t reserve) { s_.reserve(reserve); }
-  void text(const char* t) { s_.append(t); }
-  void text(const std::string& t) { s_.append(t); }
-  void ch(char c) { s_.push_back(c); }
-  void num(double x) {
-    char b[32];
-    auto r = std::to_chars(b, b + sizeof b, x);
-    s_.append(b, r.ptr);
+  // Room for `bytes` more; write from the returned pointer, then done(end).
+  char* room(std::size_t bytes) {
+    if (size_ + bytes > capacity_) grow(size_ + bytes);
+    return data_.get() + size_;
   }
-  void num(long long x) {
-    char b[24];
-    auto r = std::to_chars(b, b + sizeof b, x);
-    s_.append(b, r.ptr);
-  }
+  void done(char* end) { size_ = static_cast<std::size_t>(end - data_.get()); }
+  void clear() { size_ = 0; }
+  const char* data() const { return data_.get(); }
+  std::size_t size() const { return size_; }
+
+  // Each call may be handed 32 bytes (24 are ever written).
+  static char* num(char* p, double x) { return std::to_chars(p, p + 32, x).ptr; }
+  static char* num(char* p, long long x) { return std::to_chars(p, p + 24, x).ptr; }
   template <class T>
-  void raw_le(T x) {
+  static char* raw_le(char* p, T x) {
     unsigned char b[sizeof(T)];
     std::memcpy(b, &x, sizeof(T));
     const std::uint16_t probe = 1;
     unsigned char first;
     std::memcpy(&first, &probe, 1);
     if (first != 1) std::reverse(b, b + sizeof(T));
-    s_.append(reinterpret_cast<const char*>(b), sizeof(T));
+    std::memcpy(p, b, sizeof(T));
+    return p + sizeof(T);
   }
-  std::string& str() { return s_; }
 
  private:
-  std::string s_;
+  void grow(std::size_t need) {
+    const std::size_t cap = std::max(need, 2 * capacity_);
+    std::unique_ptr<char[]> bigger(new char[cap]);
+    if (size_ > 0) std::memcpy(bigger.get(), data_.get(), size_);
+    data_ = std::move(bigger);
+    capacity_ = cap;
+  }
+
+  std::unique_ptr<char[]> data_;
+  std::size_t size_ = 0, capacity_ = 0;
 };
 
 void check_input(const std::string& path, const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
@@ -66,12 +79,11 @@ void check_input(const std::string& path, const MatrixX3d& V, const MatrixX3i& F
                      std::to_string(F(f, k)) + " (mesh has " + std::to_string(V.rows()) + " vertices)");
 }
 
-// A file made of sections of rows (vertex lines, face lines, ...), each row
-// formatted independently.
+// A file made of sections of rows (vertex lines, face lines, ...), each
+// chunk of rows formatted independently.
 struct Section {
   Eigen::Index rows;
-  std::size_t bytes_per_row;  // a generous guess, to reserve buffers
-  std::function<void(Eigen::Index row, OutBuffer& out)> format;
+  std::function<void(Eigen::Index begin, Eigen::Index end, OutBuffer& out)> format;
 };
 
 // Formats the sections in chunks of rows on worker threads while this thread
@@ -89,61 +101,90 @@ void produce_sections(const std::string& header, const std::vector<Section>& sec
   std::vector<Chunk> chunks;
   for (const Section& sec : sections)
     for (Eigen::Index b = 0; b < sec.rows; b += kChunkRows) chunks.push_back({&sec, b, std::min(sec.rows, b + kChunkRows)});
-  auto format = [](const Chunk& c) {
-    OutBuffer out(static_cast<std::size_t>(c.end - c.begin) * c.section->bytes_per_row);
-    for (Eigen::Index r = c.begin; r < c.end; ++r) c.section->format(r, out);
-    return std::move(out.str());
+  auto format = [](const Chunk& c, OutBuffer out) {
+    out.clear();
+    c.section->format(c.begin, c.end, out);
+    return out;
   };
   const bool threaded = chunks.size() > 2 && std::thread::hardware_concurrency() > 1;
   if (!threaded) {
+    OutBuffer out;
     for (const Chunk& c : chunks) {
-      const std::string text = format(c);
-      sink(text.data(), text.size());
+      out = format(c, std::move(out));
+      sink(out.data(), out.size());
     }
     return;
   }
-  // Two chunks formatting ahead of the one being written. A future's
-  // destructor waits for its task, so an exception from the sink leaves no
-  // thread running.
+  // Two chunks formatting ahead of the one being written, each in a buffer
+  // handed back once written (only this thread touches the spare list). A
+  // future's destructor waits for its task, so an exception from the sink
+  // leaves no thread running.
   constexpr std::size_t kAhead = 2;
-  std::deque<std::future<std::string>> pending;
+  std::vector<OutBuffer> spare(kAhead + 1);
+  std::deque<std::future<OutBuffer>> pending;
   std::size_t next = 0;
-  while (next < chunks.size() && pending.size() < kAhead)
-    pending.push_back(std::async(std::launch::async, format, std::cref(chunks[next++])));
+  auto launch = [&] {
+    OutBuffer buffer = std::move(spare.back());
+    spare.pop_back();
+    pending.push_back(std::async(std::launch::async, format, std::cref(chunks[next++]), std::move(buffer)));
+  };
+  while (next < chunks.size() && pending.size() < kAhead) launch();
   while (!pending.empty()) {
-    const std::string text = pending.front().get();
+    OutBuffer text = pending.front().get();
     pending.pop_front();
-    if (next < chunks.size()) pending.push_back(std::async(std::launch::async, format, std::cref(chunks[next++])));
+    if (next < chunks.size()) launch();
     sink(text.data(), text.size());
+    spare.push_back(std::move(text));
   }
 }
 
 void write_obj(const std::string& path, const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
   const bool uv = UV.rows() > 0;
   std::vector<Section> sections;
-  sections.push_back({V.rows(), 80, [&](Eigen::Index i, OutBuffer& o) {
-                        o.text("v ");
-                        o.num(V(i, 0)); o.ch(' ');
-                        o.num(V(i, 1)); o.ch(' ');
-                        o.num(V(i, 2)); o.ch('\n');
-                      }});
-  sections.push_back({UV.rows(), 48, [&](Eigen::Index i, OutBuffer& o) {
-                        o.text("vt ");
-                        o.num(UV(i, 0)); o.ch(' ');
-                        o.num(UV(i, 1)); o.ch('\n');
-                      }});
-  sections.push_back({F.rows(), 48, [&](Eigen::Index f, OutBuffer& o) {
-                        o.ch('f');
-                        for (int k = 0; k < 3; ++k) {
-                          const long long idx = static_cast<long long>(F(f, k)) + 1;
-                          o.ch(' ');
-                          o.num(idx);
-                          if (uv) {
-                            o.ch('/');
-                            o.num(idx);
+  sections.push_back({V.rows(), [&](Eigen::Index begin, Eigen::Index end, OutBuffer& o) {
+                        for (Eigen::Index i = begin; i < end; ++i) {
+                          char* p = o.room(112);
+                          *p++ = 'v';
+                          for (int k = 0; k < 3; ++k) {
+                            *p++ = ' ';
+                            p = OutBuffer::num(p, V(i, k));
                           }
+                          *p++ = '\n';
+                          o.done(p);
                         }
-                        o.ch('\n');
+                      }});
+  sections.push_back({UV.rows(), [&](Eigen::Index begin, Eigen::Index end, OutBuffer& o) {
+                        for (Eigen::Index i = begin; i < end; ++i) {
+                          char* p = o.room(64);
+                          *p++ = 'v';
+                          *p++ = 't';
+                          for (int k = 0; k < 2; ++k) {
+                            *p++ = ' ';
+                            p = OutBuffer::num(p, UV(i, k));
+                          }
+                          *p++ = '\n';
+                          o.done(p);
+                        }
+                      }});
+  sections.push_back({F.rows(), [&](Eigen::Index begin, Eigen::Index end, OutBuffer& o) {
+                        for (Eigen::Index f = begin; f < end; ++f) {
+                          char* p = o.room(112);
+                          *p++ = 'f';
+                          for (int k = 0; k < 3; ++k) {
+                            const long long idx = static_cast<long long>(F(f, k)) + 1;
+                            *p++ = ' ';
+                            char* const first = p;
+                            p = OutBuffer::num(p, idx);
+                            if (uv) {  // the same index again: one UV per vertex
+                              const std::size_t digits = static_cast<std::size_t>(p - first);
+                              *p++ = '/';
+                              std::memcpy(p, first, digits);
+                              p += digits;
+                            }
+                          }
+                          *p++ = '\n';
+                          o.done(p);
+                        }
                       }});
   write_file_atomically(path, [&](const ByteSink& sink) { produce_sections("# written by intrinsic\n", sections, sink); });
 }
@@ -159,33 +200,44 @@ void write_ply(const std::string& path, const MatrixX3d& V, const MatrixX3i& F, 
   header += "element face " + std::to_string(F.rows()) + "\n";
   header += "property list uchar int vertex_indices\nend_header\n";
   std::vector<Section> sections;
-  sections.push_back({V.rows(), binary ? 40u : 112u, [&](Eigen::Index i, OutBuffer& o) {
-                        if (binary) {
-                          for (int k = 0; k < 3; ++k) o.raw_le(V(i, k));
-                          if (uv) o.raw_le(UV(i, 0)), o.raw_le(UV(i, 1));
-                          return;
+  // Room per row: the longest row plus the span each to_chars is given.
+  const std::size_t vertex_bytes = binary ? 40 : 160, face_bytes = binary ? 13 : 64;
+  sections.push_back({V.rows(), [&](Eigen::Index begin, Eigen::Index end, OutBuffer& o) {
+                        for (Eigen::Index i = begin; i < end; ++i) {
+                          char* p = o.room(vertex_bytes);
+                          if (binary) {
+                            for (int k = 0; k < 3; ++k) p = OutBuffer::raw_le(p, V(i, k));
+                            if (uv) p = OutBuffer::raw_le(p, UV(i, 0)), p = OutBuffer::raw_le(p, UV(i, 1));
+                          } else {
+                            for (int k = 0; k < 3; ++k) {
+                              if (k > 0) *p++ = ' ';
+                              p = OutBuffer::num(p, V(i, k));
+                            }
+                            for (int k = 0; uv && k < 2; ++k) {
+                              *p++ = ' ';
+                              p = OutBuffer::num(p, UV(i, k));
+                            }
+                            *p++ = '\n';
+                          }
+                          o.done(p);
                         }
-                        o.num(V(i, 0)); o.ch(' ');
-                        o.num(V(i, 1)); o.ch(' ');
-                        o.num(V(i, 2));
-                        if (uv) {
-                          o.ch(' '); o.num(UV(i, 0));
-                          o.ch(' '); o.num(UV(i, 1));
-                        }
-                        o.ch('\n');
                       }});
-  sections.push_back({F.rows(), binary ? 13u : 32u, [&](Eigen::Index f, OutBuffer& o) {
-                        if (binary) {
-                          o.raw_le(static_cast<std::uint8_t>(3));
-                          for (int k = 0; k < 3; ++k) o.raw_le(static_cast<std::int32_t>(F(f, k)));
-                          return;
+  sections.push_back({F.rows(), [&](Eigen::Index begin, Eigen::Index end, OutBuffer& o) {
+                        for (Eigen::Index f = begin; f < end; ++f) {
+                          char* p = o.room(face_bytes);
+                          if (binary) {
+                            p = OutBuffer::raw_le(p, static_cast<std::uint8_t>(3));
+                            for (int k = 0; k < 3; ++k) p = OutBuffer::raw_le(p, static_cast<std::int32_t>(F(f, k)));
+                          } else {
+                            *p++ = '3';
+                            for (int k = 0; k < 3; ++k) {
+                              *p++ = ' ';
+                              p = OutBuffer::num(p, static_cast<long long>(F(f, k)));
+                            }
+                            *p++ = '\n';
+                          }
+                          o.done(p);
                         }
-                        o.ch('3');
-                        for (int k = 0; k < 3; ++k) {
-                          o.ch(' ');
-                          o.num(static_cast<long long>(F(f, k)));
-                        }
-                        o.ch('\n');
                       }});
   write_file_atomically(path, [&](const ByteSink& sink) { produce_sections(header, sections, sink); });
 }

@@ -1,5 +1,6 @@
 // Validation of raw mesh data into a Mesh: element-level checks with messages
 // that name the element and its source line, then orientation and adjacency.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <sstream>
@@ -22,12 +23,35 @@ namespace {
 
 std::string where(const Mesh& mesh) { return mesh.path.empty() ? "" : mesh.path + ": "; }
 
+// The first face (in file order) failing `bad`, found on all cores; m if none.
+template <class Bad>
+int first_face(int m, Bad&& bad) {
+  std::atomic<int> first{m};
+  detail::parallel_for(m, [&](std::int64_t begin, std::int64_t end) {
+    for (int f = static_cast<int>(begin); f < end && f < first.load(std::memory_order_relaxed); ++f) {
+      if (!bad(f)) continue;
+      int seen = first.load();
+      while (f < seen && !first.compare_exchange_weak(seen, f)) {
+      }
+      return;
+    }
+  });
+  return first.load();
+}
+
+// The checks in the order their messages take precedence, each reporting
+// its first face in file order (the same message as one serial scan).
 void check_elements(const Mesh& mesh, const ValidateOptions& options) {
   const int n = static_cast<int>(mesh.V.rows());
   const int m = static_cast<int>(mesh.F.rows());
   if (n == 0) throw_input(where(mesh) + "the mesh has no vertices");
   if (m == 0) throw_input(where(mesh) + "the mesh has no faces");
-  for (int f = 0; f < m; ++f) {
+  const int bad_index = first_face(m, [&](int f) {
+    const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
+    return a < 0 || a >= n || b < 0 || b >= n || c < 0 || c >= n || a == b || b == c || a == c;
+  });
+  if (bad_index < m) {
+    const int f = bad_index;
     for (int c = 0; c < 3; ++c) {
       const int v = mesh.F(f, c);
       if (v < 0 || v >= n)
@@ -35,35 +59,26 @@ void check_elements(const Mesh& mesh, const ValidateOptions& options) {
                     ", but the mesh has " + std::to_string(n) + " vertices");
     }
     const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
-    if (a == b || b == c || a == c)
-      throw_input(where(mesh) + mesh.describe_face(f) + " repeats vertex " +
-                  std::to_string(a == b || a == c ? a : b));
+    throw_input(where(mesh) + mesh.describe_face(f) + " repeats vertex " + std::to_string(a == b || a == c ? a : b));
   }
-  for (int f = 0; f < m; ++f)
+  const int bad_coordinate = first_face(m, [&](int f) {
+    return !mesh.V.row(mesh.F(f, 0)).allFinite() || !mesh.V.row(mesh.F(f, 1)).allFinite() ||
+           !mesh.V.row(mesh.F(f, 2)).allFinite();
+  });
+  if (bad_coordinate < m)
     for (int c = 0; c < 3; ++c) {
-      const int v = mesh.F(f, c);
+      const int v = mesh.F(bad_coordinate, c);
       if (!mesh.V.row(v).allFinite())
         throw_input(where(mesh) + "vertex " + std::to_string(v) + " has a non-finite coordinate");
     }
-  // The first degenerate face in file order, found on all cores.
-  std::atomic<int> first_degenerate{m};
-  detail::parallel_for(m, [&](std::int64_t begin, std::int64_t end) {
-    for (int f = static_cast<int>(begin); f < end; ++f) {
-      const Eigen::Vector3d x0 = mesh.V.row(mesh.F(f, 0)), x1 = mesh.V.row(mesh.F(f, 1)),
-                            x2 = mesh.V.row(mesh.F(f, 2));
-      const double twice_area = (x1 - x0).cross(x2 - x0).norm();
-      const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(),
-                                       (x0 - x2).squaredNorm()});
-      if (!(twice_area > options.degenerate_ratio * longest)) {
-        int seen = first_degenerate.load();
-        while (f < seen && !first_degenerate.compare_exchange_weak(seen, f)) {
-        }
-        return;
-      }
-    }
+  const int degenerate = first_face(m, [&](int f) {
+    const Eigen::Vector3d x0 = mesh.V.row(mesh.F(f, 0)), x1 = mesh.V.row(mesh.F(f, 1)), x2 = mesh.V.row(mesh.F(f, 2));
+    const double twice_area = (x1 - x0).cross(x2 - x0).norm();
+    const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
+    return !(twice_area > options.degenerate_ratio * longest);
   });
-  if (first_degenerate < m)
-    throw_input(where(mesh) + mesh.describe_face(first_degenerate) +
+  if (degenerate < m)
+    throw_input(where(mesh) + mesh.describe_face(degenerate) +
                 " is degenerate (zero area: its vertices are coincident or collinear)");
 }
 
@@ -83,8 +98,9 @@ Mesh make_mesh(const MeshData& data, const ValidateOptions& options) {
   mesh.face_line = data.face_line;
   mesh.path = data.path;
   check_elements(mesh, options);
-  mesh.validation.reoriented_faces = detail::orient_faces(mesh);
-  detail::build_topology(mesh);
+  detail::OrientedAdjacency adjacency;
+  mesh.validation.reoriented_faces = detail::orient_faces(mesh, &adjacency);
+  detail::build_topology(mesh, &adjacency);
   const Topology& t = mesh.topology;
   for (char used : t.is_used) mesh.validation.unreferenced_vertices += used ? 0 : 1;
 

@@ -2,8 +2,12 @@
 // manifold-vertex check, boundary loops and connected components.
 // Everything is built from a CSR list of outgoing half-edges per vertex, which
 // costs two linear passes and finds each twin among a handful of candidates
-// (no global sort of edges).
+// (no global sort of edges). The orientation pass builds that list and every
+// half-edge's mate once; when it flips nothing (the usual case) the list and
+// the mates are the topology's own (a mate is then the twin), so they are not
+// built a second time.
 #include <algorithm>
+#include <atomic>
 #include <mutex>
 #include <numeric>
 #include <queue>
@@ -54,9 +58,12 @@ int count_edge_mates(const Mesh& mesh, const OutgoingLists& out, int h) {
 
 // For every half-edge, the one other half-edge on the same undirected edge
 // (either direction), or -1; throws if an edge has more than two faces.
-std::vector<int> edge_mates(const Mesh& mesh, const OutgoingLists& out) {
+// `same_direction`: set when some mate runs the same way as its half-edge
+// (only then may faces need flipping).
+std::vector<int> edge_mates(const Mesh& mesh, const OutgoingLists& out, bool& same_direction) {
   const int m = static_cast<int>(mesh.F.rows());
   std::vector<int> mate(3 * static_cast<size_t>(m), -1);
+  std::atomic<bool> same{false};
   // In parallel; each piece remembers its first non-manifold half-edge, and
   // the smallest is reported (the same message as a serial scan).
   std::vector<int> first_bad;
@@ -71,7 +78,11 @@ std::vector<int> edge_mates(const Mesh& mesh, const OutgoingLists& out) {
       }
       for (int k = out.begin[a]; k < out.begin[a + 1]; ++k) {
         const int g = out.halfedges[k];
-        if (g != h && mesh.target(g) == b) { ++count; other = g; }
+        if (g != h && mesh.target(g) == b) {
+          ++count;
+          other = g;
+          same.store(true, std::memory_order_relaxed);
+        }
       }
       if (count > 1) {
         const std::lock_guard<std::mutex> lock(bad_mutex);
@@ -88,6 +99,7 @@ std::vector<int> edge_mates(const Mesh& mesh, const OutgoingLists& out) {
                 " has " + std::to_string(count_edge_mates(mesh, out, h) + 1) +
                 " faces (non-manifold edge; e.g. " + mesh.describe_face(h / 3) + ")");
   }
+  same_direction = same.load();
   return mate;
 }
 
@@ -152,37 +164,47 @@ void find_twins(const Mesh& mesh, const OutgoingLists& out, Topology& t) {
 }
 
 // Fills is_used, is_boundary and vertex_out (the boundary half-edge of a
-// boundary vertex); throws on a vertex whose faces form more than one fan.
+// boundary vertex); throws on a vertex whose faces form more than one fan
+// (the first such vertex, though the vertices are classified on all cores).
 void classify_vertices(const Mesh& mesh, const OutgoingLists& out, Topology& t) {
   const int n = static_cast<int>(mesh.V.rows());
   t.is_used.assign(n, 0);
   t.is_boundary.assign(n, 0);
   t.vertex_out.assign(n, -1);
-  for (int v = 0; v < n; ++v) {
-    const int valence = out.begin[v + 1] - out.begin[v];
-    if (valence == 0) continue;
-    t.is_used[v] = 1;
-    int start = out.halfedges[out.begin[v]];
-    int boundary_count = 0;
-    for (int k = out.begin[v]; k < out.begin[v + 1]; ++k) {
-      const int h = out.halfedges[k];
-      if (t.twin[h] < 0) { ++boundary_count; start = h; }
+  std::atomic<int> first_bad{n};
+  parallel_for(n, [&](std::int64_t first, std::int64_t last) {
+    for (int v = static_cast<int>(first); v < last; ++v) {
+      const int valence = out.begin[v + 1] - out.begin[v];
+      if (valence == 0) continue;
+      t.is_used[v] = 1;
+      int start = out.halfedges[out.begin[v]];
+      int boundary_count = 0;
+      for (int k = out.begin[v]; k < out.begin[v + 1]; ++k) {
+        const int h = out.halfedges[k];
+        if (t.twin[h] < 0) { ++boundary_count; start = h; }
+      }
+      // Rotate around v: from outgoing h, prev(h) comes into v and its twin
+      // leaves v in the neighbouring face. A manifold vertex's faces form one fan.
+      int visited = 0, h = start;
+      do {
+        ++visited;
+        const int back = t.twin[Topology::prev(h)];
+        if (back < 0) break;
+        h = back;
+      } while (h != start && visited <= valence);
+      if (boundary_count > 1 || visited != valence) {
+        int seen = first_bad.load();
+        while (v < seen && !first_bad.compare_exchange_weak(seen, v)) {
+        }
+        return;
+      }
+      t.is_boundary[v] = boundary_count > 0;
+      t.vertex_out[v] = start;
     }
-    // Rotate around v: from outgoing h, prev(h) comes into v and its twin
-    // leaves v in the neighbouring face. A manifold vertex's faces form one fan.
-    int visited = 0, h = start;
-    do {
-      ++visited;
-      const int back = t.twin[Topology::prev(h)];
-      if (back < 0) break;
-      h = back;
-    } while (h != start && visited <= valence);
-    if (boundary_count > 1 || visited != valence)
-      throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") + "vertex " + std::to_string(v) +
-                  " is non-manifold (its faces form more than one fan)");
-    t.is_boundary[v] = boundary_count > 0;
-    t.vertex_out[v] = start;
-  }
+  });
+  if (first_bad < n)
+    throw_input(mesh.path + (mesh.path.empty() ? "" : ": ") + "vertex " + std::to_string(first_bad.load()) +
+                " is non-manifold (its faces form more than one fan)");
 }
 
 // Components by flood fill over twins: face_component, num_components and
@@ -265,26 +287,45 @@ void group_loops_by_component(const std::vector<int>& loop_component, Topology& 
 
 }  // namespace
 
-int orient_faces(Mesh& mesh) {
+int orient_faces(Mesh& mesh, OrientedAdjacency* kept) {
   const int m = static_cast<int>(mesh.F.rows());
-  const std::vector<int> mate = edge_mates(mesh, outgoing_lists(mesh));
-  std::vector<signed char> flip(m, -1);  // -1 unvisited, 0 keep, 1 flip
+  OutgoingLists out = outgoing_lists(mesh);
+  bool same_direction = false;
+  std::vector<int> mate = edge_mates(mesh, out, same_direction);
+  // Every mate running the other way: already consistent (and so orientable),
+  // the flood fill would keep every face.
+  std::vector<signed char> flip(same_direction ? m : 0, -1);  // -1 unvisited, 0 keep, 1 flip
   int flipped_total = 0;
   std::vector<int> component;
-  for (int seed = 0; seed < m; ++seed) {
+  for (int seed = 0; same_direction && seed < m; ++seed) {
     if (flip[seed] >= 0) continue;
     propagate_orientation(mesh, mate, seed, flip, component);
     flipped_total += apply_flips(mesh, component, flip);
   }
+  // With no face flipped, the half-edge numbering is unchanged and every
+  // mate runs the opposite way (propagate_orientation would have flipped a
+  // neighbour otherwise): the outgoing lists and twins are already known.
+  if (kept && flipped_total == 0) {
+    kept->begin = std::move(out.begin);
+    kept->halfedges = std::move(out.halfedges);
+    kept->twin = std::move(mate);
+  }
   return flipped_total;
 }
 
-void build_topology(Mesh& mesh) {
+void build_topology(Mesh& mesh, OrientedAdjacency* known) {
   Topology& t = mesh.topology;
   t.num_vertices = static_cast<int>(mesh.V.rows());
   t.num_faces = static_cast<int>(mesh.F.rows());
-  const OutgoingLists out = outgoing_lists(mesh);
-  find_twins(mesh, out, t);
+  OutgoingLists out;
+  if (known && !known->twin.empty()) {
+    out.begin = std::move(known->begin);
+    out.halfedges = std::move(known->halfedges);
+    t.twin = std::move(known->twin);
+  } else {
+    out = outgoing_lists(mesh);
+    find_twins(mesh, out, t);
+  }
   classify_vertices(mesh, out, t);
   find_components(t.num_faces, t);
   group_loops_by_component(trace_boundary_loops(mesh, t), t);

@@ -67,6 +67,24 @@ Stat weighted_stat(const Eigen::VectorXd& x, const Eigen::VectorXd& w) {
   return s;
 }
 
+// The sum in index order, as one serial loop adds: the terms may be computed
+// on all cores, the result stays the same to the last bit.
+double ordered_sum(const Eigen::VectorXd& x) {
+  double sum = 0;
+  for (Eigen::Index i = 0; i < x.size(); ++i) sum += x[i];
+  return sum;
+}
+
+// term(i) for i in [0, n), on all cores.
+template <class Term>
+Eigen::VectorXd terms(std::int64_t n, Term&& term) {
+  Eigen::VectorXd x(n);
+  detail::parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t i = begin; i < end; ++i) x[i] = term(i);
+  });
+  return x;
+}
+
 // Flipped or collapsed: the one definition face_distortion and count_flipped share.
 bool is_flipped(const Eigen::Matrix2d& J) { return !(J.determinant() > 0); }
 
@@ -77,11 +95,13 @@ FaceFrames face_frames(const MatrixX3d& V, const MatrixX3i& F) {
   FaceFrames frames;
   frames.P_inverse.resize(m, 4);
   frames.area_3d.resize(m);
-  for (int f = 0; f < m; ++f) {
-    const Eigen::Matrix2d Pi = edge_frame(V, F, f, frames.area_3d[f]).inverse();
-    frames.P_inverse.row(f) << Pi(0, 0), Pi(0, 1), Pi(1, 0), Pi(1, 1);
-    frames.total_area_3d += frames.area_3d[f];
-  }
+  detail::parallel_for(m, [&](std::int64_t begin, std::int64_t end) {
+    for (int f = static_cast<int>(begin); f < end; ++f) {
+      const Eigen::Matrix2d Pi = edge_frame(V, F, f, frames.area_3d[f]).inverse();
+      frames.P_inverse.row(f) << Pi(0, 0), Pi(0, 1), Pi(1, 0), Pi(1, 1);
+    }
+  });
+  frames.total_area_3d = ordered_sum(frames.area_3d);
   return frames;
 }
 
@@ -146,32 +166,33 @@ Eigen::MatrixX2i unique_edges(const MatrixX3i& F) {
       other[fill[std::min(i, j)]++] = std::max(i, j);
     }
   std::vector<int> last(n);  // end of each vertex's distinct neighbours
-  int count = 0;
-  for (int v = 0; v < n; ++v) {
-    std::sort(other.begin() + begin[v], other.begin() + begin[v + 1]);
-    last[v] = static_cast<int>(std::unique(other.begin() + begin[v], other.begin() + begin[v + 1]) - other.begin());
-    count += last[v] - begin[v];
-  }
-  Eigen::MatrixX2i E(count, 2);
-  int k = 0;
-  for (int v = 0; v < n; ++v)
-    for (int q = begin[v]; q < last[v]; ++q, ++k) {
-      E(k, 0) = v;
-      E(k, 1) = other[q];
+  detail::parallel_for(n, [&](std::int64_t first, std::int64_t end) {
+    for (std::int64_t v = first; v < end; ++v) {
+      std::sort(other.begin() + begin[v], other.begin() + begin[v + 1]);
+      last[v] = static_cast<int>(std::unique(other.begin() + begin[v], other.begin() + begin[v + 1]) - other.begin());
     }
+  });
+  std::vector<int> at(static_cast<size_t>(n) + 1, 0);  // first row of each vertex's edges in E
+  for (int v = 0; v < n; ++v) at[v + 1] = at[v] + last[v] - begin[v];
+  Eigen::MatrixX2i E(at[n], 2);
+  detail::parallel_for(n, [&](std::int64_t first, std::int64_t end) {
+    for (std::int64_t v = first; v < end; ++v)
+      for (int q = begin[v], k = at[v]; q < last[v]; ++q, ++k) {
+        E(k, 0) = static_cast<int>(v);
+        E(k, 1) = other[q];
+      }
+  });
   return E;
 }
 
 namespace {
 
 double edge_length_energy(const MatrixX3d& V, const Eigen::MatrixX2i& E, const MatrixX2d& UV) {
-  double e = 0;
-  for (int k = 0; k < E.rows(); ++k) {
+  return ordered_sum(terms(E.rows(), [&](std::int64_t k) {
     const int i = E(k, 0), j = E(k, 1);
     const double r = (UV.row(i) - UV.row(j)).squaredNorm() / (V.row(i) - V.row(j)).squaredNorm() - 1;
-    e += r * r;
-  }
-  return e;
+    return r * r;
+  }));
 }
 
 }  // namespace
@@ -181,15 +202,13 @@ double edge_length_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2
 }
 
 double area_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
-  double e = 0;
-  for (int f = 0; f < F.rows(); ++f) {
+  return ordered_sum(terms(F.rows(), [&](std::int64_t f) {
     const Eigen::Vector3d x0 = V.row(F(f, 0)), x1 = V.row(F(f, 1)), x2 = V.row(F(f, 2));
     const Eigen::Vector2d u0 = UV.row(F(f, 0)), u1 = UV.row(F(f, 1)), u2 = UV.row(F(f, 2));
     const double a3 = 0.5 * (x1 - x0).cross(x2 - x0).norm();
     const double a2 = 0.5 * ((u1.x() - u0.x()) * (u2.y() - u0.y()) - (u1.y() - u0.y()) * (u2.x() - u0.x()));
-    e += (a2 / a3 - 1) * (a2 / a3 - 1);
-  }
-  return e;
+    return (a2 / a3 - 1) * (a2 / a3 - 1);
+  }));
 }
 
 DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
@@ -207,9 +226,9 @@ DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, c
   s.stretch_linf = weighted_stat(d.stretch_linf, d.area_3d);
   const MatrixX2d UVn = s.scale_factor * UV;
   const Eigen::MatrixX2i E = unique_edges(F);
-  Eigen::VectorXd r(E.rows());
-  for (int k = 0; k < E.rows(); ++k)
-    r[k] = (UVn.row(E(k, 0)) - UVn.row(E(k, 1))).squaredNorm() / (V.row(E(k, 0)) - V.row(E(k, 1))).squaredNorm();
+  const Eigen::VectorXd r = terms(E.rows(), [&](std::int64_t k) {
+    return (UVn.row(E(k, 0)) - UVn.row(E(k, 1))).squaredNorm() / (V.row(E(k, 0)) - V.row(E(k, 1))).squaredNorm();
+  });
   s.edge_length_distortion = weighted_stat(r, Eigen::VectorXd::Ones(r.size()));
   s.edge_length_energy = edge_length_energy(V, E, UVn);
   s.area_energy = area_energy(V, F, UVn);

@@ -2,6 +2,8 @@
 // complex_form.h; docs/maths.md §3.6).
 #include "solve/complex_form.h"
 
+#include <algorithm>
+#include <climits>
 #include <vector>
 
 namespace intrinsic::detail {
@@ -9,40 +11,84 @@ namespace {
 
 // A is [K -B; B K]: the right half mirrors the left half entry for entry
 // (exactly: the Parameterizer assembles both halves from the same numbers),
-// K is symmetric and B antisymmetric.
+// K is symmetric and B antisymmetric. Column j + m must be column j with its
+// two halves swapped and the B half negated, which is checked by walking the
+// two columns side by side; the (anti)symmetry needs a lookup per entry.
 bool has_real_form(const SparseMatrix& A, Eigen::Index m) {
-  Eigen::Index left = 0;
-  for (Eigen::Index j = 0; j < m; ++j)
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
-      ++left;
-      const Eigen::Index i = it.row();
-      const double v = it.value();
-      if (i < m) {  // K(i, j)
-        if (A.coeff(i + m, j + m) != v || A.coeff(j, i) != v) return false;
-      } else {  // B(i - m, j)
-        if (A.coeff(i - m, j + m) != -v || A.coeff(j + m, i - m) != -v) return false;
-      }
+  const int* outer = A.outerIndexPtr();
+  const int* row = A.innerIndexPtr();
+  const double* value = A.valuePtr();
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const int b = outer[j], e = outer[j + 1], rb = outer[j + m], re = outer[j + m + 1];
+    if (re - rb != e - b) return false;
+    int split = b;  // first row of the B half in column j
+    while (split < e && row[split] < m) ++split;
+    // Right column: -B rows first (rows < m), then K rows (rows >= m).
+    int k = rb;
+    for (int q = split; q < e; ++q, ++k)
+      if (row[k] != row[q] - m || value[k] != -value[q]) return false;
+    for (int q = b; q < split; ++q, ++k)
+      if (row[k] != row[q] + m || value[k] != value[q]) return false;
+    for (int q = b; q < e; ++q) {
+      const Eigen::Index i = row[q];
+      if (i < m ? A.coeff(j, i) != value[q] : A.coeff(j + m, i - m) != -value[q]) return false;
     }
-  return A.nonZeros() == 2 * left;
+  }
+  return true;
 }
 
 }  // namespace
 
+// Column j of M merges column j's two sorted halves (K rows < m, B rows
+// >= m): straight into compressed storage, no triplet list (which at 1M
+// vertices would be 14M triplets of 24 bytes).
 bool hermitian_from_real_form(const SparseMatrix& A, ComplexSparse& M) {
   if (A.rows() != A.cols() || A.rows() % 2 != 0 || !A.isCompressed()) return false;
   const Eigen::Index m = A.rows() / 2;
   if (!has_real_form(A, m)) return false;
-  std::vector<Eigen::Triplet<std::complex<double>>> t;
-  t.reserve(static_cast<size_t>(A.nonZeros() / 2));
-  for (Eigen::Index j = 0; j < m; ++j)
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
-      if (it.row() < m) t.emplace_back(it.row(), j, std::complex<double>(it.value(), 0));
-      else t.emplace_back(it.row() - m, j, std::complex<double>(0, it.value()));
+  const int* outer = A.outerIndexPtr();
+  const int* row = A.innerIndexPtr();
+  const double* value = A.valuePtr();
+  std::vector<int> begin(static_cast<size_t>(m) + 1, 0), rows;
+  std::vector<std::complex<double>> values;
+  rows.reserve(static_cast<size_t>(outer[m]));
+  values.reserve(static_cast<size_t>(outer[m]));
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const int b = outer[j], e = outer[j + 1];
+    int split = b;
+    while (split < e && row[split] < m) ++split;
+    int k = b, q = split;
+    while (k < split || q < e) {
+      const int rk = k < split ? row[k] : INT_MAX, rq = q < e ? row[q] - static_cast<int>(m) : INT_MAX;
+      const int r = std::min(rk, rq);
+      // K and B entries at one position add up, the K one first (as the
+      // triplet assembly this replaces did, down to the sign of a zero).
+      std::complex<double> z = rk == r ? std::complex<double>(value[k++], 0) : std::complex<double>(0, value[q++]);
+      if (rk == r && rq == r) z += std::complex<double>(0, value[q++]);
+      rows.push_back(r);
+      values.push_back(z);
     }
+    begin[static_cast<size_t>(j) + 1] = static_cast<int>(rows.size());
+  }
   M.resize(m, m);
-  M.setFromTriplets(t.begin(), t.end());  // K and B entries at one position add up
-  M.makeCompressed();
+  M.resizeNonZeros(static_cast<Eigen::Index>(rows.size()));
+  std::copy(begin.begin(), begin.end(), M.outerIndexPtr());
+  std::copy(rows.begin(), rows.end(), M.innerIndexPtr());
+  std::copy(values.begin(), values.end(), M.valuePtr());
   return true;
+}
+
+Eigen::MatrixXcd hermitian_lower_product(const ComplexSparse& lower, const Eigen::MatrixXcd& Z) {
+  // Each stored (i, j), i > j, stands for M(i, j) and M(j, i) = conj(M(i, j)).
+  Eigen::MatrixXcd Y = Eigen::MatrixXcd::Zero(lower.rows(), Z.cols());
+  for (Eigen::Index c = 0; c < Z.cols(); ++c)
+    for (Eigen::Index j = 0; j < lower.outerSize(); ++j)
+      for (ComplexSparse::InnerIterator it(lower, j); it; ++it) {
+        const Eigen::Index i = it.row();
+        Y(i, c) += it.value() * Z(j, c);
+        if (i != j) Y(j, c) += std::conj(it.value()) * Z(i, c);
+      }
+  return Y;
 }
 
 Eigen::MatrixXcd complex_from_real_form(const Eigen::MatrixXd& X) {

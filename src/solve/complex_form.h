@@ -20,6 +20,11 @@ using ComplexSparse = Eigen::SparseMatrix<std::complex<double>>;
 // symmetric and B antisymmetric; false (M untouched) otherwise.
 bool hermitian_from_real_form(const SparseMatrix& A, ComplexSparse& M);
 
+// M Z from M's lower triangle alone (M Hermitian): what a refinement
+// residual needs, without keeping the 2m x 2m real form (four times the
+// entries) beside the factor.
+Eigen::MatrixXcd hermitian_lower_product(const ComplexSparse& lower, const Eigen::MatrixXcd& Z);
+
 // Rows [top; bottom] (2m x k) as top + i bottom (m x k), and back.
 Eigen::MatrixXcd complex_from_real_form(const Eigen::MatrixXd& X);
 Eigen::MatrixXd real_form(const Eigen::MatrixXcd& Z);
