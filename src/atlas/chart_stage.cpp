@@ -5,7 +5,10 @@
 // invalid). Every chart is flattened by the paper's natural conformal map
 // (section 4.2) through the one Parameterizer (chart_flatten.cpp), or the
 // map ChartMapOptions chooses. The result is at surface scale, not packed.
+#include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <numeric>
 #include <string>
 
 #include "atlas/atlas_internal.h"
@@ -62,9 +65,11 @@ detail::ChartStatus flatten_one(const MeshData& input, const detail::CleanMesh& 
 }
 
 // Flattens every chart, splitting invalid ones in two until all are valid.
-// Rounds: the charts of one round are solved in parallel (interleaved over
-// the cores, each chart's result in its own slot), so the order of the
-// result is that of a first-in first-out queue whatever the timing.
+// Rounds: the charts of one round are solved in parallel, the largest first,
+// each core taking the next chart when it is free (one large chart no longer
+// waits behind others dealt to the same core); each chart's result is in its
+// own slot, so the order of the result is that of a first-in first-out
+// queue whatever the timing.
 std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::CleanMesh& clean,
                                            std::vector<std::vector<int>> work, const ChartOptions& options, bool own,
                                            AtlasCharts& r) {
@@ -73,10 +78,17 @@ std::vector<detail::FlatChart> flatten_all(const MeshData& input, const detail::
     const std::int64_t n = static_cast<std::int64_t>(work.size());
     std::vector<detail::FlatChart> flat(work.size());
     std::vector<detail::ChartStatus> status(work.size());
+    std::vector<std::int64_t> order(work.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::int64_t a, std::int64_t b) { return work[a].size() > work[b].size(); });
+    std::atomic<std::int64_t> next_chart{0};
     const int parts = detail::parallel_parts(n, 1);
-    detail::parallel_for_parts(parts, parts, [&](int part, std::int64_t, std::int64_t) {
-      for (std::int64_t i = part; i < n; i += parts)
+    detail::parallel_for_parts(parts, parts, [&](int, std::int64_t, std::int64_t) {
+      for (std::int64_t k; (k = next_chart.fetch_add(1)) < n;) {
+        const std::int64_t i = order[k];
         status[i] = flatten_one(input, clean, work[i], options, own, flat[i]);
+      }
     });
     std::vector<std::vector<int>> next;
     for (std::int64_t i = 0; i < n; ++i) {
