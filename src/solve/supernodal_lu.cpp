@@ -17,33 +17,18 @@
 #include "intrinsic/error.h"
 #include "solve/solver_threads.h"
 #include "solve/suitesparse.h"
+#include "solve/supernodal_blas.h"
 #include "solve/supernodal_schedule.h"
-
-extern "C" {
-void dgemm_(const char* ta, const char* tb, const int* m, const int* n, const int* k, const double* alpha,
-            const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
-            const int* ldc);
-void dtrsm_(const char* side, const char* uplo, const char* ta, const char* diag, const int* m, const int* n,
-            const double* alpha, const double* a, const int* lda, double* b, const int* ldb);
-}
 
 namespace intrinsic::detail {
 namespace {
 
 using Long = std::int64_t;
-constexpr double kOne = 1, kMinusOne = -1, kZero = 0;
+using blas::gemm;
+using blas::trsm;
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-void gemm(char ta, char tb, int m, int n, int k, double alpha, const double* a, int lda, const double* b, int ldb,
-          double beta, double* c, int ldc) {
-  if (m > 0 && n > 0 && k > 0) dgemm_(&ta, &tb, &m, &n, &k, &alpha, a, &lda, b, &ldb, &beta, c, &ldc);
-}
-
-void trsm(char side, char uplo, char ta, char diag, int m, int n, const double* a, int lda, double* b, int ldb) {
-  if (m > 0 && n > 0) dtrsm_(&side, &uplo, &ta, &diag, &m, &n, &kOne, a, &lda, b, &ldb);
 }
 
 // In-place LU without pivoting of the n x n block A (leading dimension lda),
