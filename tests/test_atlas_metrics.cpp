@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "atlas_test_support.h"
 #include "cli_support.h"
 #include "intrinsic/atlas.h"
 #include "intrinsic/io.h"
@@ -273,10 +274,7 @@ TEST(AtlasMetrics, AtlasWithoutPaddingNeverOverlaps) {
     o.min_chart_faces = 0;
     const AtlasResult r = atlas(m, o);
     EXPECT_EQ(r.overlapping, 0) << padding;
-    MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
-    for (int f = 0; f < m.F.rows(); ++f)
-      for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(m.F(f, c));
-    const UvAtlasMetrics um = uv_atlas_metrics(PT, r.FUV, r.UV);
+    const UvAtlasMetrics um = test::measure_atlas(m.V, m.F, r);
     EXPECT_GT(um.charts.size(), 1u);
     EXPECT_EQ(um.overlapping_triangles, 0) << padding;
   }

@@ -15,6 +15,7 @@
 #include "intrinsic/atlas.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/metrics.h"
+#include "atlas_test_support.h"
 #include "independent_stretch.h"
 
 namespace intrinsic {
@@ -196,10 +197,7 @@ TEST(AtlasQuality, ChartsNeverTouchThemselvesAtASlit) {
   AtlasOptions o;
   o.weld = 0;
   const AtlasResult r = atlas(m, o);
-  MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
-  for (int f = 0; f < r.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(r.F(f, c));
-  const UvAtlasMetrics um = uv_atlas_metrics(PT, r.FUV, r.UV);  // exact overlap test
+  const UvAtlasMetrics um = test::measure_atlas(m.V, m.F, r);  // exact overlap test
   EXPECT_EQ(um.overlapping_triangles, 0);
   EXPECT_EQ(um.flipped_triangles, 0);
   EXPECT_GE(r.charts.size(), 2u);

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "atlas_test_support.h"
 #include "cli_support.h"
 #include "intrinsic/atlas.h"
 #include "intrinsic/io.h"
@@ -29,12 +30,7 @@ MeshData unwelded_square() {
   return m;
 }
 
-UvAtlasMetrics measure(const MeshData& m, const AtlasResult& r) {
-  MatrixX3d PT = MatrixX3d::Zero(r.UV.rows(), 3);
-  for (int f = 0; f < m.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) PT.row(r.FUV(f, c)) = m.V.row(m.F(f, c));
-  return uv_atlas_metrics(PT, r.FUV, r.UV);
-}
+UvAtlasMetrics measure(const MeshData& m, const AtlasResult& r) { return test::measure_atlas(m.V, m.F, r); }
 
 TEST(AtlasWeld, UnweldedPairBecomesOneChart) {
   const MeshData m = unwelded_square();
