@@ -1,13 +1,17 @@
 // The supernodal LU without pivoting (src/solve/supernodal_lu.h) against
 // Eigen's SparseLU (partial pivoting, its own COLAMD ordering: a separate
-// code path) on the authalic and mixed systems of generated meshes, and its
-// fall-back to UMFPACK on matrices that need pivoting.
+// code path) on the authalic and mixed systems of generated meshes and on a
+// matrix with a dense block (a supernode split in column blocks between
+// threads), with several right-hand sides, plain and transposed; factors and
+// solutions the same bit for bit with 1, 2 and 3 threads; and its fall-back
+// to UMFPACK on matrices that need pivoting.
 #include <random>
 
 #include "intrinsic/assemble.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/linear_solver.h"
 #include "intrinsic/parameterize.h"
+#include "solve/supernodal_lu.h"
 #include "test_support.h"
 
 namespace intrinsic {
@@ -93,6 +97,103 @@ TEST(SupernodalLUSolver, ParameterizeAutoPicksItAndAgrees) {
     EXPECT_EQ(r.solvers[0], SolverKind::SupernodalLU) << method_name(c.m);
     EXPECT_LT(relative_difference(r.UV, ref), 1e-9) << method_name(c.m);
   }
+}
+
+// A non-symmetric matrix with a symmetric pattern: a dense m x m block
+// (random, diagonally dominant by rows) coupled to a path with different
+// values above and below the diagonal. The analysis makes the block one
+// supernode, several column blocks wide.
+SparseMatrix dense_block_matrix(int m, int path) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) t.emplace_back(i, j, (i == j ? 2.0 : 0.0) + u(rng) / m);
+  for (int k = 0; k < path; ++k) {
+    const int v = m + k, prev = k == 0 ? 0 : v - 1;
+    t.emplace_back(v, v, 3.0);
+    t.emplace_back(v, prev, -1.0 + 0.5 * u(rng));
+    t.emplace_back(prev, v, -0.5 + 0.25 * u(rng));
+    t.emplace_back(prev, prev, 1.0);
+  }
+  SparseMatrix A(m + path, m + path);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
+#ifdef INTRINSIC_HAVE_SUPERNODAL_LU
+// The factorization alone (no refinement), A X = B and A^T Y = B against
+// Eigen's SparseLU of A and of A^T.
+void expect_solves_agree(const SparseMatrix& A, const Eigen::MatrixXd& B, int threads, double tolerance) {
+  detail::SupernodalLU f(threads);
+  ASSERT_TRUE(f.factor(A));
+  EXPECT_LT(relative_difference(f.solve(B), reference_solve(A, B)), tolerance) << threads;
+  EXPECT_LT(relative_difference(f.solve(B, true), reference_solve(SparseMatrix(A.transpose()), B)), tolerance)
+      << threads;
+}
+#endif
+
+TEST(SupernodalLUSolver, FactorsAloneAgreeWithSparseLUForSeveralRightHandSides) {
+#ifndef INTRINSIC_HAVE_SUPERNODAL_LU
+  GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+#else
+  const Mesh mesh = test::wavy(60, 0.3);
+  for (const WeightOptions& w : {weights(Method::Authalic, 0, 1), weights(Method::Mixed, 0.5, 0.5)}) {
+    SCOPED_TRACE(method_name(w.method));
+    const System s = fixed_boundary_system(mesh, w);
+    Eigen::MatrixXd B(s.A.rows(), 5);
+    B << s.B, Eigen::MatrixXd::Random(s.A.rows(), 3);
+    expect_solves_agree(s.A, B, 2, 1e-10);
+    expect_solves_agree(s.A, B.col(2), 1, 1e-10);  // one column
+  }
+#endif
+}
+
+TEST(SupernodalLUSolver, WideSupernodeSplitInColumnBlocks) {
+#ifndef INTRINSIC_HAVE_SUPERNODAL_LU
+  GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+#else
+  const SparseMatrix A = dense_block_matrix(700, 3000);
+  ASSERT_GT((SparseMatrix(A.transpose()) - A).norm(), 1e-2 * A.norm());  // really not symmetric
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 3);
+  for (int threads : {1, 2}) expect_solves_agree(A, B, threads, 1e-11);
+  detail::SupernodalLU f(2);
+  ASSERT_TRUE(f.factor(A));
+  // The dense block alone stores 700 * 700 entries (L and U together).
+  EXPECT_GE(f.factor_nonzeros(), 700.0 * 700);
+  // At least the dense block's LU: 2/3 m^3.
+  EXPECT_GE(f.flops(), 2.0 / 3 * 700.0 * 700 * 700);
+#endif
+}
+
+TEST(SupernodalLUSolver, SameBitsWithOneTwoAndThreeThreads) {
+#ifndef INTRINSIC_HAVE_SUPERNODAL_LU
+  GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+#else
+  const System mixed = fixed_boundary_system(test::wavy(90, 0.3), weights(Method::Mixed, 0.5, 0.5));
+  const SparseMatrix D = dense_block_matrix(600, 2000);
+  for (const SparseMatrix* A : {&mixed.A, &D}) {
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A->rows(), 3);
+    std::vector<double> factors1;
+    Eigen::MatrixXd X1, Y1;
+    for (int threads : {1, 2, 3}) {
+      detail::SupernodalLU f(threads);
+      ASSERT_TRUE(f.factor(*A));
+      const std::vector<double> factors = f.factor_values();
+      const Eigen::MatrixXd X = f.solve(B), Y = f.solve(B, true);
+      if (threads == 1) {
+        factors1 = factors;
+        X1 = X;
+        Y1 = Y;
+        continue;
+      }
+      EXPECT_TRUE(factors == factors1) << threads;
+      EXPECT_TRUE((X.array() == X1.array()).all()) << threads;
+      EXPECT_TRUE((Y.array() == Y1.array()).all()) << threads;
+    }
+  }
+#endif
 }
 
 // The mesh's adjacency (a symmetric pattern) with random values that differ
