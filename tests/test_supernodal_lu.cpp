@@ -122,15 +122,22 @@ SparseMatrix dense_block_matrix(int m, int path) {
   return A;
 }
 
+// Rings of a wavy patch whose top separators are wide enough to be split
+// in column blocks between threads.
+constexpr int kSplitRings = 150;
+
 #ifdef INTRINSIC_HAVE_SUPERNODAL_LU
-// The factorization alone (no refinement), A X = B and A^T Y = B against
-// Eigen's SparseLU of A and of A^T.
-void expect_solves_agree(const SparseMatrix& A, const Eigen::MatrixXd& B, int threads, double tolerance) {
-  detail::SupernodalLU f(threads);
-  ASSERT_TRUE(f.factor(A));
-  EXPECT_LT(relative_difference(f.solve(B), reference_solve(A, B)), tolerance) << threads;
-  EXPECT_LT(relative_difference(f.solve(B, true), reference_solve(SparseMatrix(A.transpose()), B)), tolerance)
-      << threads;
+// The factorization alone (no refinement) on `threads` threads, each count
+// in turn: A X = B and A^T Y = B against Eigen's SparseLU of A and of A^T.
+void expect_solves_agree(const SparseMatrix& A, const Eigen::MatrixXd& B, std::initializer_list<int> threads,
+                         double tolerance) {
+  const Eigen::MatrixXd X = reference_solve(A, B), Y = reference_solve(SparseMatrix(A.transpose()), B);
+  for (int t : threads) {
+    detail::SupernodalLU f(t);
+    ASSERT_TRUE(f.factor(A));
+    EXPECT_LT(relative_difference(f.solve(B), X), tolerance) << t;
+    EXPECT_LT(relative_difference(f.solve(B, true), Y), tolerance) << t;
+  }
 }
 #endif
 
@@ -144,8 +151,8 @@ TEST(SupernodalLUSolver, FactorsAloneAgreeWithSparseLUForSeveralRightHandSides) 
     const System s = fixed_boundary_system(mesh, w);
     Eigen::MatrixXd B(s.A.rows(), 5);
     B << s.B, Eigen::MatrixXd::Random(s.A.rows(), 3);
-    expect_solves_agree(s.A, B, 2, 1e-10);
-    expect_solves_agree(s.A, B.col(2), 1, 1e-10);  // one column
+    expect_solves_agree(s.A, B, {2}, 1e-10);
+    expect_solves_agree(s.A, B.col(2), {1}, 1e-10);  // one column
   }
 #endif
 }
@@ -154,16 +161,22 @@ TEST(SupernodalLUSolver, WideSupernodeSplitInColumnBlocks) {
 #ifndef INTRINSIC_HAVE_SUPERNODAL_LU
   GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
 #else
-  const SparseMatrix A = dense_block_matrix(700, 3000);
-  ASSERT_GT((SparseMatrix(A.transpose()) - A).norm(), 1e-2 * A.norm());  // really not symmetric
-  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), 3);
-  for (int threads : {1, 2}) expect_solves_agree(A, B, threads, 1e-11);
+  // A dense block factored as one supernode (a leaf: one thread) and a
+  // mesh large enough that its top separators are split between threads.
+  const SparseMatrix D = dense_block_matrix(700, 3000);
+  ASSERT_GT((SparseMatrix(D.transpose()) - D).norm(), 1e-2 * D.norm());  // really not symmetric
+  const Eigen::MatrixXd BD = Eigen::MatrixXd::Random(D.rows(), 3);
+  expect_solves_agree(D, BD, {2}, 1e-11);
   detail::SupernodalLU f(2);
-  ASSERT_TRUE(f.factor(A));
-  // The dense block alone stores 700 * 700 entries (L and U together).
-  EXPECT_GE(f.factor_nonzeros(), 700.0 * 700);
-  // At least the dense block's LU: 2/3 m^3.
-  EXPECT_GE(f.flops(), 2.0 / 3 * 700.0 * 700 * 700);
+  ASSERT_TRUE(f.factor(D));
+  EXPECT_GE(f.factor_nonzeros(), 700.0 * 700);            // the dense block alone (L and U)
+  EXPECT_GE(f.flops(), 2.0 / 3 * 700.0 * 700 * 700);      // at least its LU
+  const System s = fixed_boundary_system(test::wavy(kSplitRings, 0.3), weights(Method::Authalic, 0, 1));
+  ASSERT_TRUE(f.factor(s.A));
+  ASSERT_GT(f.split_supernodes(), 0);
+  Eigen::MatrixXd B(s.A.rows(), 3);
+  B << s.B, Eigen::MatrixXd::Random(s.A.rows(), 1);
+  expect_solves_agree(s.A, B, {1, 2}, 1e-10);
 #endif
 }
 
@@ -171,7 +184,7 @@ TEST(SupernodalLUSolver, SameBitsWithOneTwoAndThreeThreads) {
 #ifndef INTRINSIC_HAVE_SUPERNODAL_LU
   GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
 #else
-  const System mixed = fixed_boundary_system(test::wavy(90, 0.3), weights(Method::Mixed, 0.5, 0.5));
+  const System mixed = fixed_boundary_system(test::wavy(kSplitRings, 0.3), weights(Method::Mixed, 0.5, 0.5));
   const SparseMatrix D = dense_block_matrix(600, 2000);
   for (const SparseMatrix* A : {&mixed.A, &D}) {
     const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A->rows(), 3);
@@ -266,6 +279,37 @@ TEST(SupernodalLUSolver, ModeratelySmallPivotsAreRefined) {
   EXPECT_LT(relative_difference(solver.solve(B), reference_solve(A, B)), 1e-9) << solver.name();
   EXPECT_LT(relative_difference(solver.solve_transposed(B), reference_solve(SparseMatrix(A.transpose()), B)), 1e-9)
       << solver.name();
+}
+
+TEST(SupernodalLUSolver, EntryWithoutMirrorIsRefusedAndUmfpackAnswers) {
+#ifndef INTRINSIC_HAVE_SUPERNODAL_LU
+  GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+#else
+  // The analysis reads the lower triangle only: an entry above the diagonal
+  // whose mirror is absent may fall outside the factor's pattern. With the
+  // entry in the last column and first row of a path (a tridiagonal matrix:
+  // no fill), it does in every elimination order that keeps the path's
+  // pattern, and in the others the factors are still exact.
+  const int n = 200;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 4.0);
+    if (i > 0) {
+      t.emplace_back(i, i - 1, -1.0);
+      t.emplace_back(i - 1, i, -1.5);
+    }
+  }
+  t.emplace_back(0, n - 1, 0.5);
+  SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, 2);
+  detail::SupernodalLU f(2);
+  if (f.factor(A)) EXPECT_LT(relative_difference(f.solve(B), reference_solve(A, B)), 1e-12);
+  LinearSolver solver(SolverKind::Auto, false);
+  solver.factor(A);
+  EXPECT_LT(relative_difference(solver.solve(B), reference_solve(A, B)), 1e-12) << solver.name();
+#endif
 }
 
 TEST(SupernodalLUSolver, TinySystems) {

@@ -16,6 +16,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "intrinsic/error.h"
@@ -23,7 +25,6 @@
 #include "solve/suitesparse.h"
 #include "solve/supernodal_blas.h"
 #include "solve/supernodal_schedule.h"
-#include "util/parallel_for.h"
 
 namespace intrinsic::detail {
 namespace {
@@ -82,6 +83,30 @@ int slice_start(int count, int t) { return static_cast<int>(static_cast<Long>(co
 // costs tens of microseconds.
 constexpr double kParallelFlops = 2e6;
 
+// Leaves the panels' doubles uninitialized when they are allocated: each
+// supernode zeroes its own panels where it is factored, on the thread that
+// factors it (a serial zero fill of the 1.1 GB of a 1M-vertex LU cost about
+// a third of a second, mostly page faults).
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <class U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) {}
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+using Panels = std::vector<double, UninitializedAllocator<double>>;
+
 // A worker's scratch: where each row of the current supernode sits in its
 // panel, and room for one update block.
 struct Workspace {
@@ -103,7 +128,7 @@ struct SupernodalLU::Impl {
   // Per supernode, column-major: L's columns (nsrow x nscol, the diagonal
   // block on top) and U's rows below the block, transposed ((nsrow - nscol)
   // x nscol; U_s itself sits in L's diagonal block).
-  std::vector<double> Lx, Ux;
+  Panels Lx, Ux;
   double flops = 0;
   int threads = 1;
   // Who updates each supernode (ascending: a fixed order), and the subtrees
@@ -113,18 +138,31 @@ struct SupernodalLU::Impl {
   SupernodalSchedule schedule;
   std::vector<int> top_index;  // a top supernode's column -> its row in the solve's buffers, else -1
   int top_columns = 0;
+  int split = 0;  // top supernodes factored in column blocks by the threads
+  // During numeric(): A, its transpose (A's rows as columns) and the inverse
+  // of perm, for each supernode's assembly.
+  const SparseMatrix* A = nullptr;
+  SparseMatrix At;
+  std::vector<int> iperm;
 
   bool analyse(const SparseMatrix& A);
   Long position(int s, int row) const;
-  bool assemble(const SparseMatrix& A, const std::vector<int>& iperm);
+  bool assemble_node(int s);
   double update_block(int s, int c1, int c2, const int* map, std::vector<double>& work);
   void block_solves(int s, int c1, int c2, int node_threads);
   void trailing_update(int s, int c1, int c2, int node_threads);
   bool factor_node(int s, const double* floor, Workspace& ws, int node_threads, double& node_flops);
-  bool numeric(const SparseMatrix& A);
-  void forward_node(int s, double* Y, int nrhs, bool transposed, double* top_buffer, std::vector<double>& W) const;
-  void backward_node(int s, double* Y, int nrhs, bool transposed, std::vector<double>& G) const;
+  bool numeric(const SparseMatrix& matrix);
+  void forward_node(int s, double* Y, int nrhs, bool transposed, double* top_buffer, std::vector<double>& W,
+                    int node_threads) const;
+  void backward_node(int s, double* Y, int nrhs, bool transposed, std::vector<double>& G, int node_threads) const;
   void solve_in_place(double* Y, int nrhs, bool transposed) const;
+  int top_threads(int s) const;
+  // Enough flops to share between threads (a thread costs tens of microseconds).
+  bool wide(int s) const {
+    const double nscol = super[s + 1] - super[s], nsrow = static_cast<double>(pi[s + 1] - pi[s]);
+    return nscol * nscol * nsrow > kParallelFlops;
+  }
 };
 
 // CHOLMOD's supernodal symbolic analysis (suitesparse.h), the one the
@@ -154,8 +192,11 @@ bool SupernodalLU::Impl::analyse(const SparseMatrix& A) {
   }
   top_index.assign(n, -1);
   top_columns = 0;
-  for (int s : schedule.top)
+  split = 0;
+  for (int s : schedule.top) {
     for (int k = super[s]; k < super[s + 1]; ++k) top_index[k] = top_columns++;
+    split += column_blocks(super[s + 1] - super[s]) > 1 && wide(s);
+  }
   return true;
 }
 
@@ -167,34 +208,39 @@ Long SupernodalLU::Impl::position(int s, int row) const {
   return at != last && *at == row ? at - first : -1;
 }
 
-// The panels start as the entries of C = P^T A P: C(r, c) with r >= c, and
-// those of the diagonal blocks, go to L's panel of c's supernode, the others
-// (r < c, c beyond r's supernode) to U's panel of r's supernode. Placed all
-// at once (no transposed copy of A is needed for U's rows), the columns of A
-// split between the cores: each entry has its own place. False when an entry
-// falls outside the factor's pattern: the analysis saw only the lower
-// triangle, so an upper entry without its mirror does.
-bool SupernodalLU::Impl::assemble(const SparseMatrix& A, const std::vector<int>& iperm) {
-  std::atomic<bool> outside{false};
-  parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
-    for (std::int64_t j = begin; j < end && !outside.load(std::memory_order_relaxed); ++j) {
-      const int c = iperm[j], sc = super_of[c];
-      for (SparseMatrix::InnerIterator it(A, static_cast<int>(j)); it; ++it) {
-        const int r = iperm[it.row()];
-        if (r >= super[sc]) {
-          const Long nsrow = pi[sc + 1] - pi[sc], at = position(sc, r);
-          if (at < 0) { outside = true; return; }
-          Lx[px[sc] + (c - super[sc]) * nsrow + at] = it.value();
-        } else {
-          const int t = super_of[r];
-          const Long nscol = super[t + 1] - super[t], below = pi[t + 1] - pi[t] - nscol, at = position(t, c);
-          if (at < nscol) { outside = true; return; }
-          Ux[ux[t] + (r - super[t]) * below + at - nscol] = it.value();
-        }
-      }
+// Supernode s's panels start zero with its entries of C = P^T A P: for each
+// of its columns c, C(r, c) with r in the supernode (r >= its first column)
+// goes to L's panel, and C(c, r) with r past its columns (row c of C: a
+// column of A^T) to U's rows. Every entry of C lands once: C(r, c) with r
+// before c's supernode is in U's rows of r's supernode. Done where s is
+// factored, so the panels are filled on the thread that works on them.
+// False when an entry falls outside the factor's pattern: the analysis saw
+// only the lower triangle, so an upper entry without its mirror does.
+bool SupernodalLU::Impl::assemble_node(int s) {
+  const int k1 = super[s], k2 = super[s + 1];
+  const Long nsrow = pi[s + 1] - pi[s], nscol = k2 - k1, below = nsrow - nscol;
+  double* L = Lx.data() + px[s];
+  double* U = Ux.data() + ux[s];
+  std::fill(L, L + nsrow * nscol, 0.0);
+  std::fill(U, U + below * nscol, 0.0);
+  for (int c = k1; c < k2; ++c) {
+    const int j = perm[c];
+    for (SparseMatrix::InnerIterator it(*A, j); it; ++it) {
+      const int r = iperm[it.row()];
+      if (r < k1) continue;  // U's, of r's supernode
+      const Long at = position(s, r);
+      if (at < 0) return false;
+      L[(c - k1) * nsrow + at] = it.value();
     }
-  }, 20000);
-  return !outside;
+    for (SparseMatrix::InnerIterator it(At, j); it; ++it) {
+      const int r = iperm[it.row()];
+      if (r < k2) continue;  // in the diagonal block or L's of an earlier supernode
+      const Long at = position(s, r);
+      if (at < nscol) return false;
+      U[(c - k1) * below + at - nscol] = it.value();
+    }
+  }
+  return true;
 }
 
 // Subtracts from columns [c1, c2) of supernode s (local numbering), in L's
@@ -300,6 +346,7 @@ bool SupernodalLU::Impl::factor_node(int s, const double* floor, Workspace& ws, 
                                      double& node_flops) {
   const int k1 = super[s], nscol = super[s + 1] - k1;
   const Long psi = pi[s], nsrow = pi[s + 1] - psi;
+  if (!assemble_node(s)) return false;
   for (Long r = 0; r < nsrow; ++r) ws.map[rows[psi + r]] = static_cast<int>(r);
   const int blocks = column_blocks(nscol);
   std::vector<double> block_flops(blocks, 0.0);
@@ -322,17 +369,18 @@ bool SupernodalLU::Impl::factor_node(int s, const double* floor, Workspace& ws, 
   return true;
 }
 
-bool SupernodalLU::Impl::numeric(const SparseMatrix& A) {
-  std::vector<int> iperm(n);
+bool SupernodalLU::Impl::numeric(const SparseMatrix& matrix) {
+  A = &matrix;
+  At = matrix.transpose();
+  iperm.resize(n);
   for (int k = 0; k < n; ++k) iperm[perm[k]] = k;
   // A pivot must stand out of rounding relative to its column of A.
   std::vector<double> floor(n, 0.0);
   for (int j = 0; j < n; ++j)
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+    for (SparseMatrix::InnerIterator it(matrix, j); it; ++it)
       floor[iperm[j]] = std::max(floor[iperm[j]], 1e-14 * std::abs(it.value()));
-  Lx.assign(px[nsuper], 0.0);
-  Ux.assign(ux[nsuper], 0.0);
-  if (!assemble(A, iperm)) return false;
+  Lx.resize(px[nsuper]);
+  Ux.resize(ux[nsuper]);
   // The subtrees on `threads` workers, each with its own scratch, then the
   // top supernodes one by one, the large ones split between the threads.
   std::vector<Workspace> ws(threads);
@@ -350,10 +398,11 @@ bool SupernodalLU::Impl::numeric(const SparseMatrix& A) {
     flops += task_flops[t];
   }
   for (int s : schedule.top) {
-    const double nscol = super[s + 1] - super[s], nsrow = static_cast<double>(pi[s + 1] - pi[s]);
-    const int node_threads = nscol * nscol * nsrow > kParallelFlops ? threads : 1;
+    const int node_threads = wide(s) ? threads : 1;
     if (!factor_node(s, floor.data(), ws[0], node_threads, flops)) return false;
   }
+  A = nullptr;
+  At = SparseMatrix();
   return true;
 }
 
@@ -382,10 +431,12 @@ bool SupernodalLU::factor(const SparseMatrix& A) {
     SolverThreads threads;
     ok = s.numeric(A);
   }
+  s.A = nullptr;
+  s.At = SparseMatrix();
   factor_ms = ms_since(t1);
   if (!ok) {
-    s.Lx = std::vector<double>();
-    s.Ux = std::vector<double>();
+    s.Lx = Panels();
+    s.Ux = Panels();
   }
   return ok;
 }
@@ -393,9 +444,11 @@ bool SupernodalLU::factor(const SparseMatrix& A) {
 // Forward step of supernode s with L (or U^T when transposed): its diagonal
 // block, then its rows below get the block's contribution; rows of top
 // supernodes go to top_buffer instead when one is given (a subtree's private
-// sum, added in a fixed order afterwards).
+// sum, added in a fixed order afterwards). node_threads > 0 (the top
+// supernodes): the rows below in slices shared by that many threads; the
+// slices depend on the sizes only.
 void SupernodalLU::Impl::forward_node(int s, double* Y, int nrhs, bool transposed, double* top_buffer,
-                                      std::vector<double>& W) const {
+                                      std::vector<double>& W, int node_threads) const {
   const int k1 = super[s], nscol = super[s + 1] - k1;
   const Long psi = pi[s], nsrow = pi[s + 1] - psi;
   const int lda = static_cast<int>(nsrow), below = static_cast<int>(nsrow - nscol);
@@ -404,20 +457,28 @@ void SupernodalLU::Impl::forward_node(int s, double* Y, int nrhs, bool transpose
   else trsm('L', 'L', 'N', 'U', nscol, nrhs, L, lda, Y + k1, n);
   if (below == 0) return;
   W.resize(static_cast<size_t>(below) * nrhs);
-  if (transposed) gemm('N', 'N', below, nrhs, nscol, 1, Ux.data() + ux[s], below, Y + k1, n, 0, W.data(), below);
-  else gemm('N', 'N', below, nrhs, nscol, 1, L + nscol, lda, Y + k1, n, 0, W.data(), below);
+  const double* P = transposed ? Ux.data() + ux[s] : L + nscol;
+  const int ldp = transposed ? below : lda;
   const int* r = rows.data() + psi + nscol;
-  for (int c = 0; c < nrhs; ++c)
-    for (int i = 0; i < below; ++i) {
-      const int t = top_buffer ? top_index[r[i]] : -1;
-      if (t >= 0) top_buffer[t + static_cast<Long>(c) * top_columns] -= W[i + static_cast<Long>(c) * below];
-      else Y[r[i] + static_cast<Long>(c) * n] -= W[i + static_cast<Long>(c) * below];
-    }
+  auto rows_below = [&](int i1, int i2) {
+    gemm('N', 'N', i2 - i1, nrhs, nscol, 1, P + i1, ldp, Y + k1, n, 0, W.data() + i1, below);
+    for (int c = 0; c < nrhs; ++c)
+      for (int i = i1; i < i2; ++i) {
+        const int t = top_buffer ? top_index[r[i]] : -1;
+        if (t >= 0) top_buffer[t + static_cast<Long>(c) * top_columns] -= W[i + static_cast<Long>(c) * below];
+        else Y[r[i] + static_cast<Long>(c) * n] -= W[i + static_cast<Long>(c) * below];
+      }
+  };
+  if (node_threads == 0) return rows_below(0, below);
+  run_tasks(slices_of(below), node_threads,
+            [&](int t, int) { rows_below(slice_start(below, t), slice_start(below, t + 1)); });
 }
 
 // Backward step of supernode s with U (or L^T when transposed): its rows
-// below (already solved) gathered, then its diagonal block.
-void SupernodalLU::Impl::backward_node(int s, double* Y, int nrhs, bool transposed, std::vector<double>& G) const {
+// below (already solved) gathered, then its diagonal block. node_threads > 0
+// (the top supernodes): the block's rows in slices shared by the threads.
+void SupernodalLU::Impl::backward_node(int s, double* Y, int nrhs, bool transposed, std::vector<double>& G,
+                                       int node_threads) const {
   const int k1 = super[s], nscol = super[s + 1] - k1;
   const Long psi = pi[s], nsrow = pi[s + 1] - psi;
   const int lda = static_cast<int>(nsrow), below = static_cast<int>(nsrow - nscol);
@@ -427,11 +488,27 @@ void SupernodalLU::Impl::backward_node(int s, double* Y, int nrhs, bool transpos
     const int* r = rows.data() + psi + nscol;
     for (int c = 0; c < nrhs; ++c)
       for (int i = 0; i < below; ++i) G[i + static_cast<Long>(c) * below] = Y[r[i] + static_cast<Long>(c) * n];
-    if (transposed) gemm('T', 'N', nscol, nrhs, below, -1, L + nscol, lda, G.data(), below, 1, Y + k1, n);
-    else gemm('T', 'N', nscol, nrhs, below, -1, Ux.data() + ux[s], below, G.data(), below, 1, Y + k1, n);
+    const double* P = transposed ? L + nscol : Ux.data() + ux[s];
+    const int ldp = transposed ? lda : below;
+    auto columns = [&](int j1, int j2) {
+      gemm('T', 'N', j2 - j1, nrhs, below, -1, P + static_cast<Long>(j1) * ldp, ldp, G.data(), below, 1,
+           Y + k1 + j1, n);
+    };
+    if (node_threads == 0) columns(0, nscol);
+    else
+      run_tasks(slices_of(nscol), node_threads,
+                [&](int t, int) { columns(slice_start(nscol, t), slice_start(nscol, t + 1)); });
   }
   if (transposed) trsm('L', 'L', 'T', 'U', nscol, nrhs, L, lda, Y + k1, n);
   else trsm('L', 'U', 'N', 'N', nscol, nrhs, L, lda, Y + k1, n);
+}
+
+// Threads for a top supernode's solve steps: its panels' entries as the
+// work (a multiply-add each per right-hand side); below about a million
+// one thread, since a thread costs tens of microseconds.
+int SupernodalLU::Impl::top_threads(int s) const {
+  const double entries = static_cast<double>(pi[s + 1] - pi[s]) * (super[s + 1] - super[s]);
+  return entries > 1e6 ? threads : 1;
 }
 
 // A Y = B (or A^T Y = B) in place, as the supernodal Cholesky's solve: the
@@ -448,7 +525,7 @@ void SupernodalLU::Impl::solve_in_place(double* Y, int nrhs, bool transposed) co
     const bool reaches_top = parent[last] >= 0;
     if (reaches_top) buffers[t].assign(static_cast<size_t>(top_columns) * nrhs, 0.0);
     for (int s = first; s <= last; ++s)
-      forward_node(s, Y, nrhs, transposed, reaches_top ? buffers[t].data() : nullptr, scratch[worker]);
+      forward_node(s, Y, nrhs, transposed, reaches_top ? buffers[t].data() : nullptr, scratch[worker], 0);
   });
   for (int t = 0; t < tasks; ++t) {
     if (buffers[t].empty()) continue;
@@ -457,11 +534,12 @@ void SupernodalLU::Impl::solve_in_place(double* Y, int nrhs, bool transposed) co
         for (int c = 0; c < nrhs; ++c)
           Y[k + static_cast<Long>(c) * n] += buffers[t][top_index[k] + static_cast<Long>(c) * top_columns];
   }
-  for (int s : schedule.top) forward_node(s, Y, nrhs, transposed, nullptr, scratch[0]);
-  for (auto it = schedule.top.rbegin(); it != schedule.top.rend(); ++it) backward_node(*it, Y, nrhs, transposed, scratch[0]);
+  for (int s : schedule.top) forward_node(s, Y, nrhs, transposed, nullptr, scratch[0], top_threads(s));
+  for (auto it = schedule.top.rbegin(); it != schedule.top.rend(); ++it)
+    backward_node(*it, Y, nrhs, transposed, scratch[0], top_threads(*it));
   run_tasks(tasks, threads, [&](int t, int worker) {
     const auto [first, last] = schedule.subtrees[t];
-    for (int s = last; s >= first; --s) backward_node(s, Y, nrhs, transposed, scratch[worker]);
+    for (int s = last; s >= first; --s) backward_node(s, Y, nrhs, transposed, scratch[worker], 0);
   });
 }
 
@@ -484,8 +562,9 @@ double SupernodalLU::factor_nonzeros() const {
   return impl_->Lx.empty() ? 0 : static_cast<double>(impl_->Lx.size() + impl_->Ux.size());
 }
 double SupernodalLU::flops() const { return impl_->flops; }
+int SupernodalLU::split_supernodes() const { return impl_->split; }
 std::vector<double> SupernodalLU::factor_values() const {
-  std::vector<double> v(impl_->Lx);
+  std::vector<double> v(impl_->Lx.begin(), impl_->Lx.end());
   v.insert(v.end(), impl_->Ux.begin(), impl_->Ux.end());
   return v;
 }

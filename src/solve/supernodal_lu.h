@@ -45,6 +45,9 @@ class SupernodalLU {
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B, bool transposed = false) const;
   double factor_nonzeros() const;  // stored entries of L and U (supernodal, with their explicit zeros)
   double flops() const;            // of the numeric factorization
+  // Top supernodes wide enough to be factored in column blocks shared by
+  // the threads (a property of the analysis, not of the thread count).
+  int split_supernodes() const;
   // L's panels then U's, as stored: for tests that compare factorizations
   // bit for bit.
   std::vector<double> factor_values() const;
