@@ -130,6 +130,7 @@ struct SupernodalLU::Impl {
   // x nscol; U_s itself sits in L's diagonal block).
   Panels Lx, Ux;
   double flops = 0;
+  double top_flops = 0, serial_flops = 0;  // of the top supernodes; of those, on one thread
   int threads = 1;
   // Who updates each supernode (ascending: a fixed order), and the subtrees
   // that run in parallel (supernodal_schedule.h); the top supernodes run one
@@ -397,9 +398,17 @@ bool SupernodalLU::Impl::numeric(const SparseMatrix& matrix) {
     if (failed[t]) return false;
     flops += task_flops[t];
   }
+  top_flops = serial_flops = 0;
   for (int s : schedule.top) {
     const int node_threads = wide(s) ? threads : 1;
-    if (!factor_node(s, floor.data(), ws[0], node_threads, flops)) return false;
+    double node_flops = 0;
+    if (!factor_node(s, floor.data(), ws[0], node_threads, node_flops)) return false;
+    flops += node_flops;
+    top_flops += node_flops;
+    if (!wide(s)) serial_flops += node_flops;
+    else  // the diagonal blocks' LUs
+      for (int b = 0, nscol = super[s + 1] - super[s]; b < column_blocks(nscol); ++b)
+        serial_flops += 2.0 * std::pow(block_start(nscol, b + 1) - block_start(nscol, b), 3) / 3;
   }
   A = nullptr;
   At = SparseMatrix();
@@ -563,6 +572,8 @@ double SupernodalLU::factor_nonzeros() const {
 }
 double SupernodalLU::flops() const { return impl_->flops; }
 int SupernodalLU::split_supernodes() const { return impl_->split; }
+double SupernodalLU::top_flops() const { return impl_->top_flops; }
+double SupernodalLU::serial_flops() const { return impl_->serial_flops; }
 std::vector<double> SupernodalLU::factor_values() const {
   std::vector<double> v(impl_->Lx.begin(), impl_->Lx.end());
   v.insert(v.end(), impl_->Ux.begin(), impl_->Ux.end());

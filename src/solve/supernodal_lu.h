@@ -48,6 +48,11 @@ class SupernodalLU {
   // Top supernodes wide enough to be factored in column blocks shared by
   // the threads (a property of the analysis, not of the thread count).
   int split_supernodes() const;
+  // Flops of the top supernodes (after the subtrees), and of those the ones
+  // that run on one thread whatever the thread count (narrow supernodes and
+  // the LUs of the diagonal blocks): what limits the speedup on 2 cores.
+  double top_flops() const;
+  double serial_flops() const;
   // L's panels then U's, as stored: for tests that compare factorizations
   // bit for bit.
   std::vector<double> factor_values() const;
