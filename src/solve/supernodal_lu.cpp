@@ -65,10 +65,6 @@ bool dense_lu(int n, double* A, int lda, const double* floor) {
   return dense_lu(n2, A22, lda, floor + n1);
 }
 
-}  // namespace
-
-namespace {
-
 // Column blocks of a supernode with nscol columns, as in the supernodal
 // Cholesky: about 128 wide, narrower supernodes whole. A function of nscol
 // only, and every supernode is blocked the same way whatever runs it, so the
@@ -271,21 +267,21 @@ double SupernodalLU::Impl::update_block(int s, int c1, int c2, const int* map, s
     const int* p2 = std::lower_bound(q2, end, k2);
     const int nl = static_cast<int>(end - p1), n3 = static_cast<int>(end - p2);
     const double* Ld = Lx.data() + px[d];
-    const double* Ud = Ux.data() + ux[d] - ndcol;  // Ud[r]: U_d's entry for d's row r (r >= ndcol)
+    const double* Ud = Ux.data() + ux[d];  // Ud[r - ndcol]: U_d's entry for d's row r (r >= ndcol)
     const int ld = static_cast<int>(ndrow), ldu = static_cast<int>(ndrow - ndcol);
     work.resize(static_cast<size_t>(nl + n3) * n1);
     double* CL = work.data();
     double* CU = CL + static_cast<size_t>(nl) * n1;
-    gemm('N', 'T', nl, n1, ndcol, 1, Ld + (p1 - drows), ld, Ud + (q1 - drows), ldu, 0, CL, nl);
-    gemm('N', 'T', n3, n1, ndcol, 1, Ud + (p2 - drows), ldu, Ld + (q1 - drows), ld, 0, CU, n3);
+    gemm('N', 'T', nl, n1, ndcol, 1, Ld + (p1 - drows), ld, Ud + (q1 - drows - ndcol), ldu, 0, CL, nl);
+    gemm('N', 'T', n3, n1, ndcol, 1, Ud + (p2 - drows - ndcol), ldu, Ld + (q1 - drows), ld, 0, CU, n3);
     for (int j = 0; j < n1; ++j) {
       const Long col = q1[j] - k1;
       double* Lc = L + col * nsrow;
-      double* Uc = U + col * below - nscol;
+      double* Uc = U + col * below;  // Uc[map[r] - nscol]: row r past s's columns
       const double* cl = CL + static_cast<Long>(j) * nl;
       const double* cu = CU + static_cast<Long>(j) * n3;
       for (int i = 0; i < nl; ++i) Lc[map[p1[i]]] -= cl[i];
-      for (int i = 0; i < n3; ++i) Uc[map[p2[i]]] -= cu[i];
+      for (int i = 0; i < n3; ++i) Uc[map[p2[i]] - nscol] -= cu[i];
     }
     flops += 2.0 * ndcol * n1 * (nl + n3);
   }
