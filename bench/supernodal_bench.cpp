@@ -7,13 +7,20 @@
 // row is the median of the rounds. Same analysis for all (CHOLMOD's on the
 // level-set nested dissection), so the flops are the same: the kernel
 // (CHOLMOD vs ours on 1 thread) and the parallelism (ours, 1 vs N threads)
-// separate.
+// separate. The last column is the largest relative residual
+// |A X - B| / |B| of the unrefined solves, then how many refinement steps
+// LinearSolver's rule (componentwise backward error above 16 ulps) would
+// add, each one more solve. A line before the table gives
+// the LU's flops in the top supernodes and those of them that run on one
+// thread whatever the thread count (machine-independent: the bound on what
+// a second core can give).
 //   supernodal_bench [VERTICES] [ROUNDS]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -57,9 +64,36 @@ SparseMatrix interior_system(const Mesh& mesh, Method method) {
   return A;
 }
 
+// Componentwise backward error max_i |B - A X|_i / (|A| |X| + |B|)_i, the
+// measure LinearSolver refines on (linear_solver.cpp), with R = B - A X.
+double backward_error(const SparseMatrix& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B, Eigen::MatrixXd& R) {
+  R = B - A * X;
+  Eigen::MatrixXd scale = B.cwiseAbs() + A.cwiseAbs() * X.cwiseAbs();
+  double omega = 0;
+  for (Eigen::Index k = 0; k < R.size(); ++k)
+    if (scale.data()[k] > 0) omega = std::max(omega, std::abs(R.data()[k]) / scale.data()[k]);
+  return omega;
+}
+
+// How many refinement steps LinearSolver would take after the first solve
+// (it refines while the backward error is above 16 ulps, at most 3 for the
+// LU, 5 for the Cholesky): each costs one more solve.
+template <class Factor>
+int refinement_steps(const Factor& f, const SparseMatrix& A, const Eigen::MatrixXd& B, int limit) {
+  Eigen::MatrixXd X = f.solve(B), R;
+  int steps = 0;
+  for (double omega = backward_error(A, X, B, R);
+       steps < limit && omega > 16 * std::numeric_limits<double>::epsilon(); omega = backward_error(A, X, B, R)) {
+    X += f.solve(R);
+    ++steps;
+  }
+  return steps;
+}
+
 struct Row {
   std::vector<double> analyse, factor, solve;
-  double flops = 0, nnz = 0;
+  double flops = 0, nnz = 0, residual = 0;
+  int steps = -1;
 };
 
 }  // namespace
@@ -82,8 +116,10 @@ int main(int argc, char** argv) {
     r.analyse.push_back(f.analyse_ms);
     r.factor.push_back(f.factor_ms);
     const auto t = std::chrono::steady_clock::now();
-    f.solve(rhs);
+    const Eigen::MatrixXd X = f.solve(rhs);
     r.solve.push_back(ms_since(t));
+    r.residual = std::max(r.residual, (A * X - rhs).norm() / rhs.norm());
+    if (r.steps < 0) r.steps = refinement_steps(f, A, rhs, 5);
     r.flops = f.flops();
     r.nnz = f.factor_nonzeros();
   };
@@ -96,11 +132,18 @@ int main(int argc, char** argv) {
   }
   std::printf("n = %d unknowns (%d vertices), %d rounds, medians\n\n", static_cast<int>(C.rows()),
               static_cast<int>(mesh.V.rows()), rounds);
-  std::printf("| system / factorization | ordering + analysis s | numeric factor s | GFlop | GFlop/s | solve (2 rhs) s | nnz(factor) |\n|---|---|---|---|---|---|---|\n");
+  {
+    detail::SupernodalLU f(threads);
+    if (f.factor(U))
+      std::printf("supernodal LU: %.2f of %.2f GFlop in the top supernodes (after the subtrees), %.2f GFlop of those on "
+                  "one thread whatever the thread count; %d top supernodes split between threads\n\n",
+                  f.top_flops() / 1e9, f.flops() / 1e9, f.serial_flops() / 1e9, f.split_supernodes());
+  }
+  std::printf("| system / factorization | ordering + analysis s | numeric factor s | GFlop | GFlop/s | solve (2 rhs) s | nnz(factor) | max residual | refinement steps |\n|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& [name, r] : rows) {
     const double f = median(r.factor);
-    std::printf("| %s | %.3f | %.3f | %.2f | %.2f | %.3f | %.0f |\n", name.c_str(), median(r.analyse) / 1000, f / 1000, r.flops / 1e9,
-                r.flops / 1e6 / f, median(r.solve) / 1000, r.nnz);
+    std::printf("| %s | %.3f | %.3f | %.2f | %.2f | %.3f | %.0f | %.1e | %d |\n", name.c_str(), median(r.analyse) / 1000,
+                f / 1000, r.flops / 1e9, r.flops / 1e6 / f, median(r.solve) / 1000, r.nnz, r.residual, r.steps);
   }
   return 0;
 #else

@@ -1,13 +1,17 @@
 // The supernodal LU without pivoting (src/solve/supernodal_lu.h) against
 // Eigen's SparseLU (partial pivoting, its own COLAMD ordering: a separate
-// code path) on the authalic and mixed systems of generated meshes, and its
-// fall-back to UMFPACK on matrices that need pivoting.
+// code path) on the authalic and mixed systems of generated meshes and on a
+// matrix with a dense block (a supernode split in column blocks between
+// threads), with several right-hand sides, plain and transposed; factors and
+// solutions the same bit for bit with 1, 2 and 3 threads; and its fall-back
+// to UMFPACK on matrices that need pivoting.
 #include <random>
 
 #include "intrinsic/assemble.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/linear_solver.h"
 #include "intrinsic/parameterize.h"
+#include "solve/supernodal_lu.h"
 #include "test_support.h"
 
 namespace intrinsic {
@@ -95,6 +99,116 @@ TEST(SupernodalLUSolver, ParameterizeAutoPicksItAndAgrees) {
   }
 }
 
+// A non-symmetric matrix with a symmetric pattern: a dense m x m block
+// (random, diagonally dominant by rows) coupled to a path with different
+// values above and below the diagonal. The analysis makes the block one
+// supernode, several column blocks wide.
+SparseMatrix dense_block_matrix(int m, int path) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) t.emplace_back(i, j, (i == j ? 2.0 : 0.0) + u(rng) / m);
+  for (int k = 0; k < path; ++k) {
+    const int v = m + k, prev = k == 0 ? 0 : v - 1;
+    t.emplace_back(v, v, 3.0);
+    t.emplace_back(v, prev, -1.0 + 0.5 * u(rng));
+    t.emplace_back(prev, v, -0.5 + 0.25 * u(rng));
+    t.emplace_back(prev, prev, 1.0);
+  }
+  SparseMatrix A(m + path, m + path);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
+// Rings of a wavy patch whose top separators are wide enough to be split
+// in column blocks between threads.
+constexpr int kSplitRings = 150;
+
+#ifdef INTRINSIC_HAVE_SUPERNODAL_LU
+// The factorization alone (no refinement) on `threads` threads, each count
+// in turn: A X = B and A^T Y = B against Eigen's SparseLU of A and of A^T.
+void expect_solves_agree(const SparseMatrix& A, const Eigen::MatrixXd& B, std::initializer_list<int> threads,
+                         double tolerance) {
+  const Eigen::MatrixXd X = reference_solve(A, B), Y = reference_solve(SparseMatrix(A.transpose()), B);
+  for (int t : threads) {
+    detail::SupernodalLU f(t);
+    ASSERT_TRUE(f.factor(A));
+    EXPECT_LT(relative_difference(f.solve(B), X), tolerance) << t;
+    EXPECT_LT(relative_difference(f.solve(B, true), Y), tolerance) << t;
+  }
+}
+#endif
+
+TEST(SupernodalLUSolver, FactorsAloneAgreeWithSparseLUForSeveralRightHandSides) {
+#ifndef INTRINSIC_HAVE_SUPERNODAL_LU
+  GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+#else
+  const Mesh mesh = test::wavy(60, 0.3);
+  for (const WeightOptions& w : {weights(Method::Authalic, 0, 1), weights(Method::Mixed, 0.5, 0.5)}) {
+    SCOPED_TRACE(method_name(w.method));
+    const System s = fixed_boundary_system(mesh, w);
+    Eigen::MatrixXd B(s.A.rows(), 5);
+    B << s.B, Eigen::MatrixXd::Random(s.A.rows(), 3);
+    expect_solves_agree(s.A, B, {2}, 1e-10);
+    expect_solves_agree(s.A, B.col(2), {1}, 1e-10);  // one column
+  }
+#endif
+}
+
+TEST(SupernodalLUSolver, WideSupernodeSplitInColumnBlocks) {
+#ifndef INTRINSIC_HAVE_SUPERNODAL_LU
+  GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+#else
+  // A dense block factored as one supernode (a leaf: one thread) and a
+  // mesh large enough that its top separators are split between threads.
+  const SparseMatrix D = dense_block_matrix(700, 3000);
+  ASSERT_GT((SparseMatrix(D.transpose()) - D).norm(), 1e-2 * D.norm());  // really not symmetric
+  const Eigen::MatrixXd BD = Eigen::MatrixXd::Random(D.rows(), 3);
+  expect_solves_agree(D, BD, {2}, 1e-11);
+  detail::SupernodalLU f(2);
+  ASSERT_TRUE(f.factor(D));
+  EXPECT_GE(f.factor_nonzeros(), 700.0 * 700);            // the dense block alone (L and U)
+  EXPECT_GE(f.flops(), 2.0 / 3 * 700.0 * 700 * 700);      // at least its LU
+  const System s = fixed_boundary_system(test::wavy(kSplitRings, 0.3), weights(Method::Authalic, 0, 1));
+  ASSERT_TRUE(f.factor(s.A));
+  ASSERT_GT(f.split_supernodes(), 0);
+  Eigen::MatrixXd B(s.A.rows(), 3);
+  B << s.B, Eigen::MatrixXd::Random(s.A.rows(), 1);
+  expect_solves_agree(s.A, B, {1, 2}, 1e-10);
+#endif
+}
+
+TEST(SupernodalLUSolver, SameBitsWithOneTwoAndThreeThreads) {
+#ifndef INTRINSIC_HAVE_SUPERNODAL_LU
+  GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+#else
+  const System mixed = fixed_boundary_system(test::wavy(kSplitRings, 0.3), weights(Method::Mixed, 0.5, 0.5));
+  const SparseMatrix D = dense_block_matrix(600, 2000);
+  for (const SparseMatrix* A : {&mixed.A, &D}) {
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A->rows(), 3);
+    std::vector<double> factors1;
+    Eigen::MatrixXd X1, Y1;
+    for (int threads : {1, 2, 3}) {
+      detail::SupernodalLU f(threads);
+      ASSERT_TRUE(f.factor(*A));
+      const std::vector<double> factors = f.factor_values();
+      const Eigen::MatrixXd X = f.solve(B), Y = f.solve(B, true);
+      if (threads == 1) {
+        factors1 = factors;
+        X1 = X;
+        Y1 = Y;
+        continue;
+      }
+      EXPECT_TRUE(factors == factors1) << threads;
+      EXPECT_TRUE((X.array() == X1.array()).all()) << threads;
+      EXPECT_TRUE((Y.array() == Y1.array()).all()) << threads;
+    }
+  }
+#endif
+}
+
 // The mesh's adjacency (a symmetric pattern) with random values that differ
 // between (i, j) and (j, i), and the given diagonal.
 SparseMatrix scrambled_adjacency(const Mesh& mesh, double diagonal) {
@@ -165,6 +279,37 @@ TEST(SupernodalLUSolver, ModeratelySmallPivotsAreRefined) {
   EXPECT_LT(relative_difference(solver.solve(B), reference_solve(A, B)), 1e-9) << solver.name();
   EXPECT_LT(relative_difference(solver.solve_transposed(B), reference_solve(SparseMatrix(A.transpose()), B)), 1e-9)
       << solver.name();
+}
+
+TEST(SupernodalLUSolver, EntryWithoutMirrorIsRefusedAndUmfpackAnswers) {
+#ifndef INTRINSIC_HAVE_SUPERNODAL_LU
+  GTEST_SKIP() << "built without SuiteSparse and OpenBLAS";
+#else
+  // The analysis reads the lower triangle only: an entry above the diagonal
+  // whose mirror is absent may fall outside the factor's pattern. With the
+  // entry in the last column and first row of a path (a tridiagonal matrix:
+  // no fill), it does in every elimination order that keeps the path's
+  // pattern, and in the others the factors are still exact.
+  const int n = 200;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 4.0);
+    if (i > 0) {
+      t.emplace_back(i, i - 1, -1.0);
+      t.emplace_back(i - 1, i, -1.5);
+    }
+  }
+  t.emplace_back(0, n - 1, 0.5);
+  SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(n, 2);
+  detail::SupernodalLU f(2);
+  if (f.factor(A)) EXPECT_LT(relative_difference(f.solve(B), reference_solve(A, B)), 1e-12);
+  LinearSolver solver(SolverKind::Auto, false);
+  solver.factor(A);
+  EXPECT_LT(relative_difference(solver.solve(B), reference_solve(A, B)), 1e-12) << solver.name();
+#endif
 }
 
 TEST(SupernodalLUSolver, TinySystems) {

@@ -21,6 +21,7 @@
 #define INTRINSIC_HAVE_SUPERNODAL_LU 1
 
 #include <memory>
+#include <vector>
 
 #include "intrinsic/linear_solver.h"
 
@@ -29,8 +30,9 @@ namespace intrinsic::detail {
 class SupernodalLU {
  public:
   // threads: how many run independent subtrees of the elimination tree
-  // (supernodal_schedule.h); 0 = the machine's cores. The result does not
-  // depend on it.
+  // (supernodal_schedule.h) and share the column blocks of the wide top
+  // supernodes, in the factorization and in the solves; 0 = the machine's
+  // cores. The results (factors and solutions) do not depend on it.
   explicit SupernodalLU(int threads = 0);
   ~SupernodalLU();
   SupernodalLU(const SupernodalLU&) = delete;
@@ -43,6 +45,17 @@ class SupernodalLU {
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B, bool transposed = false) const;
   double factor_nonzeros() const;  // stored entries of L and U (supernodal, with their explicit zeros)
   double flops() const;            // of the numeric factorization
+  // Top supernodes wide enough to be factored in column blocks shared by
+  // the threads (a property of the analysis, not of the thread count).
+  int split_supernodes() const;
+  // Flops of the top supernodes (after the subtrees), and of those the ones
+  // that run on one thread whatever the thread count (narrow supernodes and
+  // the LUs of the diagonal blocks): what limits the speedup on 2 cores.
+  double top_flops() const;
+  double serial_flops() const;
+  // L's panels then U's, as stored: for tests that compare factorizations
+  // bit for bit.
+  std::vector<double> factor_values() const;
   double analyse_ms = 0, factor_ms = 0;
 
  private:
