@@ -2,12 +2,24 @@
 // is O(nnz) per level of the dissection tree (plus the refinement's, near the
 // separators, times a log), so O(nnz log n) in all, with an explicit stack (no
 // recursion depth limit) and no allocation per vertex.
+//
+// The two halves of a separator share no edge, so they are ordered on
+// several threads at once: each piece's dissection reads and writes only its
+// own vertices' entries of the per-vertex arrays (and reads its neighbours
+// in the separators already emitted), and its result depends only on the
+// piece, never on which thread takes it or when. So the permutation is the
+// same for any thread count.
 #include "solve/ordering.h"
 
 #include "solve/ordering_refine.h"
+#include "util/parallel_for.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
 
 namespace intrinsic::detail {
 namespace {
@@ -30,18 +42,55 @@ constexpr int kPasses = 4;
 // is tens of rows), and at 300k vertices refining them all would cost 1.6x
 // the ordering time for 2-3% fewer flops.
 constexpr int kRefineAbove = 1000;
+// Halves at least this large go to the shared queue for any idle thread;
+// smaller ones stay with the thread that cut them (no locking per piece).
+constexpr int kShareAbove = 5000;
 
+// What the threads share: the graph, the per-vertex arrays (each piece
+// touches only its own vertices' entries), the permutation (each piece
+// writes its own positions) and the queue of pieces waiting for a thread.
+struct Shared {
+  explicit Shared(const SparseMatrix& A)
+      : n(static_cast<int>(A.rows())),
+        begin(A.outerIndexPtr()),
+        end(A.innerNonZeroPtr()),
+        index(A.innerIndexPtr()),
+        owner(n, 0),
+        level(n, -1),
+        other_level(n, -1),
+        side(n, 0),
+        perm(n, 0) {}
+  int n;
+  const int* begin;
+  const int* end;  // non-null for uncompressed matrices
+  const int* index;
+  std::vector<int> owner, level;
+  std::vector<int> other_level;  // a second search's levels (retry_from), all -1 between uses
+  std::vector<signed char> side;  // half (0, 1) or separator (2) of a piece being split
+  std::vector<int> perm;
+  // Owner tags: only equality with a piece's own tag matters, and no two
+  // pieces alive at once are adjacent, so the values may depend on timing.
+  std::atomic<int> next_tag{1};
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::vector<Piece> queue;
+  int busy = 0;  // threads working on a piece taken from the queue
+};
+
+// One thread's dissection: its own stack of pieces and search buffers.
 class Dissection {
  public:
-  explicit Dissection(const SparseMatrix& A)
-      : n_(static_cast<int>(A.rows())),
-        begin_(A.outerIndexPtr()),
-        end_(A.innerNonZeroPtr()),
-        index_(A.innerIndexPtr()),
-        owner_(n_, 0),
-        level_(n_, -1),
-        other_level_(n_, -1),
-        side_(n_, 0),
+  explicit Dissection(Shared& shared)
+      : shared_(shared),
+        n_(shared.n),
+        begin_(shared.begin),
+        end_(shared.end),
+        index_(shared.index),
+        owner_(shared.owner),
+        level_(shared.level.data()),
+        other_level_(shared.other_level.data()),
+        side_(shared.side),
+        perm_(shared.perm),
         refiner_(begin_, end_, index_, n_) {}
 
   // Breadth-first search from `source` over the vertices tagged `tag`;
@@ -69,7 +118,7 @@ class Dissection {
     return choose_cut(order, levels, size, count, level_);
   }
   int choose_cut(const std::vector<int>& order, int levels, int size, std::vector<long>& count,
-                 const std::vector<int>& level) const {
+                 const int* level) const {
     count.assign(levels, 0);
     for (int v : order) ++count[level[v]];
     int cut = -1, balanced = 1;
@@ -87,19 +136,25 @@ class Dissection {
     for (int v : order) level_[v] = -1;
   }
 
-  // The fill-reducing permutation: perm[i] is the vertex eliminated i-th.
-  std::vector<int> run(int leaf_size) {
-    perm_.assign(n_, 0);
-    stack_.clear();
-    stack_.push_back({std::vector<int>(n_), 0, 0});
-    for (int v = 0; v < n_; ++v) stack_.back().vertices[v] = v;
-    next_tag_ = 1;
-    while (!stack_.empty()) {
-      Piece piece = std::move(stack_.back());
-      stack_.pop_back();
-      dissect(piece, leaf_size);
+  // Takes pieces from the shared queue until every piece is done.
+  void work(int leaf_size) {
+    for (;;) {
+      {
+        std::unique_lock<std::mutex> lock(shared_.mutex);
+        shared_.wake.wait(lock, [&] { return !shared_.queue.empty() || shared_.busy == 0; });
+        if (shared_.queue.empty()) return;  // and nobody busy: all done
+        stack_.push_back(std::move(shared_.queue.back()));
+        shared_.queue.pop_back();
+        ++shared_.busy;
+      }
+      while (!stack_.empty()) {
+        Piece piece = std::move(stack_.back());
+        stack_.pop_back();
+        dissect(piece, leaf_size);
+      }
+      std::lock_guard<std::mutex> lock(shared_.mutex);
+      if (--shared_.busy == 0 && shared_.queue.empty()) shared_.wake.notify_all();
     }
-    return std::move(perm_);
   }
 
  private:
@@ -111,13 +166,21 @@ class Dissection {
     }
   }
 
-  // Tags the two halves' vertices and pushes them so that a is taken next.
+  // Tags the two halves' vertices and pushes them so that a is taken next;
+  // a large b goes to the shared queue for another thread.
   void push_halves(Piece&& a, Piece&& b) {
     for (int v : a.vertices) owner_[v] = a.tag;
     for (int v : b.vertices) owner_[v] = b.tag;
-    stack_.push_back(std::move(b));
+    if (static_cast<int>(b.vertices.size()) >= kShareAbove) {
+      std::lock_guard<std::mutex> lock(shared_.mutex);
+      shared_.queue.push_back(std::move(b));
+      shared_.wake.notify_one();
+    } else {
+      stack_.push_back(std::move(b));
+    }
     stack_.push_back(std::move(a));
   }
+  int new_tag() { return shared_.next_tag.fetch_add(1, std::memory_order_relaxed); }
 
   // Emits a piece or splits it in two plus a separator (emitted last).
   void dissect(Piece& piece, int leaf_size) {
@@ -167,8 +230,8 @@ class Dissection {
   // Disconnected piece (order_ holds the search from its start): the
   // component found first and the rest, no separator.
   void split_disconnected(const Piece& piece) {
-    Piece a{order_, piece.first, next_tag_++, order_.back()},
-        b{{}, piece.first + static_cast<int>(order_.size()), next_tag_++};
+    Piece a{order_, piece.first, new_tag(), order_.back()},
+        b{{}, piece.first + static_cast<int>(order_.size()), new_tag()};
     for (int v : piece.vertices)
       if (level_[v] < 0) b.vertices.push_back(v);
     clear_levels(order_);
@@ -190,9 +253,9 @@ class Dissection {
   int retry_from(Piece& piece, int cut, int size, int source, double keep_below) {
     const long first_separator = count_[cut];
     std::vector<int>& other = other_order_;
-    level_.swap(other_level_);  // the second search writes the spare array
+    std::swap(level_, other_level_);  // the second search writes the spare array
     const int other_levels = bfs(source, piece.tag, other);
-    level_.swap(other_level_);
+    std::swap(level_, other_level_);
     std::vector<long>& other_count = other_count_;
     const int other_cut = other_levels >= 3 ? choose_cut(other, other_levels, size, other_count, other_level_) : -1;
     const bool keep = other_cut >= 0 && other_count[other_cut] < keep_below * static_cast<double>(first_separator);
@@ -200,7 +263,7 @@ class Dissection {
       piece.start = source;
       order_.swap(other);
       count_.swap(other_count);
-      level_.swap(other_level_);
+      std::swap(level_, other_level_);
     }
     for (int v : other) other_level_[v] = -1;  // the search not kept
     return keep ? other_cut : cut;
@@ -249,7 +312,7 @@ class Dissection {
     const long above = static_cast<long>(order_.size()) - below - static_cast<long>(separator.size());
     if (static_cast<long>(order_.size()) >= kRefineAbove)
       refiner_.refine(separator, side_, owner_, piece.tag, below, above, kMaxFraction, kPasses);
-    Piece a{{}, piece.first, next_tag_++}, b{{}, 0, next_tag_++};
+    Piece a{{}, piece.first, new_tag()}, b{{}, 0, new_tag()};
     for (int v : order_) {
       if (side_[v] == 0) a.vertices.push_back(v);
       else if (side_[v] == 1) b.vertices.push_back(v);
@@ -265,19 +328,21 @@ class Dissection {
     push_halves(std::move(a), std::move(b));
   }
 
+  Shared& shared_;
   int n_;
   const int* begin_;
-  const int* end_;  // non-null for uncompressed matrices
+  const int* end_;
   const int* index_;
-  std::vector<int> owner_, level_;
-  std::vector<int> other_level_;  // a second search's levels (retry_from), all -1 between uses
-  std::vector<signed char> side_;  // half (0, 1) or separator (2) of the piece being split
+  std::vector<int>& owner_;
+  // The shared level arrays, swapped per thread when a second search is
+  // kept (retry_from): both are -1 on a piece's vertices between uses.
+  int* level_;
+  int* other_level_;
+  std::vector<signed char>& side_;
+  std::vector<int>& perm_;
   SeparatorRefiner refiner_;
-  // State of run(): the permutation, the pieces still to dissect, the next
-  // unused owner tag, and search buffers reused across pieces.
-  std::vector<int> perm_;
+  // This thread's pieces still to dissect and search buffers reused across pieces.
   std::vector<Piece> stack_;
-  int next_tag_ = 1;
   std::vector<int> order_, other_order_;
   std::vector<long> count_, other_count_;
 };
@@ -286,7 +351,17 @@ class Dissection {
 
 std::vector<int> level_set_nested_dissection(const SparseMatrix& A, int leaf_size) {
   if (A.rows() == 0) return {};
-  return Dissection(A).run(std::max(leaf_size, 3));
+  leaf_size = std::max(leaf_size, 3);
+  Shared shared(A);
+  shared.queue.push_back({std::vector<int>(shared.n), 0, 0});
+  for (int v = 0; v < shared.n; ++v) shared.queue.back().vertices[v] = v;
+  // Below ~20k vertices per thread a thread costs more than it saves.
+  const int threads = parallel_parts(shared.n, 20000);
+  std::vector<std::thread> helpers;
+  for (int t = 1; t < threads; ++t) helpers.emplace_back([&shared, leaf_size] { Dissection(shared).work(leaf_size); });
+  Dissection(shared).work(leaf_size);
+  for (std::thread& t : helpers) t.join();
+  return std::move(shared.perm);
 }
 
 }  // namespace intrinsic::detail
