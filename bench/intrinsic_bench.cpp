@@ -491,8 +491,9 @@ void analysis_row(const SparseMatrix& A, int runs, int threads) {
   std::uint64_t hash = 1469598103934665603ull;  // FNV-1a of the permutation
   for (int v : order) hash = (hash ^ static_cast<std::uint64_t>(v)) * 1099511628211ull;
   std::cout << "| " << A.rows() << " | " << (threads > 0 ? std::to_string(threads) : std::string("all")) << " | "
-            << fmt(median(cpu)) << " | " << fmt(median(own_cpu)) << " | " << fmt(median(wall)) << " | " << fmt(median(analyse_cpu)) << " | " << fmt(median(analyse)) << " | " << S.nsuper
-            << " | " << static_cast<long>(S.nonzeros) << " | " << std::fixed << std::setprecision(3) << S.flops / 1e9
+            << fmt(median(cpu)) << " | " << fmt(median(own_cpu)) << " | " << fmt(median(wall)) << " | "
+            << fmt(median(analyse_cpu)) << " | " << fmt(median(analyse)) << " | " << S.nsuper << " | "
+            << static_cast<long>(S.nonzeros) << " | " << std::fixed << std::setprecision(3) << S.flops / 1e9
             << std::defaultfloat << " | " << std::hex << hash << std::dec << " |" << std::endl;
 }
 
