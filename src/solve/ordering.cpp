@@ -18,7 +18,9 @@
 #include <atomic>
 #include <cmath>
 #include <condition_variable>
+#include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 
 namespace intrinsic::detail {
@@ -75,6 +77,7 @@ struct Shared {
   std::condition_variable wake;
   std::vector<Piece> queue;
   int busy = 0;  // threads working on a piece taken from the queue
+  std::exception_ptr failure;  // the first exception a thread caught
 };
 
 // One thread's dissection: its own stack of pieces and search buffers.
@@ -136,24 +139,32 @@ class Dissection {
     for (int v : order) level_[v] = -1;
   }
 
-  // Takes pieces from the shared queue until every piece is done.
+  // Takes pieces from the shared queue until every piece is done, or until
+  // some thread failed (out of memory): then all stop and the caller
+  // rethrows that thread's exception.
   void work(int leaf_size) {
     for (;;) {
       {
         std::unique_lock<std::mutex> lock(shared_.mutex);
-        shared_.wake.wait(lock, [&] { return !shared_.queue.empty() || shared_.busy == 0; });
-        if (shared_.queue.empty()) return;  // and nobody busy: all done
+        shared_.wake.wait(lock, [&] { return !shared_.queue.empty() || shared_.busy == 0 || shared_.failure; });
+        if (shared_.queue.empty() || shared_.failure) return;  // all done, or given up
         stack_.push_back(std::move(shared_.queue.back()));
         shared_.queue.pop_back();
         ++shared_.busy;
       }
-      while (!stack_.empty()) {
-        Piece piece = std::move(stack_.back());
-        stack_.pop_back();
-        dissect(piece, leaf_size);
+      std::exception_ptr failure;
+      try {
+        while (!stack_.empty()) {
+          Piece piece = std::move(stack_.back());
+          stack_.pop_back();
+          dissect(piece, leaf_size);
+        }
+      } catch (...) {
+        failure = std::current_exception();
       }
       std::lock_guard<std::mutex> lock(shared_.mutex);
-      if (--shared_.busy == 0 && shared_.queue.empty()) shared_.wake.notify_all();
+      if (failure && !shared_.failure) shared_.failure = failure;
+      if ((--shared_.busy == 0 && shared_.queue.empty()) || shared_.failure) shared_.wake.notify_all();
     }
   }
 
@@ -358,9 +369,29 @@ std::vector<int> level_set_nested_dissection(const SparseMatrix& A, int leaf_siz
   // Below ~20k vertices per thread a thread costs more than it saves.
   const int threads = parallel_parts(shared.n, 20000);
   std::vector<std::thread> helpers;
-  for (int t = 1; t < threads; ++t) helpers.emplace_back([&shared, leaf_size] { Dissection(shared).work(leaf_size); });
-  Dissection(shared).work(leaf_size);
+  try {
+    for (int t = 1; t < threads; ++t)
+      helpers.emplace_back([&shared, leaf_size] {
+        try {
+          Dissection(shared).work(leaf_size);
+        } catch (...) {  // its own buffers could not be allocated
+          std::lock_guard<std::mutex> lock(shared.mutex);
+          if (!shared.failure) shared.failure = std::current_exception();
+          shared.wake.notify_all();
+        }
+      });
+  } catch (const std::system_error&) {
+    // No more threads to be had: the ones started (or this one alone) do all.
+  }
+  try {
+    Dissection(shared).work(leaf_size);
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(shared.mutex);
+    if (!shared.failure) shared.failure = std::current_exception();
+    shared.wake.notify_all();
+  }
   for (std::thread& t : helpers) t.join();
+  if (shared.failure) std::rethrow_exception(shared.failure);
   return std::move(shared.perm);
 }
 
