@@ -51,6 +51,11 @@ constexpr int kShareAbove = 5000;
 // What the threads share: the graph, the per-vertex arrays (each piece
 // touches only its own vertices' entries), the permutation (each piece
 // writes its own positions) and the queue of pieces waiting for a thread.
+struct Node {
+  int owner;
+  int level[2];  // the current search's (Dissection::cur_) and a second one's (retry_from)
+};
+
 struct Shared {
   explicit Shared(const SparseMatrix& A)
       : n(static_cast<int>(A.rows())),
@@ -58,16 +63,18 @@ struct Shared {
         end(A.innerNonZeroPtr()),
         index(A.innerIndexPtr()),
         owner(n, 0),
-        level(n, -1),
-        other_level(n, -1),
+        node(n, Node{0, {-1, -1}}),
         side(n, 0),
         perm(n, 0) {}
   int n;
   const int* begin;
   const int* end;  // non-null for uncompressed matrices
   const int* index;
-  std::vector<int> owner, level;
-  std::vector<int> other_level;  // a second search's levels (retry_from), all -1 between uses
+  std::vector<int> owner;  // the refiner's copy of node[].owner
+  // Each vertex's owner and its levels in two searches side by side: a
+  // search's test of a neighbour (owner, then level) touches one cache
+  // line instead of two. Both levels are -1 between uses.
+  std::vector<Node> node;
   std::vector<signed char> side;  // half (0, 1) or separator (2) of a piece being split
   std::vector<int> perm;
   // Owner tags: only equality with a piece's own tag matters, and no two
@@ -90,40 +97,40 @@ class Dissection {
         end_(shared.end),
         index_(shared.index),
         owner_(shared.owner),
-        level_(shared.level.data()),
-        other_level_(shared.other_level.data()),
+        node_(shared.node.data()),
         side_(shared.side),
         perm_(shared.perm),
         refiner_(begin_, end_, index_, n_) {}
 
   // Breadth-first search from `source` over the vertices tagged `tag`;
-  // visited vertices go to `order` with their level in level_. Returns the
+  // visited vertices go to `order` with their level in node_[].level[cur_]. Returns the
   // number of levels.
   int bfs(int source, int tag, std::vector<int>& order) {
     order.clear();
     order.push_back(source);
-    level_[source] = 0;
+    node_[source].level[cur_] = 0;
     for (size_t q = 0; q < order.size(); ++q) {
       const int v = order[q];
       const int e = end_ ? begin_[v] + end_[v] : begin_[v + 1];
       for (int k = begin_[v]; k < e; ++k) {
         const int w = index_[k];
-        if (owner_[w] != tag || level_[w] >= 0) continue;
-        level_[w] = level_[v] + 1;
+        Node& nw = node_[w];
+        if (nw.owner != tag || nw.level[cur_] >= 0) continue;
+        nw.level[cur_] = node_[v].level[cur_] + 1;
         order.push_back(w);
       }
     }
-    return level_[order.back()] + 1;
+    return node_[order.back()].level[cur_] + 1;
   }
   // Among the levels that split the piece no worse than 40/60, the smallest
   // one; the most balanced level if none does. Fills count[l] = |level l|.
   int choose_cut(const std::vector<int>& order, int levels, int size, std::vector<long>& count) const {
-    return choose_cut(order, levels, size, count, level_);
+    return choose_cut(order, levels, size, count, cur_);
   }
   int choose_cut(const std::vector<int>& order, int levels, int size, std::vector<long>& count,
-                 const int* level) const {
+                 int which) const {
     count.assign(levels, 0);
-    for (int v : order) ++count[level[v]];
+    for (int v : order) ++count[node_[v].level[which]];
     int cut = -1, balanced = 1;
     long below = count[0], best_gap = -1;
     for (int l = 1; l + 1 < levels; ++l) {
@@ -136,7 +143,7 @@ class Dissection {
     return cut < 0 ? balanced : cut;
   }
   void clear_levels(const std::vector<int>& order) {
-    for (int v : order) level_[v] = -1;
+    for (int v : order) node_[v].level[cur_] = -1;
   }
 
   // Takes pieces from the shared queue until every piece is done, or until
@@ -173,15 +180,15 @@ class Dissection {
   void emit(const std::vector<int>& vs, int first) {
     for (size_t i = 0; i < vs.size(); ++i) {
       perm_[first + static_cast<int>(i)] = vs[i];
-      owner_[vs[i]] = -1;
+      owner_[vs[i]] = node_[vs[i]].owner = -1;
     }
   }
 
   // Tags the two halves' vertices and pushes them so that a is taken next;
   // a large b goes to the shared queue for another thread.
   void push_halves(Piece&& a, Piece&& b) {
-    for (int v : a.vertices) owner_[v] = a.tag;
-    for (int v : b.vertices) owner_[v] = b.tag;
+    for (int v : a.vertices) owner_[v] = node_[v].owner = a.tag;
+    for (int v : b.vertices) owner_[v] = node_[v].owner = b.tag;
     if (static_cast<int>(b.vertices.size()) >= kShareAbove) {
       std::lock_guard<std::mutex> lock(shared_.mutex);
       shared_.queue.push_back(std::move(b));
@@ -244,7 +251,7 @@ class Dissection {
     Piece a{order_, piece.first, new_tag(), order_.back()},
         b{{}, piece.first + static_cast<int>(order_.size()), new_tag()};
     for (int v : piece.vertices)
-      if (level_[v] < 0) b.vertices.push_back(v);
+      if (node_[v].level[cur_] < 0) b.vertices.push_back(v);
     clear_levels(order_);
     push_halves(std::move(a), std::move(b));
   }
@@ -254,7 +261,7 @@ class Dissection {
     int mid = -1;
     long seen = 0;
     for (int v : order_)
-      if (level_[v] == cut && seen++ <= count_[cut] / 2) mid = v;
+      if (node_[v].level[cur_] == cut && seen++ <= count_[cut] / 2) mid = v;
     return mid;
   }
 
@@ -264,19 +271,19 @@ class Dissection {
   int retry_from(Piece& piece, int cut, int size, int source, double keep_below) {
     const long first_separator = count_[cut];
     std::vector<int>& other = other_order_;
-    std::swap(level_, other_level_);  // the second search writes the spare array
+    cur_ ^= 1;  // the second search writes the spare level
     const int other_levels = bfs(source, piece.tag, other);
-    std::swap(level_, other_level_);
+    cur_ ^= 1;
     std::vector<long>& other_count = other_count_;
-    const int other_cut = other_levels >= 3 ? choose_cut(other, other_levels, size, other_count, other_level_) : -1;
+    const int other_cut = other_levels >= 3 ? choose_cut(other, other_levels, size, other_count, cur_ ^ 1) : -1;
     const bool keep = other_cut >= 0 && other_count[other_cut] < keep_below * static_cast<double>(first_separator);
     if (keep) {
       piece.start = source;
       order_.swap(other);
       count_.swap(other_count);
-      std::swap(level_, other_level_);
+      cur_ ^= 1;
     }
-    for (int v : other) other_level_[v] = -1;  // the search not kept
+    for (int v : other) node_[v].level[cur_ ^ 1] = -1;  // the search not kept
     return keep ? other_cut : cut;
   }
 
@@ -288,13 +295,13 @@ class Dissection {
     std::vector<int>& queue = other_order_;
     queue.clear();
     queue.push_back(sep[0]);
-    level_[sep[0]] = 0;
+    node_[sep[0]].level[cur_] = 0;
     for (size_t q = 0; q < queue.size(); ++q) {
       const int v = queue[q];
       for (int k = begin_[v], e = end_of(v); k < e; ++k) {
         const int w = index_[k];
-        if (owner_[w] != tag || side_[w] != 2 || level_[w] >= 0) continue;
-        level_[w] = 0;
+        if (node_[w].owner != tag || side_[w] != 2 || node_[w].level[cur_] >= 0) continue;
+        node_[w].level[cur_] = 0;
         queue.push_back(w);
       }
     }
@@ -316,9 +323,10 @@ class Dissection {
     std::vector<int> separator;
     long below = 0;
     for (int v : order_) {
-      side_[v] = static_cast<signed char>(level_[v] < cut ? 0 : level_[v] > cut ? 1 : 2);
-      if (level_[v] == cut) separator.push_back(v);
-      below += level_[v] < cut;
+      const int l = node_[v].level[cur_];
+      side_[v] = static_cast<signed char>(l < cut ? 0 : l > cut ? 1 : 2);
+      if (l == cut) separator.push_back(v);
+      below += l < cut;
     }
     const long above = static_cast<long>(order_.size()) - below - static_cast<long>(separator.size());
     if (static_cast<long>(order_.size()) >= kRefineAbove)
@@ -345,10 +353,11 @@ class Dissection {
   const int* end_;
   const int* index_;
   std::vector<int>& owner_;
-  // The shared level arrays, swapped per thread when a second search is
-  // kept (retry_from): both are -1 on a piece's vertices between uses.
-  int* level_;
-  int* other_level_;
+  // The shared per-vertex owner and levels; cur_ says which of the two
+  // levels is this thread's current search (retry_from keeps a second
+  // search by flipping it).
+  Node* node_;
+  int cur_ = 0;
   std::vector<signed char>& side_;
   std::vector<int>& perm_;
   SeparatorRefiner refiner_;
