@@ -16,6 +16,11 @@
 //                   (conformal, authalic and natural systems of an
 //                   N-vertex patch or a mesh file: analyse/factor time,
 //                   fill and flops per ordering)
+//   intrinsic_bench --orderings-analysis N|FILE
+//                   (conformal system only: the library's ordering's CPU
+//                   and wall time, CHOLMOD's supernodal analysis on it, and
+//                   the fill and flops that analysis counts; no numeric
+//                   factorization, so quick at 1M)
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -47,6 +52,7 @@
 #include "solve/suitesparse.h"
 #include "solve/complex_form.h"
 #include "solve/ordering.h"
+#include "util/parallel_for.h"
 #define INTRINSIC_BENCH_ORDERINGS 1
 #endif
 #ifdef INTRINSIC_HAVE_SUITESPARSE
@@ -448,6 +454,88 @@ void ordering_rows(const Mesh& mesh, detail::Ordering ord) {
 }
 #endif
 
+#if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_BENCH_ORDERINGS)
+double process_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+// --orderings-analysis: on the conformal system (circle boundary
+// eliminated), the ordering's process CPU and wall time and CHOLMOD's
+// analysis time on it (medians of `runs`), with the analysis's counts and
+// a hash of the permutation (to see that a change kept it). The calling
+// thread's CPU time bounds the ordering's wall time on idle cores from
+// below (that thread cuts the whole graph first, the others join in, and
+// it only waits when no piece is left for it), a figure the other jobs on a
+// shared machine disturb much less than the wall time.
+void analysis_row(const SparseMatrix& A, int runs, int threads) {
+  detail::thread_limit() = threads;
+  std::vector<double> cpu, own_cpu, wall, analyse, analyse_cpu;
+  std::vector<int> order;
+  detail::SupernodalSymbolic S;
+  for (int run = 0; run < runs; ++run) {
+    const double c0 = process_cpu_ms(), o0 = thread_cpu_ms();
+    auto t = Clock::now();
+    order = detail::level_set_nested_dissection(A);
+    wall.push_back(ms_since(t));
+    cpu.push_back(process_cpu_ms() - c0);
+    own_cpu.push_back(thread_cpu_ms() - o0);
+    const double a0 = process_cpu_ms();
+    t = Clock::now();
+    detail::supernodal_analysis(A, order, S);
+    analyse.push_back(ms_since(t));
+    analyse_cpu.push_back(process_cpu_ms() - a0);
+  }
+  detail::thread_limit() = 0;
+  std::uint64_t hash = 1469598103934665603ull;  // FNV-1a of the permutation
+  for (int v : order) hash = (hash ^ static_cast<std::uint64_t>(v)) * 1099511628211ull;
+  std::cout << "| " << A.rows() << " | " << (threads > 0 ? std::to_string(threads) : std::string("all")) << " | "
+            << fmt(median(cpu)) << " | " << fmt(median(own_cpu)) << " | " << fmt(median(wall)) << " | "
+            << fmt(median(analyse_cpu)) << " | " << fmt(median(analyse)) << " | " << S.nsuper << " | "
+            << static_cast<long>(S.nonzeros) << " | " << std::fixed << std::setprecision(3) << S.flops / 1e9
+            << std::defaultfloat << " | " << std::hex << hash << std::dec << " |" << std::endl;
+}
+
+void analysis_rows(const Mesh& mesh, int runs) {
+  const ParamOptions o = options_for("conformal");
+  const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, o.weights);
+  std::vector<char> fixed(mesh.V.rows(), 0);
+  for (int v : mesh.topology.boundary_loops[0]) fixed[v] = 1;
+  const Partition p = partition(static_cast<int>(mesh.V.rows()), fixed, mesh.topology.is_used);
+  SparseMatrix A, B;
+  split_matrix(K, p, A, B);
+  A.makeCompressed();
+  // One thread, then all cores, alternately (machine load shifts between
+  // runs; the ordering must not depend on the thread count).
+  for (int round = 0; round < 2; ++round)
+    for (int threads : {1, 0}) analysis_row(A, runs, threads);
+}
+#endif
+
+int ordering_analysis(const std::string& what, int runs) {
+#if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_BENCH_ORDERINGS)
+  Mesh mesh;
+  if (!what.empty() && std::isdigit(static_cast<unsigned char>(what[0]))) {
+    GenerateOptions g;
+    g.rings = std::max(2, static_cast<int>(std::lround(std::sqrt(std::stoi(what) / 3.0))));
+    mesh = make_mesh(generate_wavy_patch(g));
+  } else {
+    mesh = make_mesh(read_mesh(what));
+  }
+  std::cout << "| n (conformal) | threads | order s (CPU) | order s (calling thread's CPU) | order s (wall) | "
+               "analyse s (CPU) | analyse s (wall) | supernodes | nnz(L) | GFlop | permutation hash |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  analysis_rows(mesh, runs);
+  return 0;
+#else
+  (void)what;
+  (void)runs;
+  std::cerr << "--orderings-analysis needs SuiteSparse\n";
+  return 1;
+#endif
+}
+
 int orderings(const std::string& what, bool nested_dissection_only) {
 #if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_BENCH_ORDERINGS)
   Mesh mesh;
@@ -495,13 +583,15 @@ int main(int argc, char** argv) {
     else if (a == "--check-max") check_max = std::stoi(next());
     else if (a == "--orderings") return orderings(next(), false);
     else if (a == "--orderings-nd") return orderings(next(), true);
+    else if (a == "--orderings-analysis") return ordering_analysis(next(), runs);
     else if (a == "--orderings-time") {  // the library's ordering's time only
       g_order_time_only = true;
       return orderings(next(), true);
     }  // the library's ordering only (fast at 1M)
     else {
       std::cerr << "usage: intrinsic_bench [--sizes N,N,...] [--runs R] [--methods m,...] [--mesh FILE]... "
-                   "[--workdir DIR] [--check-max N] | --orderings N|FILE | --orderings-nd N|FILE\n";
+                   "[--workdir DIR] [--check-max N] | --orderings N|FILE | --orderings-nd N|FILE\n"
+                   "       intrinsic_bench [--runs R] --orderings-analysis N|FILE\n";
       return 2;
     }
   }

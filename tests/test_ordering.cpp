@@ -3,17 +3,27 @@
 // deterministic, refined separators still separate and shrink to the
 // shortest one where that is known (a grid's column), and the fill it
 // gives, as CHOLMOD's own analysis counts it, is no worse than AMD's and
-// within a stated factor of METIS's on generated disks.
+// within a stated factor of METIS's on generated disks. The ordering runs
+// on several threads and must not depend on how many; the supernodal
+// analysis on a given permutation counts L as a separate Cholesky does.
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <atomic>
 #include <vector>
 
+#include "intrinsic/error.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/mesh.h"
 #include "solve/ordering.h"
 #include "solve/ordering_refine.h"
 #include "solve/suitesparse.h"
+#include "util/parallel_for.h"
+
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+#include <cholmod.h>
+#endif
 
 namespace intrinsic {
 namespace {
@@ -77,6 +87,26 @@ TEST(Ordering, IsADeterministicPermutation) {
   const std::vector<int> p = detail::level_set_nested_dissection(A);
   expect_permutation(p, static_cast<int>(A.rows()));
   EXPECT_EQ(p, detail::level_set_nested_dissection(A));
+}
+
+// The halves of each separator are ordered on whichever thread is free;
+// each piece's result depends on the piece only, so one, two or three
+// threads (more than this machine's cores: pieces then interleave
+// differently) give the same permutation. About 67k vertices: every count
+// here runs several threads and shares pieces between them.
+TEST(Ordering, SameForAnyThreadCount) {
+  const SparseMatrix A = disk_matrix(150);
+  std::atomic<int>& limit = detail::thread_limit();
+  limit = 1;
+  const std::vector<int> one = detail::level_set_nested_dissection(A);
+  limit = 2;
+  const std::vector<int> two = detail::level_set_nested_dissection(A);
+  limit = 3;
+  const std::vector<int> three = detail::level_set_nested_dissection(A);
+  limit = 0;
+  expect_permutation(one, static_cast<int>(A.rows()));
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(one, three);
 }
 
 TEST(Ordering, PermutationOnGridsAndDisconnectedGraphs) {
@@ -145,6 +175,86 @@ TEST(Ordering, FlopsNoWorseThanAmdAndNearMetis) {
   const double metis = flops_with(detail::Ordering::METIS, A);
   EXPECT_LE(nd, amd);
   EXPECT_LE(nd, 1.3 * metis);
+}
+
+// The analysis on a permutation given beforehand is the one the solver
+// gets (same supernodes and rows), and its counts match L's pattern as
+// Eigen's simplicial Cholesky finds it on the matrix permuted here (no
+// ordering of its own): nnz(L) = sum of the column counts c_j, CHOLMOD's
+// flop count sum c_j^2.
+TEST(Ordering, AnalysisOnAGivenPermutationCountsL) {
+  const SparseMatrix A = disk_matrix(40);
+  const int n = static_cast<int>(A.rows());
+  detail::SupernodalSymbolic own, given;
+  ASSERT_TRUE(detail::supernodal_analysis(A, own));
+  ASSERT_TRUE(detail::supernodal_analysis(A, detail::level_set_nested_dissection(A), given));
+  EXPECT_EQ(own.perm, given.perm);
+  EXPECT_EQ(own.super, given.super);
+  EXPECT_EQ(own.rows, given.rows);
+  EXPECT_EQ(own.parent, given.parent);
+  // The analysis permutes A itself and asks CHOLMOD for its natural order;
+  // CHOLMOD given A and the permutation must find the same supernodes.
+  {
+    const std::vector<int> order = detail::level_set_nested_dissection(A);
+    std::vector<SuiteSparse_long> p(A.outerIndexPtr(), A.outerIndexPtr() + n + 1),
+        i(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros()), perm(order.begin(), order.end());
+    cholmod_common c;
+    cholmod_l_start(&c);
+    c.supernodal = CHOLMOD_SUPERNODAL;
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_GIVEN;
+    c.postorder = 1;
+    cholmod_sparse cs{};
+    cs.nrow = cs.ncol = n;
+    cs.nzmax = A.nonZeros();
+    cs.p = p.data();
+    cs.i = i.data();
+    cs.stype = -1;
+    cs.itype = CHOLMOD_LONG;
+    cs.xtype = CHOLMOD_PATTERN;
+    cs.dtype = CHOLMOD_DOUBLE;
+    cs.sorted = cs.packed = 1;
+    cholmod_factor* F = cholmod_l_analyze_p(&cs, perm.data(), nullptr, 0, &c);
+    ASSERT_TRUE(F && F->is_super);
+    const auto* super = static_cast<const SuiteSparse_long*>(F->super);
+    const auto* pi = static_cast<const SuiteSparse_long*>(F->pi);
+    const auto* rows = static_cast<const SuiteSparse_long*>(F->s);
+    const auto* fperm = static_cast<const SuiteSparse_long*>(F->Perm);
+    EXPECT_EQ(std::vector<int>(fperm, fperm + n), given.perm);
+    ASSERT_EQ(static_cast<int>(F->nsuper), given.nsuper);
+    EXPECT_EQ(std::vector<int>(super, super + given.nsuper + 1), given.super);
+    EXPECT_EQ(std::vector<std::int64_t>(pi, pi + given.nsuper + 1), given.pi);
+    EXPECT_EQ(std::vector<int>(rows, rows + pi[given.nsuper]), given.rows);
+    EXPECT_EQ(c.lnz, given.nonzeros);
+    EXPECT_EQ(c.fl, given.flops);
+    cholmod_l_free_factor(&F, &c);
+    cholmod_l_finish(&c);
+  }
+  // P A P^T with the analysis's final permutation (row/column k of it is
+  // row/column perm[k] of A).
+  std::vector<int> position(n);
+  for (int k = 0; k < n; ++k) position[given.perm[k]] = k;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < n; ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it) t.emplace_back(position[it.row()], position[j], it.value());
+  SparseMatrix PA(n, n);
+  PA.setFromTriplets(t.begin(), t.end());
+  Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> llt(PA);
+  ASSERT_EQ(llt.info(), Eigen::Success);
+  const SparseMatrix L = llt.matrixL();
+  double nonzeros = 0, flops = 0;
+  for (int j = 0; j < n; ++j) {
+    const double c = L.outerIndexPtr()[j + 1] - L.outerIndexPtr()[j];
+    nonzeros += c;
+    flops += c * c;
+  }
+  EXPECT_EQ(given.nonzeros, nonzeros);
+  EXPECT_NEAR(given.flops, flops, 1e-12 * flops);
+  // The supernodes (relaxed: they may hold explicit zeros) cover L.
+  double stored = 0;
+  for (int s = 0; s < given.nsuper; ++s) stored += static_cast<double>(given.nsrow(s)) * given.nscol(s);
+  EXPECT_GE(stored, nonzeros);
+  EXPECT_THROW(detail::supernodal_analysis(A, std::vector<int>(n - 1, 0), given), Error);
 }
 #endif
 

@@ -2,12 +2,26 @@
 // is O(nnz) per level of the dissection tree (plus the refinement's, near the
 // separators, times a log), so O(nnz log n) in all, with an explicit stack (no
 // recursion depth limit) and no allocation per vertex.
+//
+// The two halves of a separator share no edge, so they are ordered on
+// several threads at once: each piece's dissection reads and writes only its
+// own vertices' entries of the per-vertex arrays (and reads its neighbours
+// in the separators already emitted), and its result depends only on the
+// piece, never on which thread takes it or when. So the permutation is the
+// same for any thread count.
 #include "solve/ordering.h"
 
 #include "solve/ordering_refine.h"
+#include "util/parallel_for.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <system_error>
+#include <thread>
 
 namespace intrinsic::detail {
 namespace {
@@ -30,48 +44,93 @@ constexpr int kPasses = 4;
 // is tens of rows), and at 300k vertices refining them all would cost 1.6x
 // the ordering time for 2-3% fewer flops.
 constexpr int kRefineAbove = 1000;
+// Halves at least this large go to the shared queue for any idle thread;
+// smaller ones stay with the thread that cut them (no locking per piece).
+constexpr int kShareAbove = 5000;
 
+// What the threads share: the graph, the per-vertex arrays (each piece
+// touches only its own vertices' entries), the permutation (each piece
+// writes its own positions) and the queue of pieces waiting for a thread.
+struct Node {
+  int owner;
+  int level[2];  // the current search's (Dissection::cur_) and a second one's (retry_from)
+};
+
+struct Shared {
+  explicit Shared(const SparseMatrix& A)
+      : n(static_cast<int>(A.rows())),
+        begin(A.outerIndexPtr()),
+        end(A.innerNonZeroPtr()),
+        index(A.innerIndexPtr()),
+        owner(n, 0),
+        node(n, Node{0, {-1, -1}}),
+        side(n, 0),
+        perm(n, 0) {}
+  int n;
+  const int* begin;
+  const int* end;  // non-null for uncompressed matrices
+  const int* index;
+  std::vector<int> owner;  // the refiner's copy of node[].owner
+  // Each vertex's owner and its levels in two searches side by side: a
+  // search's test of a neighbour (owner, then level) touches one cache
+  // line instead of two. Both levels are -1 between uses.
+  std::vector<Node> node;
+  std::vector<signed char> side;  // half (0, 1) or separator (2) of a piece being split
+  std::vector<int> perm;
+  // Owner tags: only equality with a piece's own tag matters, and no two
+  // pieces alive at once are adjacent, so the values may depend on timing.
+  std::atomic<int> next_tag{1};
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::vector<Piece> queue;
+  int busy = 0;  // threads working on a piece taken from the queue
+  std::exception_ptr failure;  // the first exception a thread caught
+};
+
+// One thread's dissection: its own stack of pieces and search buffers.
 class Dissection {
  public:
-  explicit Dissection(const SparseMatrix& A)
-      : n_(static_cast<int>(A.rows())),
-        begin_(A.outerIndexPtr()),
-        end_(A.innerNonZeroPtr()),
-        index_(A.innerIndexPtr()),
-        owner_(n_, 0),
-        level_(n_, -1),
-        other_level_(n_, -1),
-        side_(n_, 0),
+  explicit Dissection(Shared& shared)
+      : shared_(shared),
+        n_(shared.n),
+        begin_(shared.begin),
+        end_(shared.end),
+        index_(shared.index),
+        owner_(shared.owner),
+        node_(shared.node.data()),
+        side_(shared.side),
+        perm_(shared.perm),
         refiner_(begin_, end_, index_, n_) {}
 
   // Breadth-first search from `source` over the vertices tagged `tag`;
-  // visited vertices go to `order` with their level in level_. Returns the
+  // visited vertices go to `order` with their level in node_[].level[cur_]. Returns the
   // number of levels.
   int bfs(int source, int tag, std::vector<int>& order) {
     order.clear();
     order.push_back(source);
-    level_[source] = 0;
+    node_[source].level[cur_] = 0;
     for (size_t q = 0; q < order.size(); ++q) {
       const int v = order[q];
       const int e = end_ ? begin_[v] + end_[v] : begin_[v + 1];
       for (int k = begin_[v]; k < e; ++k) {
         const int w = index_[k];
-        if (owner_[w] != tag || level_[w] >= 0) continue;
-        level_[w] = level_[v] + 1;
+        Node& nw = node_[w];
+        if (nw.owner != tag || nw.level[cur_] >= 0) continue;
+        nw.level[cur_] = node_[v].level[cur_] + 1;
         order.push_back(w);
       }
     }
-    return level_[order.back()] + 1;
+    return node_[order.back()].level[cur_] + 1;
   }
   // Among the levels that split the piece no worse than 40/60, the smallest
   // one; the most balanced level if none does. Fills count[l] = |level l|.
   int choose_cut(const std::vector<int>& order, int levels, int size, std::vector<long>& count) const {
-    return choose_cut(order, levels, size, count, level_);
+    return choose_cut(order, levels, size, count, cur_);
   }
   int choose_cut(const std::vector<int>& order, int levels, int size, std::vector<long>& count,
-                 const std::vector<int>& level) const {
+                 int which) const {
     count.assign(levels, 0);
-    for (int v : order) ++count[level[v]];
+    for (int v : order) ++count[node_[v].level[which]];
     int cut = -1, balanced = 1;
     long below = count[0], best_gap = -1;
     for (int l = 1; l + 1 < levels; ++l) {
@@ -84,22 +143,36 @@ class Dissection {
     return cut < 0 ? balanced : cut;
   }
   void clear_levels(const std::vector<int>& order) {
-    for (int v : order) level_[v] = -1;
+    for (int v : order) node_[v].level[cur_] = -1;
   }
 
-  // The fill-reducing permutation: perm[i] is the vertex eliminated i-th.
-  std::vector<int> run(int leaf_size) {
-    perm_.assign(n_, 0);
-    stack_.clear();
-    stack_.push_back({std::vector<int>(n_), 0, 0});
-    for (int v = 0; v < n_; ++v) stack_.back().vertices[v] = v;
-    next_tag_ = 1;
-    while (!stack_.empty()) {
-      Piece piece = std::move(stack_.back());
-      stack_.pop_back();
-      dissect(piece, leaf_size);
+  // Takes pieces from the shared queue until every piece is done, or until
+  // some thread failed (out of memory): then all stop and the caller
+  // rethrows that thread's exception.
+  void work(int leaf_size) {
+    for (;;) {
+      {
+        std::unique_lock<std::mutex> lock(shared_.mutex);
+        shared_.wake.wait(lock, [&] { return !shared_.queue.empty() || shared_.busy == 0 || shared_.failure; });
+        if (shared_.queue.empty() || shared_.failure) return;  // all done, or given up
+        stack_.push_back(std::move(shared_.queue.back()));
+        shared_.queue.pop_back();
+        ++shared_.busy;
+      }
+      std::exception_ptr failure;
+      try {
+        while (!stack_.empty()) {
+          Piece piece = std::move(stack_.back());
+          stack_.pop_back();
+          dissect(piece, leaf_size);
+        }
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(shared_.mutex);
+      if (failure && !shared_.failure) shared_.failure = failure;
+      if ((--shared_.busy == 0 && shared_.queue.empty()) || shared_.failure) shared_.wake.notify_all();
     }
-    return std::move(perm_);
   }
 
  private:
@@ -107,17 +180,25 @@ class Dissection {
   void emit(const std::vector<int>& vs, int first) {
     for (size_t i = 0; i < vs.size(); ++i) {
       perm_[first + static_cast<int>(i)] = vs[i];
-      owner_[vs[i]] = -1;
+      owner_[vs[i]] = node_[vs[i]].owner = -1;
     }
   }
 
-  // Tags the two halves' vertices and pushes them so that a is taken next.
+  // Tags the two halves' vertices and pushes them so that a is taken next;
+  // a large b goes to the shared queue for another thread.
   void push_halves(Piece&& a, Piece&& b) {
-    for (int v : a.vertices) owner_[v] = a.tag;
-    for (int v : b.vertices) owner_[v] = b.tag;
-    stack_.push_back(std::move(b));
+    for (int v : a.vertices) owner_[v] = node_[v].owner = a.tag;
+    for (int v : b.vertices) owner_[v] = node_[v].owner = b.tag;
+    if (static_cast<int>(b.vertices.size()) >= kShareAbove) {
+      std::lock_guard<std::mutex> lock(shared_.mutex);
+      shared_.queue.push_back(std::move(b));
+      shared_.wake.notify_one();
+    } else {
+      stack_.push_back(std::move(b));
+    }
     stack_.push_back(std::move(a));
   }
+  int new_tag() { return shared_.next_tag.fetch_add(1, std::memory_order_relaxed); }
 
   // Emits a piece or splits it in two plus a separator (emitted last).
   void dissect(Piece& piece, int leaf_size) {
@@ -167,10 +248,10 @@ class Dissection {
   // Disconnected piece (order_ holds the search from its start): the
   // component found first and the rest, no separator.
   void split_disconnected(const Piece& piece) {
-    Piece a{order_, piece.first, next_tag_++, order_.back()},
-        b{{}, piece.first + static_cast<int>(order_.size()), next_tag_++};
+    Piece a{order_, piece.first, new_tag(), order_.back()},
+        b{{}, piece.first + static_cast<int>(order_.size()), new_tag()};
     for (int v : piece.vertices)
-      if (level_[v] < 0) b.vertices.push_back(v);
+      if (node_[v].level[cur_] < 0) b.vertices.push_back(v);
     clear_levels(order_);
     push_halves(std::move(a), std::move(b));
   }
@@ -180,7 +261,7 @@ class Dissection {
     int mid = -1;
     long seen = 0;
     for (int v : order_)
-      if (level_[v] == cut && seen++ <= count_[cut] / 2) mid = v;
+      if (node_[v].level[cur_] == cut && seen++ <= count_[cut] / 2) mid = v;
     return mid;
   }
 
@@ -190,19 +271,19 @@ class Dissection {
   int retry_from(Piece& piece, int cut, int size, int source, double keep_below) {
     const long first_separator = count_[cut];
     std::vector<int>& other = other_order_;
-    level_.swap(other_level_);  // the second search writes the spare array
+    cur_ ^= 1;  // the second search writes the spare level
     const int other_levels = bfs(source, piece.tag, other);
-    level_.swap(other_level_);
+    cur_ ^= 1;
     std::vector<long>& other_count = other_count_;
-    const int other_cut = other_levels >= 3 ? choose_cut(other, other_levels, size, other_count, other_level_) : -1;
+    const int other_cut = other_levels >= 3 ? choose_cut(other, other_levels, size, other_count, cur_ ^ 1) : -1;
     const bool keep = other_cut >= 0 && other_count[other_cut] < keep_below * static_cast<double>(first_separator);
     if (keep) {
       piece.start = source;
       order_.swap(other);
       count_.swap(other_count);
-      level_.swap(other_level_);
+      cur_ ^= 1;
     }
-    for (int v : other) other_level_[v] = -1;  // the search not kept
+    for (int v : other) node_[v].level[cur_ ^ 1] = -1;  // the search not kept
     return keep ? other_cut : cut;
   }
 
@@ -214,13 +295,13 @@ class Dissection {
     std::vector<int>& queue = other_order_;
     queue.clear();
     queue.push_back(sep[0]);
-    level_[sep[0]] = 0;
+    node_[sep[0]].level[cur_] = 0;
     for (size_t q = 0; q < queue.size(); ++q) {
       const int v = queue[q];
       for (int k = begin_[v], e = end_of(v); k < e; ++k) {
         const int w = index_[k];
-        if (owner_[w] != tag || side_[w] != 2 || level_[w] >= 0) continue;
-        level_[w] = 0;
+        if (node_[w].owner != tag || side_[w] != 2 || node_[w].level[cur_] >= 0) continue;
+        node_[w].level[cur_] = 0;
         queue.push_back(w);
       }
     }
@@ -242,14 +323,15 @@ class Dissection {
     std::vector<int> separator;
     long below = 0;
     for (int v : order_) {
-      side_[v] = static_cast<signed char>(level_[v] < cut ? 0 : level_[v] > cut ? 1 : 2);
-      if (level_[v] == cut) separator.push_back(v);
-      below += level_[v] < cut;
+      const int l = node_[v].level[cur_];
+      side_[v] = static_cast<signed char>(l < cut ? 0 : l > cut ? 1 : 2);
+      if (l == cut) separator.push_back(v);
+      below += l < cut;
     }
     const long above = static_cast<long>(order_.size()) - below - static_cast<long>(separator.size());
     if (static_cast<long>(order_.size()) >= kRefineAbove)
       refiner_.refine(separator, side_, owner_, piece.tag, below, above, kMaxFraction, kPasses);
-    Piece a{{}, piece.first, next_tag_++}, b{{}, 0, next_tag_++};
+    Piece a{{}, piece.first, new_tag()}, b{{}, 0, new_tag()};
     for (int v : order_) {
       if (side_[v] == 0) a.vertices.push_back(v);
       else if (side_[v] == 1) b.vertices.push_back(v);
@@ -265,19 +347,22 @@ class Dissection {
     push_halves(std::move(a), std::move(b));
   }
 
+  Shared& shared_;
   int n_;
   const int* begin_;
-  const int* end_;  // non-null for uncompressed matrices
+  const int* end_;
   const int* index_;
-  std::vector<int> owner_, level_;
-  std::vector<int> other_level_;  // a second search's levels (retry_from), all -1 between uses
-  std::vector<signed char> side_;  // half (0, 1) or separator (2) of the piece being split
+  std::vector<int>& owner_;
+  // The shared per-vertex owner and levels; cur_ says which of the two
+  // levels is this thread's current search (retry_from keeps a second
+  // search by flipping it).
+  Node* node_;
+  int cur_ = 0;
+  std::vector<signed char>& side_;
+  std::vector<int>& perm_;
   SeparatorRefiner refiner_;
-  // State of run(): the permutation, the pieces still to dissect, the next
-  // unused owner tag, and search buffers reused across pieces.
-  std::vector<int> perm_;
+  // This thread's pieces still to dissect and search buffers reused across pieces.
   std::vector<Piece> stack_;
-  int next_tag_ = 1;
   std::vector<int> order_, other_order_;
   std::vector<long> count_, other_count_;
 };
@@ -286,7 +371,37 @@ class Dissection {
 
 std::vector<int> level_set_nested_dissection(const SparseMatrix& A, int leaf_size) {
   if (A.rows() == 0) return {};
-  return Dissection(A).run(std::max(leaf_size, 3));
+  leaf_size = std::max(leaf_size, 3);
+  Shared shared(A);
+  shared.queue.push_back({std::vector<int>(shared.n), 0, 0});
+  for (int v = 0; v < shared.n; ++v) shared.queue.back().vertices[v] = v;
+  // Below ~20k vertices per thread a thread costs more than it saves.
+  const int threads = parallel_parts(shared.n, 20000);
+  std::vector<std::thread> helpers;
+  try {
+    for (int t = 1; t < threads; ++t)
+      helpers.emplace_back([&shared, leaf_size] {
+        try {
+          Dissection(shared).work(leaf_size);
+        } catch (...) {  // its own buffers could not be allocated
+          std::lock_guard<std::mutex> lock(shared.mutex);
+          if (!shared.failure) shared.failure = std::current_exception();
+          shared.wake.notify_all();
+        }
+      });
+  } catch (const std::system_error&) {
+    // No more threads to be had: the ones started (or this one alone) do all.
+  }
+  try {
+    Dissection(shared).work(leaf_size);
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(shared.mutex);
+    if (!shared.failure) shared.failure = std::current_exception();
+    shared.wake.notify_all();
+  }
+  for (std::thread& t : helpers) t.join();
+  if (shared.failure) std::rethrow_exception(shared.failure);
+  return std::move(shared.perm);
 }
 
 }  // namespace intrinsic::detail

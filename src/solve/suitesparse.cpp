@@ -7,6 +7,7 @@
 #include <cholmod.h>
 #include <umfpack.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -16,6 +17,7 @@
 #include "solve/complex_form.h"
 #include "solve/ordering.h"
 #include "solve/solver_threads.h"
+#include "util/parallel_for.h"
 
 namespace intrinsic::detail {
 namespace {
@@ -29,6 +31,7 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 // 64-bit copies of a compressed matrix's index arrays.
 struct LongPattern {
   std::vector<Long> p, i;
+  LongPattern() = default;
   template <typename Matrix>
   explicit LongPattern(const Matrix& A)
       : p(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1),
@@ -58,30 +61,70 @@ cholmod_sparse symmetric_view(Long n, Long nonzeros, LongPattern& pattern, const
   return cs;
 }
 
+// The lower triangle of P A P^T (column k of it is column order[k] of A),
+// rows sorted: CHOLMOD's analysis of it in its natural order is its
+// analysis of A on `order`, without CHOLMOD's own permuting transposes of
+// the whole matrix (scattered reads: 60% of its analysis at 1M vertices).
+// Both passes split the columns over the cores.
+LongPattern permuted_lower(const SparseMatrix& A, const std::vector<int>& order) {
+  const int n = static_cast<int>(A.rows());
+  std::vector<int> position(n);
+  for (int k = 0; k < n; ++k) position[order[k]] = k;
+  LongPattern C;
+  C.p.assign(n + 1, 0);
+  const int* Ap = A.outerIndexPtr();
+  const int* Ai = A.innerIndexPtr();
+  parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t k = begin; k < end; ++k) {
+      const int j = order[k];
+      Long count = 0;
+      for (int q = Ap[j]; q < Ap[j + 1]; ++q) count += position[Ai[q]] >= k;
+      C.p[k + 1] = count;
+    }
+  });
+  for (int k = 0; k < n; ++k) C.p[k + 1] += C.p[k];
+  C.i.resize(static_cast<size_t>(C.p[n]));
+  parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t k = begin; k < end; ++k) {
+      const int j = order[k];
+      Long* out = C.i.data() + C.p[k];
+      Long* last = out;
+      for (int q = Ap[j]; q < Ap[j + 1]; ++q)
+        if (position[Ai[q]] >= k) *last++ = position[Ai[q]];
+      std::sort(out, last);
+    }
+  });
+  return C;
+}
+
 }  // namespace
 
 // The analysis the library's own numeric factorizations share (see the
 // header): CHOLMOD's supernodes, relaxed amalgamation and postorder on the
 // ordering the conformal system gets.
 bool supernodal_analysis(const SparseMatrix& A, SupernodalSymbolic& out) {
+  return supernodal_analysis(A, A.rows() == 0 ? std::vector<int>() : level_set_nested_dissection(A), out);
+}
+
+bool supernodal_analysis(const SparseMatrix& A, const std::vector<int>& order, SupernodalSymbolic& out) {
   out = SupernodalSymbolic();
   const int n = static_cast<int>(A.rows());
   out.n = n;
   out.super = {0};
   out.pi = out.px = {0};
   if (n == 0) return true;
-  const std::vector<int> order = level_set_nested_dissection(A);
-  std::vector<Long> given(order.begin(), order.end());
-  LongPattern pattern(A);
+  if (static_cast<int>(order.size()) != n)
+    throw_numerical("internal: supernodal analysis given a permutation of the wrong size");
+  LongPattern pattern = permuted_lower(A, order);
   cholmod_common c;
   cholmod_l_start(&c);
   c.supernodal = CHOLMOD_SUPERNODAL;
   c.nmethods = 1;
-  c.method[0].ordering = CHOLMOD_GIVEN;
+  c.method[0].ordering = CHOLMOD_NATURAL;  // the order is the pattern's own
   c.postorder = 1;
   c.print = 0;
-  cholmod_sparse cs = symmetric_view(n, A.nonZeros(), pattern, nullptr, CHOLMOD_PATTERN);
-  cholmod_factor* L = cholmod_l_analyze_p(&cs, given.data(), nullptr, 0, &c);
+  cholmod_sparse cs = symmetric_view(n, static_cast<Long>(pattern.i.size()), pattern, nullptr, CHOLMOD_PATTERN);
+  cholmod_factor* L = cholmod_l_analyze(&cs, &c);
   if (!L || !L->is_super) {
     if (L) cholmod_l_free_factor(&L, &c);
     cholmod_l_finish(&c);
@@ -98,7 +141,10 @@ bool supernodal_analysis(const SparseMatrix& A, SupernodalSymbolic& out) {
   out.pi.assign(Lpi, Lpi + nsuper + 1);
   out.px.assign(Lpx, Lpx + nsuper + 1);
   out.rows.assign(Ls, Ls + out.pi[nsuper]);
-  out.perm.assign(Lperm, Lperm + n);
+  out.perm.resize(n);  // CHOLMOD's postorder of the pattern's columns, in A's numbering
+  for (int k = 0; k < n; ++k) out.perm[k] = order[Lperm[k]];
+  out.flops = c.fl;
+  out.nonzeros = c.lnz;
   cholmod_l_free_factor(&L, &c);
   cholmod_l_finish(&c);
   out.super_of.resize(n);

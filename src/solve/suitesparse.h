@@ -42,12 +42,20 @@ struct SupernodalSymbolic {
   std::vector<int> rows;             // row indices (permuted numbering), supernode by supernode, ascending
   std::vector<int> super_of;         // the supernode of each column
   std::vector<int> parent;           // supernodal elimination tree (-1 at roots)
+  double flops = 0, nonzeros = 0;    // CHOLMOD's counts for L's exact pattern (before amalgamation)
   int nscol(int s) const { return super[s + 1] - super[s]; }
   std::int64_t nsrow(int s) const { return pi[s + 1] - pi[s]; }
 };
-// False when CHOLMOD cannot (out of memory); A's pattern must be symmetric
-// (the lower triangle is read). A 0 x 0 matrix gives no supernodes.
+// False when CHOLMOD cannot (out of memory); A must be compressed and its
+// pattern symmetric (of each pair (i, j), (j, i) the entry read is the one
+// below the diagonal of the permuted matrix). A 0 x 0 matrix gives no
+// supernodes.
 bool supernodal_analysis(const SparseMatrix& A, SupernodalSymbolic& out);
+// The same on a permutation computed beforehand (order[k]: the row and
+// column of A eliminated k-th, e.g. level_set_nested_dissection(A) computed
+// while something else ran); CHOLMOD may postorder it, so out.perm is the
+// permutation to use.
+bool supernodal_analysis(const SparseMatrix& A, const std::vector<int>& order, SupernodalSymbolic& out);
 
 // Supernodal Cholesky of a symmetric positive definite matrix (both
 // triangles stored; the lower one is used).
