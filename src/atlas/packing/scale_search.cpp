@@ -182,9 +182,11 @@ Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side
 // to place, twice the tolerance). Its best layout, each cell taken as 2 x 2
 // texels, is a valid layout of the full bitmap (padding rounded up to whole
 // cells); the full bitmap is then tried only where it could beat it: down
-// from 3% above twice the coarse scale in steps of 1.5%, each packing on a
-// bitmap just small enough that a layout fitting it has a larger scale /
-// extent (a worse one fails early, once the placed charts pass that side).
+// from 3% above twice the coarse scale in steps of 1.5% (the first of
+// which is skipped, thresholds.h: kGuessTries), each packing on a bitmap
+// just small enough that a layout fitting it has a larger scale / extent (a
+// worse one fails early, once the placed charts pass that side); the first
+// that fits, in order, is taken, the two tried at once on two cores.
 // The searches packed the full bitmap 3-6 times before, each failure as
 // costly as a success.
 Layout search_layout(const std::vector<PackChart>& charts, double area, int& side, int pad) {

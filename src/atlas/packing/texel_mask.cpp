@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <cstring>
 
 #include "atlas/thresholds.h"
 
@@ -36,16 +36,18 @@ bool band_range(const Eigen::Vector2d p[3], double y0, double y1, double& lo, do
   return lo <= hi;
 }
 
+// The runs of 1s of a row of 0s and 1s, found with memchr (vectorized in
+// libc): rows are mostly one or two long runs.
 Spans spans_of(const char* row, int w, int offset) {
   Spans s;
-  for (int x = 0; x < w;) {
-    if (!row[x]) {
-      ++x;
-      continue;
-    }
-    const int b = x;
-    while (x < w && row[x]) ++x;
-    s.emplace_back(b + offset, x + offset);
+  const char* end = row + w;
+  for (const char* p = row; p < end;) {
+    const char* b = static_cast<const char*>(std::memchr(p, 1, end - p));
+    if (!b) break;
+    const char* e = static_cast<const char*>(std::memchr(b, 0, end - b));
+    if (!e) e = end;
+    s.emplace_back(static_cast<int>(b - row) + offset, static_cast<int>(e - row) + offset);
+    p = e;
   }
   return s;
 }
@@ -85,9 +87,12 @@ void index_rows(Mask& m) {
     for (const auto& s : m.rows[y]) m.widest[y] = std::max(m.widest[y], s.second - s.first);
     m.box = m.box && m.widest[y] == m.w;
   }
+  // A counting sort (widths are at most w): equal widths keep row order.
+  std::vector<int> start(m.w + 2, 0);
+  for (int y = 0; y < m.h; ++y) ++start[m.w - m.widest[y] + 1];
+  for (int k = 1; k <= m.w + 1; ++k) start[k] += start[k - 1];
   m.by_width.resize(m.h);
-  std::iota(m.by_width.begin(), m.by_width.end(), 0);
-  std::stable_sort(m.by_width.begin(), m.by_width.end(), [&](int a, int b) { return m.widest[a] > m.widest[b]; });
+  for (int y = 0; y < m.h; ++y) m.by_width[start[m.w - m.widest[y]]++] = y;
   // Large masks are few and their boxes say little: no search for theirs.
   const bool small = static_cast<long>(m.w) * m.h <= kInnerBoxArea;
   m.inner = m.box ? std::array<int, 4>{0, 0, m.w, m.h} : small ? largest_rectangle(m) : std::array<int, 4>{0, 0, 0, 0};
