@@ -83,7 +83,9 @@ bool Bitmap::may_fit(const Mask& m, int y, bool inside) const {
 }
 
 int Bitmap::first_fit(const Mask& m, int y, int x0, int limit) const {
-  int hot = 0;  // the row that last met a taken texel: tried first, it usually does again
+  // The row that last met a taken texel, tried first (it usually does
+  // again); at first the widest row, the likeliest to meet one.
+  int hot = m.by_width.empty() ? 0 : m.by_width[0];
   for (int x = x0; x + m.w <= limit;) {
     int next = -1;
     for (int i = 0; i < m.h && next < 0; ++i) {
