@@ -59,21 +59,6 @@ void Bitmap::set_extent(int e) {
   extent_ = e;
 }
 
-int Bitmap::last_taken(int y, int a, int b) const {
-  const std::uint64_t* r = row(y);
-  for (int x = b - 1; x >= a;) {
-    const int w = x >> 6;
-    std::uint64_t word = r[w];
-    const int hi = x & 63;
-    if (hi < 63) word &= (std::uint64_t{2} << hi) - 1;
-    const int lo_bit = std::max(a, w << 6) - (w << 6);
-    word &= ~((std::uint64_t{1} << lo_bit) - 1);
-    if (word) return (w << 6) + 63 - __builtin_clzll(word);
-    x = (w << 6) - 1;
-  }
-  return -1;
-}
-
 void Bitmap::take(const Mask& m, int x, int y) {
   for (int r = 0; r < m.h; ++r) {
     std::uint64_t* bits = &bits_[static_cast<size_t>(y + r) * words_];
@@ -98,11 +83,13 @@ bool Bitmap::may_fit(const Mask& m, int y, bool inside) const {
 }
 
 int Bitmap::first_fit(const Mask& m, int y, int x0, int limit) const {
-  int hot = 0;  // the row that last met a taken texel: tried first, it usually does again
+  // The row that last met a taken texel, tried first (it usually does
+  // again); at first the widest row, the likeliest to meet one.
+  int hot = m.by_width.empty() ? 0 : m.by_width[0];
   for (int x = x0; x + m.w <= limit;) {
     int next = -1;
     for (int i = 0; i < m.h && next < 0; ++i) {
-      const int r = (hot + i) % m.h;
+      const int r = hot + i < m.h ? hot + i : hot + i - m.h;
       for (const auto& s : m.rows[r]) {
         const int t = last_taken(y + r, x + s.first, x + s.second);
         if (t >= 0) {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <thread>
+#include <utility>
 
 #include "atlas/thresholds.h"
 #include "util/parallel_for.h"
@@ -24,9 +26,10 @@ bool as_box(const Mask& m, int pad) {
 }  // namespace
 
 void add_masks(const std::vector<PackChart>& charts, double scale, int pad, size_t first, size_t last,
-               std::vector<std::vector<Mask>>& masks) {
+               std::vector<std::vector<Mask>>& masks, bool serial) {
   masks.resize(charts.size());
-  parallel_for(static_cast<std::int64_t>(charts.size()), [&](std::int64_t b, std::int64_t e) {
+  const std::int64_t n = static_cast<std::int64_t>(charts.size());
+  parallel_for(n, [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t c = b; c < e; ++c)
       for (size_t a = first; a < std::min(last, charts[c].poses.size()); ++a) {
         std::vector<Mask> turns = quarter_turn_masks(*charts[c].F, charts[c].poses[a], scale, pad);
@@ -35,14 +38,15 @@ void add_masks(const std::vector<PackChart>& charts, double scale, int pad, size
           masks[c].push_back(std::move(m));
         }
       }
-  }, 8);
+  }, serial ? n + 1 : 8);
 }
 
-bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, bool angles, Layout& out) {
+bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, bool angles, Layout& out,
+               bool serial) {
   size_t n = 1;
   for (const PackChart& c : charts) n = std::max(n, angles ? c.poses.size() : 1);
   std::vector<std::vector<Mask>> masks;
-  add_masks(charts, scale, pad, 0, n, masks);
+  add_masks(charts, scale, pad, 0, n, masks, serial);
   Layout l;
   l.scale = scale;
   l.pad = pad;
@@ -53,9 +57,40 @@ bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int
 
 namespace {
 
+// One packing's outcome, kept apart until the search decides that it counts.
+struct Try {
+  double scale = 0;
+  bool ok = false;
+  Layout l;
+};
+
+Try attempt(const std::vector<PackChart>& charts, double scale, int side, int pad, bool angles, bool serial) {
+  Try t;
+  t.scale = scale;
+  t.ok = try_scale(charts, scale, side, pad, angles, t.l, serial);
+  return t;
+}
+
+// Two packings at once, each on its own core with its masks built on its
+// own thread; only when there are two cores (one core tries one scale at a
+// time, and never a scale the sequential search would not try).
+bool two_cores() { return parallel_parts(2, 1) >= 2; }
+std::pair<Try, Try> attempt_two(const std::vector<PackChart>& charts, double a, int side_a, double b, int side_b,
+                                int pad, bool angles) {
+  Try ta, tb;
+  std::thread other([&] { tb = attempt(charts, b, side_b, pad, angles, true); });
+  ta = attempt(charts, a, side_a, pad, angles, true);
+  other.join();
+  return {std::move(ta), std::move(tb)};
+}
+
 // The layouts tried so far: the one with the largest scale / extent (the
 // utilization is the charts' area times its square), the largest scale that
-// fitted and the smallest that did not.
+// fitted and the smallest that did not. With two cores the next packing the
+// sequential search would make is made beside the current one whenever it
+// is known or likely (speculation), and its outcome counts only once the
+// sequential search would have made it: the same packings decide in the same
+// order, so the layout never depends on the cores.
 struct Search {
   const std::vector<PackChart>& charts;
   int side, pad;
@@ -63,27 +98,47 @@ struct Search {
   Layout best;
   double lo = 0, hi = INFINITY;
   int packings = 0;
-  bool fits(double scale) {
-    Layout l;
+  bool two = two_cores();
+  bool record(Try&& t) {
     ++packings;
-    if (!try_scale(charts, scale, side, pad, angles, l)) {
-      hi = std::min(hi, scale);
+    if (!t.ok) {
+      hi = std::min(hi, t.scale);
       return false;
     }
-    lo = std::max(lo, scale);
-    if (best.extent == 0 || l.scale / l.extent > best.scale / best.extent) best = std::move(l);
+    lo = std::max(lo, t.scale);
+    if (best.extent == 0 || t.l.scale / t.l.extent > best.scale / best.extent) best = std::move(t.l);
     return true;
   }
-  // From `start` down by `step` until a scale fits, at most `tries` scales.
+  bool fits(double scale) { return record(attempt(charts, scale, side, pad, angles, false)); }
+  // From `start` down by `step` until a scale fits, at most `tries` scales;
+  // two at a time (the start is above what packs: the second is needed).
   bool bracket(double start, double step, int tries) {
     double s = start;
-    for (int i = 0; i < tries; ++i, s *= step)
-      if (fits(s)) return true;
+    for (int i = 0; i < tries;) {
+      if (two && i + 1 < tries) {
+        auto [a, b] = attempt_two(charts, s, side, s * step, side, pad, angles);
+        if (record(std::move(a)) || record(std::move(b))) return true;
+        s *= step, s *= step, i += 2;
+      } else {
+        if (fits(s)) return true;
+        s *= step, ++i;
+      }
+    }
     return false;
   }
-  // Bisects [lo, hi] (geometric mean) until hi / lo is within `ratio`.
+  // Bisects [lo, hi] (geometric mean) until hi / lo is within `ratio`. With
+  // two cores the midpoint is packed beside the next midpoint should it fit
+  // (the first midpoint fitted on 12 of the 17 shared assets).
   void bisect(double ratio, int steps) {
-    for (int i = 0; i < steps && hi > lo * ratio; ++i) fits(std::sqrt(lo * hi));
+    for (int i = 0; i < steps && hi > lo * ratio; ++i) {
+      const double mid = std::sqrt(lo * hi);
+      if (!two || i + 1 >= steps || !(hi > mid * ratio)) {
+        fits(mid);
+        continue;
+      }
+      auto [a, b] = attempt_two(charts, mid, side, std::sqrt(mid * hi), side, pad, angles);
+      if (record(std::move(a))) record(std::move(b)), ++i;
+    }
   }
   // Above the largest scale the smallest-box poses reached, with every pose
   // angle: two steps of a bisection up to 8% higher (the angles are tried
@@ -127,9 +182,11 @@ Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side
 // to place, twice the tolerance). Its best layout, each cell taken as 2 x 2
 // texels, is a valid layout of the full bitmap (padding rounded up to whole
 // cells); the full bitmap is then tried only where it could beat it: down
-// from 3% above twice the coarse scale in steps of 1.5%, each packing on a
-// bitmap just small enough that a layout fitting it has a larger scale /
-// extent (a worse one fails early, once the placed charts pass that side).
+// from 3% above twice the coarse scale in steps of 1.5% (the first of
+// which is skipped, thresholds.h: kGuessTries), each packing on a bitmap
+// just small enough that a layout fitting it has a larger scale / extent (a
+// worse one fails early, once the placed charts pass that side); the first
+// that fits, in order, is taken, the two tried at once on two cores.
 // The searches packed the full bitmap 3-6 times before, each failure as
 // costly as a success.
 Layout search_layout(const std::vector<PackChart>& charts, double area, int& side, int pad) {
@@ -141,12 +198,26 @@ Layout search_layout(const std::vector<PackChart>& charts, double area, int& sid
   // The half bitmap held them: its layout at twice the scale.
   best.scale *= 2, best.extent *= 2, best.zoom *= 2;
   const double guess = 2 * coarse;
+  // The first step, kGuessAbove itself, fitted on none of the shared assets
+  // (thresholds.h): the tries start one step below it.
+  std::vector<double> scales(kGuessTries);
   double s = guess * kGuessAbove;
-  for (int i = 0; i < kGuessTries; ++i, s /= kGuessStep) {
-    // Better than `best`: extent < s * best.extent / best.scale.
-    const int limit = static_cast<int>(std::ceil(s * best.extent / best.scale)) - 1;
-    Layout l;
-    if (try_scale(charts, s, std::min(side, limit), pad, false, l)) return l;
+  for (double& t : scales) s /= kGuessStep, t = s;
+  // Better than `best`: extent < s * best.extent / best.scale.
+  auto limit = [&](double t) {
+    return std::min(side, static_cast<int>(std::ceil(t * best.extent / best.scale)) - 1);
+  };
+  for (size_t i = 0; i < scales.size();) {
+    if (two_cores() && i + 1 < scales.size()) {  // the first that fits, in order
+      auto [a, b] = attempt_two(charts, scales[i], limit(scales[i]), scales[i + 1], limit(scales[i + 1]), pad, false);
+      if (a.ok) return std::move(a.l);
+      if (b.ok) return std::move(b.l);
+      i += 2;
+    } else {
+      Try t = attempt(charts, scales[i], limit(scales[i]), pad, false, false);
+      if (t.ok) return std::move(t.l);
+      ++i;
+    }
   }
   return best;
 }

@@ -32,14 +32,16 @@ struct Layout {
 };
 
 // Every chart's masks at `scale`: 4 quarter turns per pose angle, for the
-// pose angles [first, last) (clamped to the chart's), appended to masks[c].
+// pose angles [first, last) (clamped to the chart's), appended to masks[c];
+// `serial`: on the calling thread only (a try running beside another).
 void add_masks(const std::vector<PackChart>& charts, double scale, int pad, size_t first, size_t last,
-               std::vector<std::vector<Mask>>& masks);
+               std::vector<std::vector<Mask>>& masks, bool serial = false);
 
 // Packs at `scale` on a `side`-texel bitmap, each chart in the quarter
 // turns of its smallest-box pose, or with `angles` of every pose angle it
 // has. False when a chart does not fit.
-bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, bool angles, Layout& out);
+bool try_scale(const std::vector<PackChart>& charts, double scale, int side, int pad, bool angles, Layout& out,
+               bool serial = false);
 
 // The layout with the largest scale / extent found on a `side`-texel bitmap
 // (`side` doubles when even tiny scales do not fit: more charts than the

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <cstring>
 
 #include "atlas/thresholds.h"
 
@@ -36,30 +36,20 @@ bool band_range(const Eigen::Vector2d p[3], double y0, double y1, double& lo, do
   return lo <= hi;
 }
 
+// The runs of 1s of a row of 0s and 1s, found with memchr (vectorized in
+// libc): rows are mostly one or two long runs.
 Spans spans_of(const char* row, int w, int offset) {
   Spans s;
-  for (int x = 0; x < w;) {
-    if (!row[x]) {
-      ++x;
-      continue;
-    }
-    const int b = x;
-    while (x < w && row[x]) ++x;
-    s.emplace_back(b + offset, x + offset);
+  const char* end = row + w;
+  for (const char* p = row; p < end;) {
+    const char* b = static_cast<const char*>(std::memchr(p, 1, end - p));
+    if (!b) break;
+    const char* e = static_cast<const char*>(std::memchr(b, 0, end - b));
+    if (!e) e = end;
+    s.emplace_back(static_cast<int>(b - row) + offset, static_cast<int>(e - row) + offset);
+    p = e;
   }
   return s;
-}
-
-// The union of sorted-by-begin spans, merged where they touch or overlap.
-Spans merged(Spans window) {
-  std::sort(window.begin(), window.end());
-  Spans out;
-  for (const auto& s : window)
-    if (!out.empty() && s.first <= out.back().second)
-      out.back().second = std::max(out.back().second, s.second);
-    else
-      out.push_back(s);
-  return out;
 }
 
 // The largest rectangle of dilated texels: per row, the column heights of
@@ -97,9 +87,12 @@ void index_rows(Mask& m) {
     for (const auto& s : m.rows[y]) m.widest[y] = std::max(m.widest[y], s.second - s.first);
     m.box = m.box && m.widest[y] == m.w;
   }
+  // A counting sort (widths are at most w): equal widths keep row order.
+  std::vector<int> start(m.w + 2, 0);
+  for (int y = 0; y < m.h; ++y) ++start[m.w - m.widest[y] + 1];
+  for (int k = 1; k <= m.w + 1; ++k) start[k] += start[k - 1];
   m.by_width.resize(m.h);
-  std::iota(m.by_width.begin(), m.by_width.end(), 0);
-  std::stable_sort(m.by_width.begin(), m.by_width.end(), [&](int a, int b) { return m.widest[a] > m.widest[b]; });
+  for (int y = 0; y < m.h; ++y) m.by_width[start[m.w - m.widest[y]]++] = y;
   // Large masks are few and their boxes say little: no search for theirs.
   const bool small = static_cast<long>(m.w) * m.h <= kInnerBoxArea;
   m.inner = m.box ? std::array<int, 4>{0, 0, m.w, m.h} : small ? largest_rectangle(m) : std::array<int, 4>{0, 0, 0, 0};
@@ -136,6 +129,10 @@ std::vector<char> quarter_turn(const std::vector<char>& grid, int w, int h) {
   return turned;
 }
 
+// The dilation is separable (a square neighbourhood): each frame row is
+// first the OR of the grid rows within `pad` (one pass of byte ORs, which
+// the compiler vectorizes), then its spans are widened by `pad` on both
+// sides and merged where they touch, left to right (no sort).
 Mask mask_of(const std::vector<char>& grid, int w, int h, int pad) {
   Mask m;
   m.w = w + 2 * pad, m.h = h + 2 * pad;
@@ -144,36 +141,81 @@ Mask mask_of(const std::vector<char>& grid, int w, int h, int pad) {
     m.own[y + pad] = spans_of(grid.data() + static_cast<long>(y) * w, w, pad);
     for (const auto& s : m.own[y + pad]) m.texels += s.second - s.first;
   }
-  // Each dilated row is the union of the own rows within `pad`, every span
-  // widened by `pad` on both sides.
+  // Frame row y holds the grid rows y - 2 pad .. y (grid row g is frame row g + pad).
+  std::vector<char> band(static_cast<size_t>(w) * m.h, 0);
+  for (int g = 0; g < h; ++g) {
+    if (m.own[g + pad].empty()) continue;
+    const char* src = grid.data() + static_cast<long>(g) * w;
+    for (int y = g; y <= g + 2 * pad; ++y) {
+      char* dst = band.data() + static_cast<long>(y) * w;
+      for (int x = 0; x < w; ++x) dst[x] |= src[x];
+    }
+  }
   m.rows.resize(m.h);
-  Spans window;
   for (int y = 0; y < m.h; ++y) {
-    window.clear();
-    for (int k = std::max(0, y - pad); k <= std::min(m.h - 1, y + pad); ++k)
-      for (const auto& s : m.own[k]) window.emplace_back(std::max(0, s.first - pad), std::min(m.w, s.second + pad));
-    m.rows[y] = merged(window);
+    Spans& out = m.rows[y];
+    for (const auto& s : spans_of(band.data() + static_cast<long>(y) * w, w, 0)) {
+      const int b = s.first, e = s.second + 2 * pad;  // the texels [b, e) of the grid widened, in frame columns
+      if (!out.empty() && b <= out.back().second)
+        out.back().second = std::max(out.back().second, e);
+      else
+        out.emplace_back(b, e);
+    }
   }
   index_rows(m);
   return m;
 }
+
+namespace {
+
+// A span list mirrored in a row of width w: [a, b) -> [w - b, w - a), in order.
+Spans mirrored(const Spans& row, int w) {
+  Spans out(row.size());
+  for (size_t i = 0; i < row.size(); ++i) out[row.size() - 1 - i] = {w - row[i].second, w - row[i].first};
+  return out;
+}
+
+// The mask turned by half a turn: texel (x, y) of the frame goes to
+// (w - 1 - x, h - 1 - y), two of quarter_turn's turns (the padding is the
+// same on every side, so the frame turns onto itself). The spans are
+// mirrored instead of the grid turned and rasterized again; its largest
+// box is the turned box (a largest box of the turned texels).
+Mask half_turned(const Mask& m) {
+  Mask t;
+  t.w = m.w, t.h = m.h, t.texels = m.texels, t.box = m.box;
+  t.rows.resize(m.h), t.own.resize(m.h), t.widest.resize(m.h), t.by_width.resize(m.h);
+  for (int y = 0; y < m.h; ++y) {
+    t.rows[m.h - 1 - y] = mirrored(m.rows[y], m.w);
+    t.own[m.h - 1 - y] = mirrored(m.own[y], m.w);
+    t.widest[m.h - 1 - y] = m.widest[y];
+  }
+  // Rows by decreasing width as before (only the order of the tests in
+  // Bitmap::may_fit, never its answer, depends on the order among equals).
+  for (int i = 0; i < m.h; ++i) t.by_width[i] = m.h - 1 - m.by_width[i];
+  const auto& b = m.inner;
+  t.inner = {m.w - b[0] - b[2], m.h - b[1] - b[3], b[2], b[3]};
+  if (b[2] == 0 || b[3] == 0) t.inner = b;
+  return t;
+}
+
+}  // namespace
 
 void fill_frame(Mask& m) {
   for (Spans& r : m.rows) r.assign(1, {0, m.w});
   index_rows(m);
 }
 
+// One rasterization and one quarter turn of the grid: turns 2 and 3 are
+// turns 0 and 1 turned by half a turn (half_turned).
 std::vector<Mask> quarter_turn_masks(const MatrixX3i& F, const MatrixX2d& UV, double scale, int pad) {
   const Eigen::Vector2i cells = cells_of(UV, scale);
-  int w = cells.x(), h = cells.y();
-  std::vector<char> grid = rasterize(F, UV, scale);
+  const int w = cells.x(), h = cells.y();
+  const std::vector<char> grid = rasterize(F, UV, scale);
   std::vector<Mask> masks(4);
   masks[0] = mask_of(grid, w, h, pad);
-  for (int k = 1; k < 4; ++k) {
-    grid = quarter_turn(grid, w, h);
-    std::swap(w, h);
-    masks[k] = mask_of(grid, w, h, pad);
-  }
+  masks[1] = mask_of(quarter_turn(grid, w, h), h, w, pad);
+  masks[2] = half_turned(masks[0]);
+  masks[3] = half_turned(masks[1]);
   return masks;
 }
 
