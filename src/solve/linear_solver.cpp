@@ -401,6 +401,15 @@ Eigen::MatrixXd LinearSolver::Impl::complex_cholesky_solve(const Eigen::MatrixXd
 }
 #endif
 
+Eigen::MatrixXd LinearSolver::multiply(const Eigen::MatrixXd& X) const {
+#ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
+  const Impl& s = *impl_;
+  if (s.zchol)
+    return detail::real_form(detail::hermitian_lower_product(s.M_lower, detail::complex_from_real_form(X)));
+#endif
+  return impl_->A * X;
+}
+
 SolverKind LinearSolver::kind() const {
 #ifdef INTRINSIC_HAVE_SUPERNODAL_LU
   if (impl_->fell_back.load(std::memory_order_acquire)) return SolverKind::Umfpack;
