@@ -402,7 +402,9 @@ TEST(Natural, DefaultPinsAndScale) {
   EXPECT_NEAR(unit.UV.maxCoeff(), 1.0, 1e-12);
   EXPECT_LT(similarity_residual(surface.UV, unit.UV, mesh.topology.is_used), 1e-12);
   ASSERT_FALSE(unit.solvers.empty());
-  EXPECT_TRUE(unit.solvers[0] == SolverKind::Cholmod || unit.solvers[0] == SolverKind::EigenLLT) << solvers_name(unit.solvers);
+  EXPECT_TRUE(unit.solvers[0] == SolverKind::SupernodalCholesky || unit.solvers[0] == SolverKind::Cholmod ||
+              unit.solvers[0] == SolverKind::EigenLLT)
+      << solvers_name(unit.solvers);
 }
 
 TEST(Natural, RigidMotionLeavesUVsUnchanged) {

@@ -24,7 +24,9 @@ using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, int indices
 // SupernodalCholesky: the library's own supernodal Cholesky on CHOLMOD's
 // analysis, subtrees of the elimination tree on separate cores; Auto uses it
 // for symmetric systems (CHOLMOD when it finds the matrix not positive
-// definite, and for the natural map's complex form).
+// definite), the natural map's complex form included (L L^H of the n x n
+// Hermitian matrix; CHOLMOD's complex factor when that fails, or with
+// --solver cholmod).
 enum class SolverKind { Auto, Cholmod, Umfpack, EigenLLT, EigenLU, CG, BiCGSTAB, SupernodalLU, SupernodalCholesky };
 
 std::string solver_name(SolverKind k);
@@ -50,7 +52,7 @@ class LinearSolver {
   // Solves A^T X = B (adjoint gradients); same factorization.
   Eigen::MatrixXd solve_transposed(const Eigen::MatrixXd& B) const;
 
-  // Iterative refinement (CHOLMOD only; docs/maths.md §10). By default a
+  // Iterative refinement (CHOLMOD; docs/maths.md §10). By default a
   // CHOLMOD solve refines, at most 5 steps, only while the componentwise
   // backward error max_i |B - A X|_i / (|A| |X| + |B|)_i exceeds 16 ulps.
   // Declaring the system ill-conditioned (the natural map's, with only two
@@ -58,17 +60,22 @@ class LinearSolver {
   // long double, at least one step and at most 5, stopping when the
   // correction is below 1e-12 of the solution or no longer halves.
   // The supernodal LU refines (at most 3 steps) while that backward error
-  // exceeds 16 ulps, whatever this flag says.
+  // exceeds 16 ulps, whatever this flag says. The supernodal Cholesky
+  // refines (at most 5 steps) while it exceeds 16 ulps; on the complex form
+  // it refines as CHOLMOD does ill-conditioned systems, whatever this flag
+  // says (the complex form is only the natural map's).
   // UMFPACK, Eigen's solvers and the iterative ones do not refine.
   void set_ill_conditioned(bool on);
 
   // Declares the matrix the real form [K -B; B K] of a Hermitian matrix
   // K + iB (the natural map's system in blocked ordering, docs/maths.md
-  // §3.6). CHOLMOD then factors the complex n x n form: half the unknowns to
-  // order and analyse and fewer flops than the real 2n x 2n matrix. Solves
-  // still take and return the real form. Checked exactly at factor(); a
-  // matrix without that structure is factored as given. Other backends
-  // ignore it.
+  // §3.6). The supernodal Cholesky (Auto) and CHOLMOD then factor the
+  // complex n x n form: half the unknowns to order and analyse and fewer
+  // flops than the real 2n x 2n matrix. Solves still take and return the
+  // real form. Checked exactly at factor(); a matrix without that structure
+  // is factored as given. Other backends ignore it. The supernodal Cholesky
+  // keeps only the complex form's lower triangle, not A (matrix() then
+  // rebuilds A on first call; multiply() needs no rebuild).
   void set_complex_form(bool on);
 
   SolverKind kind() const;        // the backend actually used (never Auto after factor)
@@ -76,6 +83,9 @@ class LinearSolver {
   int factorizations() const;     // how many numeric factorizations so far
   int iterations() const;         // last iterative solve, 0 for direct
   const SparseMatrix& matrix() const;
+  // A X with the factored matrix A (a residual check), from the complex
+  // form when A itself was not kept.
+  Eigen::MatrixXd multiply(const Eigen::MatrixXd& X) const;
 
  private:
   struct Impl;

@@ -78,17 +78,83 @@ bool hermitian_from_real_form(const SparseMatrix& A, ComplexSparse& M) {
   return true;
 }
 
-Eigen::MatrixXcd hermitian_lower_product(const ComplexSparse& lower, const Eigen::MatrixXcd& Z) {
-  // Each stored (i, j), i > j, stands for M(i, j) and M(j, i) = conj(M(i, j)).
-  Eigen::MatrixXcd Y = Eigen::MatrixXcd::Zero(lower.rows(), Z.cols());
-  for (Eigen::Index c = 0; c < Z.cols(); ++c)
-    for (Eigen::Index j = 0; j < lower.outerSize(); ++j)
+namespace {
+
+// start + sign M Z, M from its lower triangle: each stored (i, j), i > j,
+// stands for M(i, j) and M(j, i) = conj(M(i, j)). Sums in Real (double or
+// long double), the complex products written out in real arithmetic.
+template <class Real>
+Eigen::MatrixXcd lower_product(const ComplexSparse& lower, const Eigen::MatrixXcd& Z, const Eigen::MatrixXcd* start,
+                               Real sign) {
+  const Eigen::Index n = lower.rows();
+  Eigen::MatrixXcd Y(n, Z.cols());
+  std::vector<Real> re(static_cast<size_t>(n)), im(static_cast<size_t>(n));
+  for (Eigen::Index c = 0; c < Z.cols(); ++c) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      re[i] = start ? (*start)(i, c).real() : 0;
+      im[i] = start ? (*start)(i, c).imag() : 0;
+    }
+    for (Eigen::Index j = 0; j < lower.outerSize(); ++j) {
+      const Real zr = Z(j, c).real(), zi = Z(j, c).imag();
       for (ComplexSparse::InnerIterator it(lower, j); it; ++it) {
         const Eigen::Index i = it.row();
-        Y(i, c) += it.value() * Z(j, c);
-        if (i != j) Y(j, c) += std::conj(it.value()) * Z(i, c);
+        const Real mr = sign * it.value().real(), mi = sign * it.value().imag();
+        re[i] += mr * zr - mi * zi;
+        im[i] += mr * zi + mi * zr;
+        if (i != j) {
+          const Real xr = Z(i, c).real(), xi = Z(i, c).imag();
+          re[j] += mr * xr + mi * xi;
+          im[j] += mr * xi - mi * xr;
+        }
       }
+    }
+    for (Eigen::Index i = 0; i < n; ++i)
+      Y(i, c) = std::complex<double>(static_cast<double>(re[i]), static_cast<double>(im[i]));
+  }
   return Y;
+}
+
+}  // namespace
+
+Eigen::MatrixXcd hermitian_lower_product(const ComplexSparse& lower, const Eigen::MatrixXcd& Z) {
+  return lower_product<double>(lower, Z, nullptr, 1.0);
+}
+
+Eigen::MatrixXcd hermitian_lower_residual(const ComplexSparse& lower, const Eigen::MatrixXcd& Z,
+                                          const Eigen::MatrixXcd& B) {
+  return lower_product<long double>(lower, Z, &B, -1.0L);
+}
+
+// Column j: K's entries (rows < m) over B's (rows >= m); column m + j: -B
+// over K, the layout hermitian_from_real_form accepts.
+SparseMatrix real_form_from_hermitian(const ComplexSparse& M) {
+  const Eigen::Index m = M.rows();
+  SparseMatrix A(2 * m, 2 * m);
+  Eigen::Index count = 0;
+  for (Eigen::Index k = 0; k < M.nonZeros(); ++k)
+    count += (M.valuePtr()[k].real() != 0) + (M.valuePtr()[k].imag() != 0);
+  A.resizeNonZeros(2 * count);
+  Eigen::Index out = 0;
+  auto append = [&](Eigen::Index j, Eigen::Index shift, auto value) {
+    for (ComplexSparse::InnerIterator it(M, j); it; ++it) {
+      const double x = value(it.value());
+      if (x == 0) continue;  // K or B has no entry there (both halves skip it alike)
+      A.innerIndexPtr()[out] = static_cast<int>(it.row() + shift);
+      A.valuePtr()[out++] = x;
+    }
+  };
+  for (Eigen::Index j = 0; j < m; ++j) {
+    A.outerIndexPtr()[j] = static_cast<int>(out);
+    append(j, 0, [](std::complex<double> z) { return z.real(); });
+    append(j, m, [](std::complex<double> z) { return z.imag(); });
+  }
+  for (Eigen::Index j = 0; j < m; ++j) {
+    A.outerIndexPtr()[m + j] = static_cast<int>(out);
+    append(j, 0, [](std::complex<double> z) { return -z.imag(); });
+    append(j, m, [](std::complex<double> z) { return z.real(); });
+  }
+  A.outerIndexPtr()[2 * m] = static_cast<int>(out);
+  return A;
 }
 
 Eigen::MatrixXcd complex_from_real_form(const Eigen::MatrixXd& X) {

@@ -25,6 +25,18 @@ bool hermitian_from_real_form(const SparseMatrix& A, ComplexSparse& M);
 // entries) beside the factor.
 Eigen::MatrixXcd hermitian_lower_product(const ComplexSparse& lower, const Eigen::MatrixXcd& Z);
 
+// B - M Z from M's lower triangle, each sum accumulated in long double
+// (64-bit mantissa on x86) and rounded once: the residual of the natural
+// map's mixed-precision refinement (LinearSolver::set_ill_conditioned),
+// which gains accuracy only if the residual is more exact than the solve.
+Eigen::MatrixXcd hermitian_lower_residual(const ComplexSparse& lower, const Eigen::MatrixXcd& Z,
+                                          const Eigen::MatrixXcd& B);
+
+// The real form [K -B; B K] (2m x 2m, compressed) of M = K + iB given with
+// both triangles: hermitian_from_real_form's inverse (zero parts of M's
+// entries give no entry: K or B had none there).
+SparseMatrix real_form_from_hermitian(const ComplexSparse& M);
+
 // Rows [top; bottom] (2m x k) as top + i bottom (m x k), and back.
 Eigen::MatrixXcd complex_from_real_form(const Eigen::MatrixXd& X);
 Eigen::MatrixXd real_form(const Eigen::MatrixXcd& Z);

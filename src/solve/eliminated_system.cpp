@@ -35,7 +35,7 @@ Eigen::MatrixXd EliminatedSystem::solve_transposed(const Eigen::MatrixXd& B) con
 
 double EliminatedSystem::relative_residual(const Eigen::MatrixXd& X, const Eigen::MatrixXd& B,
                                            const Eigen::MatrixXd& extra) const {
-  Eigen::MatrixXd res = A() * X - B;
+  Eigen::MatrixXd res = solver_.multiply(X) - B;  // A() would rebuild the natural map's real form
   if (extra.size() > 0) res += extra;
   double worst = 0;
   for (int c = 0; c < res.cols(); ++c) {

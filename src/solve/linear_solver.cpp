@@ -17,6 +17,7 @@
 #include "intrinsic/names.h"
 
 #ifdef INTRINSIC_HAVE_SUITESPARSE
+#include "solve/complex_form.h"
 #include "solve/suitesparse.h"
 #include "solve/supernodal_cholesky.h"
 #include "solve/supernodal_lu.h"
@@ -111,13 +112,50 @@ struct LinearSolver::Impl {
 #ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
   std::unique_ptr<detail::SupernodalCholesky> schol;
   Eigen::MatrixXd cholesky_solve(const Eigen::MatrixXd& B) const;
+  // The complex form's factor, and the lower triangle of M = K + iB kept for
+  // the refinement instead of A (which is then empty; matrix() rebuilds it
+  // on request into `rebuilt`).
+  std::unique_ptr<detail::ComplexSupernodalCholesky> zchol;
+  detail::ComplexSparse M_lower;
+  mutable SparseMatrix rebuilt;
+  std::unique_ptr<std::once_flag> rebuilt_once = std::make_unique<std::once_flag>();
+  Eigen::MatrixXd complex_cholesky_solve(const Eigen::MatrixXd& B) const;
+
+  // The natural map's complex form on our complex supernodal Cholesky,
+  // given M's lower triangle only. The real form is freed before the
+  // factorization (at 1M vertices 176 MB, twice M's lower triangle) and
+  // rebuilt from M only if the factorization fails, for CHOLMOD to try as
+  // before. 1: factored; 0: not positive
+  // definite; -1: A is not a real form (nothing changed).
+  int try_complex_cholesky() {
+    {
+      detail::ComplexSparse M;
+      if (!detail::hermitian_from_real_form(A, M)) return -1;
+      M_lower = detail::ComplexSparse(M.triangularView<Eigen::Lower>());
+    }
+    A = SparseMatrix();
+    zchol = std::make_unique<detail::ComplexSupernodalCholesky>();
+    if (zchol->factor(M_lower)) {
+      used = SolverKind::SupernodalCholesky;
+      return 1;
+    }
+    zchol.reset();
+    A = detail::real_form_from_hermitian(detail::ComplexSparse(M_lower.selfadjointView<Eigen::Lower>()));
+    M_lower = detail::ComplexSparse();
+    return 0;
+  }
 #endif
 
-  // Ours for Auto and an explicit choice; not for the natural map's complex
-  // form and its long-double refinement (CHOLMOD's complex factor), which
-  // Auto leaves to CHOLMOD. False when A is not positive definite.
+  // Ours for Auto and an explicit choice, the natural map's complex form
+  // included (complex_form: L L^H of the n x n Hermitian form). Auto leaves
+  // other ill-conditioned systems to CHOLMOD and its long-double refinement.
+  // False when A is not positive definite.
   bool try_supernodal_cholesky() {
 #ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
+    if (complex_form && (requested == SolverKind::Auto || requested == SolverKind::SupernodalCholesky)) {
+      const int complex = try_complex_cholesky();
+      if (complex >= 0) return complex == 1;
+    }
     const bool wanted = requested == SolverKind::SupernodalCholesky ||
                         (requested == SolverKind::Auto && !complex_form && !ill_conditioned);
     if (!wanted) return false;
@@ -199,7 +237,10 @@ void LinearSolver::factor(SparseMatrix&& matrix) {
   s.slu.reset(); s.fallback.reset(); s.fell_back = false;
 #endif
 #ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
-  s.schol.reset();
+  s.schol.reset(); s.zchol.reset();
+  s.M_lower = detail::ComplexSparse();
+  s.rebuilt = SparseMatrix();
+  s.rebuilt_once = std::make_unique<std::once_flag>();
 #endif
   ++s.factorizations;
   const std::string n = std::to_string(A.rows());
@@ -245,6 +286,9 @@ Eigen::MatrixXd LinearSolver::solve(const Eigen::MatrixXd& B) const {
   Eigen::MatrixXd X(B.rows(), B.cols());
   s.iterations = 0;
   if (s.llt) X = s.llt->solve(B);
+#ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
+  else if (s.zchol) X = s.complex_cholesky_solve(B);
+#endif
   else if (s.lu) X = s.lu->solve(B);
 #ifdef INTRINSIC_HAVE_SUITESPARSE
   else if (s.cholmod) X = s.cholmod->solve(B, s.ill_conditioned);
@@ -335,6 +379,37 @@ Eigen::MatrixXd LinearSolver::Impl::cholesky_solve(const Eigen::MatrixXd& B) con
 }
 #endif
 
+#ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
+// The complex factor's answer, refined as CHOLMOD refines ill-conditioned
+// systems (suitesparse.cpp, CholmodFactor::solve): the residual accumulated
+// in long double from M's lower triangle, one step always, at most 5, until
+// the correction is below 1e-12 of the solution or no longer halves. The
+// complex form is only the natural map's (two pins: ill-conditioned), so it
+// always refines this way.
+Eigen::MatrixXd LinearSolver::Impl::complex_cholesky_solve(const Eigen::MatrixXd& B) const {
+  const Eigen::MatrixXcd Bz = detail::complex_from_real_form(B);
+  Eigen::MatrixXcd X = zchol->solve(Bz);
+  double previous_correction = std::numeric_limits<double>::infinity();
+  for (int step = 0; step < 5; ++step) {
+    const Eigen::MatrixXcd D = zchol->solve(detail::hermitian_lower_residual(M_lower, X, Bz));
+    X += D;
+    const double correction = D.cwiseAbs().maxCoeff() / X.cwiseAbs().maxCoeff();
+    if (!(correction > 1e-12) || !(correction < 0.5 * previous_correction)) break;
+    previous_correction = correction;
+  }
+  return detail::real_form(X);
+}
+#endif
+
+Eigen::MatrixXd LinearSolver::multiply(const Eigen::MatrixXd& X) const {
+#ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
+  const Impl& s = *impl_;
+  if (s.zchol)
+    return detail::real_form(detail::hermitian_lower_product(s.M_lower, detail::complex_from_real_form(X)));
+#endif
+  return impl_->A * X;
+}
+
 SolverKind LinearSolver::kind() const {
 #ifdef INTRINSIC_HAVE_SUPERNODAL_LU
   if (impl_->fell_back.load(std::memory_order_acquire)) return SolverKind::Umfpack;
@@ -344,6 +419,17 @@ SolverKind LinearSolver::kind() const {
 std::string LinearSolver::name() const { return solver_name(kind()); }
 int LinearSolver::factorizations() const { return impl_->factorizations; }
 int LinearSolver::iterations() const { return impl_->iterations; }
-const SparseMatrix& LinearSolver::matrix() const { return impl_->A; }
+const SparseMatrix& LinearSolver::matrix() const {
+#ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
+  const Impl& s = *impl_;
+  if (s.zchol) {
+    std::call_once(*s.rebuilt_once, [&] {
+      s.rebuilt = detail::real_form_from_hermitian(detail::ComplexSparse(s.M_lower.selfadjointView<Eigen::Lower>()));
+    });
+    return s.rebuilt;
+  }
+#endif
+  return impl_->A;
+}
 
 }  // namespace intrinsic
