@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.h"
 #include "core/natural_system.h"
 #include "intrinsic/assemble.h"
 #include "intrinsic/generate.h"
@@ -34,14 +35,8 @@ using namespace intrinsic;
 
 namespace {
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-double median(std::vector<double> x) {
-  std::sort(x.begin(), x.end());
-  return x.empty() ? 0 : x[x.size() / 2];
-}
+using intrinsic::bench::median;
+using intrinsic::bench::ms_since;
 
 struct Row {
   std::vector<double> analyse, factor, solve;

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <random>
 
+#include "bench_timing.h"
 #include "intrinsic/assemble.h"
 #include "intrinsic/boundary_editor.h"
 #include "intrinsic/error.h"
@@ -20,14 +21,8 @@ using namespace intrinsic;
 
 namespace {
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using intrinsic::bench::median;
+using intrinsic::bench::ms_since;
 
 std::vector<FixedVertex> moved(const std::vector<FixedVertex>& boundary, int k, std::mt19937& rng, double amount) {
   std::vector<FixedVertex> b = boundary;

@@ -42,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.h"
 #include "intrinsic/assemble.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/io.h"
@@ -64,9 +65,8 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+using intrinsic::bench::median;
+using intrinsic::bench::ms_since;
 
 const char* kStages[] = {"read", "validate", "assemble", "factor", "solve", "write", "metrics", "total"};
 
@@ -81,12 +81,6 @@ struct CaseResult {
   bool ok = false;
   std::string error;
 };
-
-double median(std::vector<double> x) {
-  std::sort(x.begin(), x.end());
-  const size_t n = x.size();
-  return n == 0 ? 0 : n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
 
 ParamOptions options_for(const std::string& method) {
   ParamOptions o;

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.h"
 #include "intrinsic/io.h"
 
 using namespace intrinsic;
@@ -24,9 +25,8 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-double ms_since(Clock::time_point t) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
+using intrinsic::bench::median;
+using intrinsic::bench::ms_since;
 
 // An n x n grid of quads on a wavy sheet, with (extras) one normal per vertex
 // and a material, group and smoothing group change every 64 rows.
@@ -59,11 +59,6 @@ void write_grid_obj(const std::string& path, int n, bool extras) {
       out << line;
     }
   }
-}
-
-double median(std::vector<double> x) {
-  std::sort(x.begin(), x.end());
-  return x[x.size() / 2];
 }
 
 }  // namespace

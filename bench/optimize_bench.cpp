@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.h"
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/io.h"
@@ -20,10 +21,8 @@ using namespace intrinsic;
 
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using intrinsic::bench::median;
+using intrinsic::bench::ms_since;
 
 void run_mesh(const std::string& name, const Mesh& mesh, int runs) {
   for (LambdaEnergy e : {LambdaEnergy::EdgeLength, LambdaEnergy::Area}) {

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.h"
 #include "intrinsic/assemble.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/generate.h"
@@ -42,14 +43,8 @@ using namespace intrinsic;
 
 namespace {
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-double median(std::vector<double> x) {
-  std::sort(x.begin(), x.end());
-  return x.empty() ? 0 : x[x.size() / 2];
-}
+using intrinsic::bench::median;
+using intrinsic::bench::ms_since;
 
 SparseMatrix interior_system(const Mesh& mesh, Method method) {
   WeightOptions w;

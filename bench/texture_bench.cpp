@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <vector>
 
+#include "bench_timing.h"
 #include "intrinsic/atlas.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/texture.h"
@@ -18,10 +19,8 @@ using namespace intrinsic;
 
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using intrinsic::bench::median;
+using intrinsic::bench::ms_since;
 
 template <class Fn>
 double time_ms(int runs, Fn&& fn) {
