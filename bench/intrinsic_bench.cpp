@@ -507,16 +507,20 @@ void analysis_rows(const Mesh& mesh, int runs) {
 }
 #endif
 
+#if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_BENCH_ORDERINGS)
+// The ordering modes' mesh: a generated wavy patch of about N vertices when
+// `what` is a number, else the mesh file it names.
+Mesh size_or_file_mesh(const std::string& what) {
+  if (what.empty() || !std::isdigit(static_cast<unsigned char>(what[0]))) return make_mesh(read_mesh(what));
+  GenerateOptions g;
+  g.rings = std::max(2, static_cast<int>(std::lround(std::sqrt(std::stoi(what) / 3.0))));
+  return make_mesh(generate_wavy_patch(g));
+}
+#endif
+
 int ordering_analysis(const std::string& what, int runs) {
 #if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_BENCH_ORDERINGS)
-  Mesh mesh;
-  if (!what.empty() && std::isdigit(static_cast<unsigned char>(what[0]))) {
-    GenerateOptions g;
-    g.rings = std::max(2, static_cast<int>(std::lround(std::sqrt(std::stoi(what) / 3.0))));
-    mesh = make_mesh(generate_wavy_patch(g));
-  } else {
-    mesh = make_mesh(read_mesh(what));
-  }
+  const Mesh mesh = size_or_file_mesh(what);
   std::cout << "| n (conformal) | threads | order s (CPU) | order s (calling thread's CPU) | order s (wall) | "
                "analyse s (CPU) | analyse s (wall) | supernodes | nnz(L) | GFlop | permutation hash |\n"
                "|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -532,14 +536,7 @@ int ordering_analysis(const std::string& what, int runs) {
 
 int orderings(const std::string& what, bool nested_dissection_only) {
 #if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_BENCH_ORDERINGS)
-  Mesh mesh;
-  if (!what.empty() && std::isdigit(static_cast<unsigned char>(what[0]))) {
-    GenerateOptions g;
-    g.rings = std::max(2, static_cast<int>(std::lround(std::sqrt(std::stoi(what) / 3.0))));
-    mesh = make_mesh(generate_wavy_patch(g));
-  } else {
-    mesh = make_mesh(read_mesh(what));
-  }
+  const Mesh mesh = size_or_file_mesh(what);
   std::cout << "| system | ordering | order s (CPU) | analyse s | factor s | solve s | nnz(factor) | GFlop |\n"
                "|---|---|---|---|---|---|---|---|\n";
   for (detail::Ordering ord : {detail::Ordering::NestedDissection, detail::Ordering::AMD, detail::Ordering::METIS})
