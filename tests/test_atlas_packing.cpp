@@ -17,48 +17,17 @@
 #include "atlas/packing/placement.h"
 #include "atlas/packing/scale_search.h"
 #include "atlas/packing/texel_mask.h"
+#include "pack_test_support.h"
 
 namespace intrinsic::detail::packing {
 namespace {
 
-using Texels = std::set<std::pair<int, int>>;
-
-Texels texels_of(const std::vector<Spans>& rows, int x0 = 0, int y0 = 0) {
-  Texels t;
-  for (int y = 0; y < static_cast<int>(rows.size()); ++y)
-    for (const auto& s : rows[y])
-      for (int x = s.first; x < s.second; ++x) t.insert({x + x0, y + y0});
-  return t;
-}
-
-// Every texel within Chebyshev distance `pad` of one of `own`, inside the w x h frame.
-Texels dilated_by_brute_force(const Texels& own, int pad, int w, int h) {
-  Texels d;
-  for (const auto& [x, y] : own)
-    for (int dy = -pad; dy <= pad; ++dy)
-      for (int dx = -pad; dx <= pad; ++dx)
-        if (x + dx >= 0 && x + dx < w && y + dy >= 0 && y + dy < h) d.insert({x + dx, y + dy});
-  return d;
-}
+using test::dilated_by_brute_force;
+using test::Texels;
+using test::texels_of;
 
 // A chart of one polygon fanned from its first vertex, UV = the polygon.
-FlatChart polygon_chart(const std::vector<Eigen::Vector2d>& p) {
-  FlatChart c;
-  c.UV.resize(static_cast<int>(p.size()), 2);
-  c.mesh.data.V.setZero(static_cast<int>(p.size()), 3);
-  for (int i = 0; i < static_cast<int>(p.size()); ++i) {
-    c.UV.row(i) = p[i].transpose();
-    c.mesh.data.V.row(i) << p[i].x(), p[i].y(), 0;
-  }
-  c.mesh.data.F.resize(static_cast<int>(p.size()) - 2, 3);
-  double area = 0;
-  for (int i = 1; i + 1 < static_cast<int>(p.size()); ++i) {
-    c.mesh.data.F.row(i - 1) << 0, i, i + 1;
-    area += 0.5 * ((p[i] - p[0]).x() * (p[i + 1] - p[0]).y() - (p[i] - p[0]).y() * (p[i + 1] - p[0]).x());
-  }
-  c.summary.area_3d = area;
-  return c;
-}
+FlatChart polygon_chart(const std::vector<Eigen::Vector2d>& p) { return test::fan_chart(p, false); }
 
 FlatChart square_chart(double side) { return polygon_chart({{0, 0}, {side, 0}, {side, side}, {0, side}}); }
 

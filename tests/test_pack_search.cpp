@@ -14,20 +14,15 @@
 #include "atlas/packing/chart_pose.h"
 #include "atlas/packing/scale_search.h"
 #include "atlas/packing/texel_mask.h"
+#include "pack_test_support.h"
 #include "util/parallel_for.h"
 
 namespace intrinsic::detail::packing {
 namespace {
 
-using Texels = std::set<std::pair<int, int>>;
-
-Texels texels_of(const std::vector<Spans>& rows) {
-  Texels t;
-  for (int y = 0; y < static_cast<int>(rows.size()); ++y)
-    for (const auto& s : rows[y])
-      for (int x = s.first; x < s.second; ++x) t.insert({x, y});
-  return t;
-}
+using test::dilated_by_brute_force;
+using test::Texels;
+using test::texels_of;
 
 // A star-shaped polygon around the origin (concave for some), fanned from
 // its centre: UV = the polygon, 3D = the same in the plane z = 0.
@@ -38,21 +33,7 @@ FlatChart star_chart(std::mt19937& rng, double r, int n) {
     const double a = 2 * M_PI * k / n, rr = r * (0.3 + 0.7 * u(rng));
     p.emplace_back(rr * std::cos(a), rr * std::sin(a));
   }
-  FlatChart c;
-  c.UV.resize(static_cast<int>(p.size()), 2);
-  c.mesh.data.V.setZero(static_cast<int>(p.size()), 3);
-  for (int i = 0; i < static_cast<int>(p.size()); ++i) {
-    c.UV.row(i) = p[i].transpose();
-    c.mesh.data.V.row(i) << p[i].x(), p[i].y(), 0;
-  }
-  c.mesh.data.F.resize(n, 3);
-  double area = 0;
-  for (int k = 0; k < n; ++k) {
-    const int a = 1 + k, b = 1 + (k + 1) % n;
-    c.mesh.data.F.row(k) << 0, a, b;
-    area += 0.5 * (p[a].x() * p[b].y() - p[a].y() * p[b].x());
-  }
-  c.summary.area_3d = area;
+  FlatChart c = test::fan_chart(p, true);
   orient_chart(c);
   return c;
 }
@@ -98,10 +79,7 @@ TEST(PackMasks, FourTurnsAgreeWithTheGridTurnedAndDilatedByBruteForce) {
       ASSERT_EQ(mk.h, h);
       EXPECT_EQ(texels_of(mk.own), turned);
       EXPECT_EQ(mk.texels, static_cast<long>(turned.size()));
-      Texels dilated;
-      for (const auto& [x, y] : turned)
-        for (int dy = -pad; dy <= pad; ++dy)
-          for (int dx = -pad; dx <= pad; ++dx) dilated.insert({x + dx, y + dy});
+      const Texels dilated = dilated_by_brute_force(turned, pad);  // the mask's frame must hold it all
       for (const auto& [x, y] : dilated) ASSERT_TRUE(x >= 0 && x < w && y >= 0 && y < h);
       EXPECT_EQ(texels_of(mk.rows), dilated);
       for (int y = 0; y < h; ++y) {
