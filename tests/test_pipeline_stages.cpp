@@ -4,6 +4,8 @@
 // while the map is measured) equal to writing and measuring one after the other.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <limits>
 #include <map>
@@ -22,6 +24,9 @@
 
 namespace intrinsic {
 namespace {
+
+using test::slurp;
+using test::TempDir;
 
 // Large enough that the face loops split into two parts (50000 faces a part).
 MeshData big_patch() {
@@ -286,7 +291,7 @@ TEST(PipelineStages, PipelineWritesWhileItMeasures) {
   EXPECT_EQ(quiet.distortion.angle_distortion.mean, s.angle_distortion.mean);
 
   // A write that fails is an output error and leaves no file.
-  request.output = dir / "missing" / "out.obj";
+  request.output = dir / "missing/out.obj";
   try {
     parameterize_file(path, request);
     ADD_FAILURE() << "expected an output error";
