@@ -180,6 +180,47 @@ TEST(PipelineStages, AssemblyEqualsATripletAssembly) {
   }
 }
 
+// Face lines the plain-triangle reader takes and those it hands to the
+// general corner loop, mixed in one file: the same triangles as written, and
+// each malformed line named by file and line.
+TEST(PipelineStages, ObjFaceLinesPlainAndOtherwise) {
+  const std::string head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\n";
+  const MeshData d = read_mesh_from_memory(head +
+                                               "f 1 2 3\n"
+                                               "f\t2 4 3 \r\n"
+                                               "f 01 2 4 # a comment\n"
+                                               "f 1 2 3 4\n"
+                                               "f -4 -3 -2\n",
+                                           "t.obj");
+  // The quad is fanned (1 2 3, 1 3 4); negative indices count back from the
+  // 4 vertices.
+  MatrixX3i want(6, 3);
+  want << 0, 1, 2, 1, 3, 2, 0, 1, 3, 0, 1, 2, 0, 2, 3, 0, 1, 2;
+  EXPECT_EQ(d.F, want);
+  EXPECT_EQ(d.face_line, (std::vector<int>{9, 10, 11, 12, 12, 13}));
+  EXPECT_EQ(d.TC.rows(), 0);  // not every face has texture indices
+  const MeshData t = read_mesh_from_memory(head + "f 1/1 2/2 3/3\nf 2/2 4/4 3/3\n", "t.obj");
+  EXPECT_EQ(t.TC.rows(), 4);
+  EXPECT_EQ(t.FTC, t.F);
+
+  const std::pair<std::string, std::string> bad[] = {
+      {"f 1 2 3\nf 1 2 0\n", "t.obj:10: face vertex index 0 is invalid"},
+      {"f 1 2 3\nf 1 2 99999999999\n", "t.obj:10: face vertex index 99999999999 is too large"},
+      {"f 1 2 x\n", "t.obj:9: expected a vertex index in face, found 'x'"},
+      {"f 1 2\n", "t.obj:9: face has 2 vertices"},
+      {"f 1 2 3\nf 1 2 9\n", "t.obj:10: face index 9 out of range"},
+  };
+  for (const auto& [faces, message] : bad) {
+    try {
+      read_mesh_from_memory(head + faces, "t.obj");
+      ADD_FAILURE() << faces;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::Input);
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+}
+
 void expect_same_topology(const Mesh& a, const Mesh& b) {
   EXPECT_EQ(a.V, b.V);
   EXPECT_EQ(a.F, b.F);
