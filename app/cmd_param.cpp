@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 
 #include "choice_option.h"
@@ -139,7 +140,10 @@ void print_summary(const ParamArgs& a, const ParamOutcome& o, const nlohmann::js
 int run_param(const ParamArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   check_output_mesh_path(a.output);
-  const ParamRequest request = to_request(a);
+  // The job writes the mesh itself, while it measures the map.
+  ParamRequest request = to_request(a);
+  request.output = a.output;
+  request.write.binary = a.binary;
   PictureSettings ps;
   const auto pictures = picture_requests(a, ps);
   const ParamOutcome o = parameterize_file(a.input, request);
@@ -147,15 +151,17 @@ int run_param(const ParamArgs& a) {
       o.boundary_optimization && o.boundary_optimization->iterations > 0)
     std::cerr << "\n";
   const auto t_pic = std::chrono::steady_clock::now();
-  std::vector<std::pair<std::string, std::string>> files = make_pictures(pictures, ps, o);
+  std::vector<std::pair<std::string, std::string>> files;
+  try {
+    files = make_pictures(pictures, ps, o);
+  } catch (...) {
+    std::remove(a.output.c_str());  // no partial set of outputs
+    throw;
+  }
   const double render_ms = elapsed_ms(t_pic);
-  const auto t2 = std::chrono::steady_clock::now();
-  WriteOptions wo;
-  wo.binary = a.binary;
-  write_mesh(a.output, o.mesh.V, o.mesh.F, o.map.UV, wo);
   nlohmann::json report = param_report_json(request, o, a.output);
   report["timings_ms"]["render"] = render_ms;
-  report["timings_ms"]["write"] = elapsed_ms(t2);
+  report["timings_ms"]["write"] = o.write_ms;
   report["timings_ms"]["total"] = elapsed_ms(t0);
   if (!a.report.empty()) files.insert(files.begin(), {a.report, report.dump(2) + "\n"});
   write_all(files, {a.output});  // on failure the mesh goes too: no partial set of outputs

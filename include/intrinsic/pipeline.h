@@ -6,7 +6,9 @@
 // solves (charts, optimal lambda, boundary optimization or constraints) and
 // measures the result; the report functions give the JSON report of
 // docs/formats.md "Report" and docs/cli.md, built from the outcome only.
-// Writing stays with the caller: write_mesh / write_atlas_file (io.h).
+// The param job may write its mesh itself (ParamRequest::output), while it
+// measures the map on the other core; otherwise writing stays with the
+// caller: write_mesh / write_atlas_file (io.h).
 #pragma once
 
 #include <optional>
@@ -66,6 +68,11 @@ struct ParamRequest {
   bool largest_component = false;
   ReadOptions read;  // limits when reading a file
   OptionSpelling spelling = OptionSpelling::Keyword;
+  // When set, the job writes the map there (write_mesh with `write`) while
+  // the distortion summary is computed on another thread; a failed write
+  // throws Error(Output) and leaves no file.
+  std::string output;
+  WriteOptions write;
 
   bool has_constraints() const { return constraints.has_value() || !constraints_file.empty(); }
 };
@@ -81,6 +88,10 @@ struct ParamOutcome {
   std::optional<BoundaryOptimizationResult> boundary_optimization;  // when used (its map is `map`)
   DistortionSummary distortion;                                     // of `map` on `mesh`
   double read_ms = 0, validate_ms = 0;  // the solve's own stages are in map.timings
+  // Both start when the solve ends and run at the same time (write_ms is 0
+  // without request.output): the job's wall time after the solve is the
+  // larger of the two, not their sum.
+  double write_ms = 0, metrics_ms = 0;
 };
 
 // From a file (read with request.read) or from arrays.

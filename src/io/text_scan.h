@@ -121,6 +121,9 @@ class TextScanner {
   bool at_token_end() const {
     return p_ >= end_ || is_blank(*p_) || *p_ == '\n' || *p_ == '#';
   }
+  // Moves to `p`, a later position on the current line (a caller that
+  // scanned ahead by itself; no newline may lie between).
+  void skip_to(const char* p) { p_ = p; }
   bool consume(char c) {
     if (p_ < end_ && *p_ == c) {
       ++p_;

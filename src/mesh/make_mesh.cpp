@@ -1,6 +1,7 @@
 // Validation of raw mesh data into a Mesh: element-level checks with messages
 // that name the element and its source line, then orientation and adjacency.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <sstream>
@@ -23,20 +24,40 @@ namespace {
 
 std::string where(const Mesh& mesh) { return mesh.path.empty() ? "" : mesh.path + ": "; }
 
-// The first face (in file order) failing `bad`, found on all cores; m if none.
-template <class Bad>
-int first_face(int m, Bad&& bad) {
-  std::atomic<int> first{m};
+// What is wrong with a face, in the order the messages take precedence.
+enum Fault { kBadIndex, kBadCoordinate, kDegenerate, kFaults };
+
+// The first face (in file order) with each fault, in one pass over the faces
+// on all cores (each reads its corners once, for every check): m where none.
+std::array<int, kFaults> first_faults(const Mesh& mesh, const ValidateOptions& options) {
+  const int n = static_cast<int>(mesh.V.rows());
+  const int m = static_cast<int>(mesh.F.rows());
+  std::array<std::atomic<int>, kFaults> first;
+  for (std::atomic<int>& x : first) x = m;
   detail::parallel_for(m, [&](std::int64_t begin, std::int64_t end) {
-    for (int f = static_cast<int>(begin); f < end && f < first.load(std::memory_order_relaxed); ++f) {
-      if (!bad(f)) continue;
-      int seen = first.load();
-      while (f < seen && !first.compare_exchange_weak(seen, f)) {
+    std::array<int, kFaults> mine{m, m, m};
+    for (int f = static_cast<int>(begin); f < end; ++f) {
+      const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
+      if (a < 0 || a >= n || b < 0 || b >= n || c < 0 || c >= n || a == b || b == c || a == c) {
+        mine[kBadIndex] = std::min(mine[kBadIndex], f);
+        break;  // this message wins over any later face's
       }
-      return;
+      const Eigen::Vector3d x0 = mesh.V.row(a), x1 = mesh.V.row(b), x2 = mesh.V.row(c);
+      if (!x0.allFinite() || !x1.allFinite() || !x2.allFinite()) {
+        mine[kBadCoordinate] = std::min(mine[kBadCoordinate], f);
+        continue;
+      }
+      const double twice_area = (x1 - x0).cross(x2 - x0).norm();
+      const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
+      if (!(twice_area > options.degenerate_ratio * longest)) mine[kDegenerate] = std::min(mine[kDegenerate], f);
+    }
+    for (int k = 0; k < kFaults; ++k) {
+      int seen = first[k].load();
+      while (mine[k] < seen && !first[k].compare_exchange_weak(seen, mine[k])) {
+      }
     }
   });
-  return first.load();
+  return {first[0].load(), first[1].load(), first[2].load()};
 }
 
 // The checks in the order their messages take precedence, each reporting
@@ -46,12 +67,9 @@ void check_elements(const Mesh& mesh, const ValidateOptions& options) {
   const int m = static_cast<int>(mesh.F.rows());
   if (n == 0) throw_input(where(mesh) + "the mesh has no vertices");
   if (m == 0) throw_input(where(mesh) + "the mesh has no faces");
-  const int bad_index = first_face(m, [&](int f) {
-    const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
-    return a < 0 || a >= n || b < 0 || b >= n || c < 0 || c >= n || a == b || b == c || a == c;
-  });
-  if (bad_index < m) {
-    const int f = bad_index;
+  const std::array<int, kFaults> first = first_faults(mesh, options);
+  if (first[kBadIndex] < m) {
+    const int f = first[kBadIndex];
     for (int c = 0; c < 3; ++c) {
       const int v = mesh.F(f, c);
       if (v < 0 || v >= n)
@@ -61,24 +79,14 @@ void check_elements(const Mesh& mesh, const ValidateOptions& options) {
     const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
     throw_input(where(mesh) + mesh.describe_face(f) + " repeats vertex " + std::to_string(a == b || a == c ? a : b));
   }
-  const int bad_coordinate = first_face(m, [&](int f) {
-    return !mesh.V.row(mesh.F(f, 0)).allFinite() || !mesh.V.row(mesh.F(f, 1)).allFinite() ||
-           !mesh.V.row(mesh.F(f, 2)).allFinite();
-  });
-  if (bad_coordinate < m)
+  if (first[kBadCoordinate] < m)
     for (int c = 0; c < 3; ++c) {
-      const int v = mesh.F(bad_coordinate, c);
+      const int v = mesh.F(first[kBadCoordinate], c);
       if (!mesh.V.row(v).allFinite())
         throw_input(where(mesh) + "vertex " + std::to_string(v) + " has a non-finite coordinate");
     }
-  const int degenerate = first_face(m, [&](int f) {
-    const Eigen::Vector3d x0 = mesh.V.row(mesh.F(f, 0)), x1 = mesh.V.row(mesh.F(f, 1)), x2 = mesh.V.row(mesh.F(f, 2));
-    const double twice_area = (x1 - x0).cross(x2 - x0).norm();
-    const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
-    return !(twice_area > options.degenerate_ratio * longest);
-  });
-  if (degenerate < m)
-    throw_input(where(mesh) + mesh.describe_face(degenerate) +
+  if (first[kDegenerate] < m)
+    throw_input(where(mesh) + mesh.describe_face(first[kDegenerate]) +
                 " is degenerate (zero area: its vertices are coincident or collinear)");
 }
 
@@ -88,15 +96,24 @@ Mesh make_mesh(const MatrixX3d& V, const MatrixX3i& F, const ValidateOptions& op
   MeshData data;
   data.V = V;
   data.F = F;
-  return make_mesh(data, options);
+  return detail::make_mesh_taking(std::move(data), options);
 }
 
 Mesh make_mesh(const MeshData& data, const ValidateOptions& options) {
+  MeshData copy;
+  copy.V = data.V;
+  copy.F = data.F;
+  copy.face_line = data.face_line;
+  copy.path = data.path;
+  return detail::make_mesh_taking(std::move(copy), options);
+}
+
+Mesh detail::make_mesh_taking(MeshData&& data, const ValidateOptions& options) {
   Mesh mesh;
-  mesh.V = data.V;
-  mesh.F = data.F;
-  mesh.face_line = data.face_line;
-  mesh.path = data.path;
+  mesh.V = std::move(data.V);
+  mesh.F = std::move(data.F);
+  mesh.face_line = std::move(data.face_line);
+  mesh.path = std::move(data.path);
   check_elements(mesh, options);
   detail::OrientedAdjacency adjacency;
   mesh.validation.reoriented_faces = detail::orient_faces(mesh, &adjacency);

@@ -40,16 +40,6 @@ void singular_values(const Eigen::Matrix2d& J, double& s1, double& s2) {
   s2 = std::abs(q - r);
 }
 
-double normalisation(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV) {
-  double a2 = 0;
-  for (int f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector2d u0 = UV.row(F(f, 0)), u1 = UV.row(F(f, 1)), u2 = UV.row(F(f, 2));
-    a2 += 0.5 * ((u1.x() - u0.x()) * (u2.y() - u0.y()) - (u1.y() - u0.y()) * (u2.x() - u0.x()));
-  }
-  a2 = std::abs(a2);
-  return a2 > 0 ? std::sqrt(frames.total_area_3d / a2) : 1.0;
-}
-
 Stat weighted_stat(const Eigen::VectorXd& x, const Eigen::VectorXd& w) {
   Stat s;
   s.min = std::numeric_limits<double>::infinity();
@@ -85,8 +75,21 @@ Eigen::VectorXd terms(std::int64_t n, Term&& term) {
   return x;
 }
 
+// sqrt(3D area / |signed UV area|): the signed areas on all cores, summed
+// in face order as one serial loop adds them (the same bits).
+double normalisation(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV) {
+  double a2 = ordered_sum(terms(F.rows(), [&](std::int64_t f) {
+    const Eigen::Vector2d u0 = UV.row(F(f, 0)), u1 = UV.row(F(f, 1)), u2 = UV.row(F(f, 2));
+    return 0.5 * ((u1.x() - u0.x()) * (u2.y() - u0.y()) - (u1.y() - u0.y()) * (u2.x() - u0.x()));
+  }));
+  a2 = std::abs(a2);
+  return a2 > 0 ? std::sqrt(frames.total_area_3d / a2) : 1.0;
+}
+
 // Flipped or collapsed: the one definition face_distortion and count_flipped share.
 bool is_flipped(const Eigen::Matrix2d& J) { return !(J.determinant() > 0); }
+
+FaceDistortion face_distortion_scaled(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV, double k);
 
 }  // namespace
 
@@ -110,8 +113,14 @@ FaceDistortion face_distortion(const MatrixX3d& V, const MatrixX3i& F, const Mat
 }
 
 FaceDistortion face_distortion(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV) {
+  return face_distortion_scaled(frames, F, UV, normalisation(frames, F, UV));
+}
+
+namespace {
+
+// face_distortion with the normalisation k already known.
+FaceDistortion face_distortion_scaled(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV, double k) {
   const int m = static_cast<int>(F.rows());
-  const double k = normalisation(frames, F, UV);
   const double inf = std::numeric_limits<double>::infinity();
   FaceDistortion d;
   d.angle.resize(m);
@@ -141,6 +150,8 @@ FaceDistortion face_distortion(const FaceFrames& frames, const MatrixX3i& F, con
   return d;
 }
 
+}  // namespace
+
 int count_flipped(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d& UV) {
   const double k = normalisation(frames, F, UV);
   int n = 0;
@@ -150,21 +161,46 @@ int count_flipped(const FaceFrames& frames, const MatrixX3i& F, const MatrixX2d&
 
 // Sorted by (smaller, larger) vertex: a counting sort on the smaller vertex,
 // then a tiny sort per vertex (a handful of neighbours), instead of sorting
-// all 3m edge keys at once (0.4 s at 1M vertices).
+// all 3m edge keys at once (0.4 s at 1M vertices). The counting and the
+// scatter run on all cores, each part of the faces counting into its own
+// array and writing its own slots; the order within a vertex's slots then
+// depends on the parts, but the sort that follows makes it canonical.
 Eigen::MatrixX2i unique_edges(const MatrixX3i& F) {
-  int n = 0;
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) n = std::max(n, F(f, c) + 1);
+  const std::int64_t m = F.rows();
+  const int parts = detail::parallel_parts(m);
+  std::vector<int> part_max(parts, 0);
+  detail::parallel_for_parts(m, parts, [&](int p, std::int64_t f0, std::int64_t f1) {
+    int x = 0;
+    for (int c = 0; c < 3; ++c)
+      for (std::int64_t f = f0; f < f1; ++f) x = std::max(x, F(f, c) + 1);
+    part_max[p] = x;
+  });
+  const int n = *std::max_element(part_max.begin(), part_max.end());
+  std::vector<std::vector<int>> at_part(parts, std::vector<int>(static_cast<size_t>(n), 0));
+  detail::parallel_for_parts(m, parts, [&](int p, std::int64_t f0, std::int64_t f1) {
+    for (int c = 0; c < 3; ++c)
+      for (std::int64_t f = f0; f < f1; ++f) ++at_part[p][std::min(F(f, c), F(f, (c + 1) % 3))];
+  });
   std::vector<int> begin(static_cast<size_t>(n) + 1, 0);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) ++begin[std::min(F(f, c), F(f, (c + 1) % 3)) + 1];
-  for (int v = 0; v < n; ++v) begin[v + 1] += begin[v];
-  std::vector<int> other(begin[n]), fill(begin.begin(), begin.end() - 1);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const int i = F(f, c), j = F(f, (c + 1) % 3);
-      other[fill[std::min(i, j)]++] = std::max(i, j);
+  for (int v = 0; v < n; ++v) {  // counts become each part's first slot
+    int at = begin[v];
+    for (int p = 0; p < parts; ++p) {
+      const int count = at_part[p][v];
+      at_part[p][v] = at;
+      at += count;
     }
+    begin[v + 1] = at;
+  }
+  std::vector<int> other(begin[n]);
+  detail::parallel_for_parts(m, parts, [&](int p, std::int64_t f0, std::int64_t f1) {
+    std::vector<int>& fill = at_part[p];
+    for (std::int64_t f = f0; f < f1; ++f)
+      for (int c = 0; c < 3; ++c) {
+        const int i = F(f, c), j = F(f, (c + 1) % 3);
+        other[fill[std::min(i, j)]++] = std::max(i, j);
+      }
+  });
+  at_part.clear();
   std::vector<int> last(n);  // end of each vertex's distinct neighbours
   detail::parallel_for(n, [&](std::int64_t first, std::int64_t end) {
     for (std::int64_t v = first; v < end; ++v) {
@@ -213,9 +249,9 @@ double area_energy(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) 
 
 DistortionSummary summarize_distortion(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV) {
   const FaceFrames frames = face_frames(V, F);
-  const FaceDistortion d = face_distortion(frames, F, UV);
   DistortionSummary s;
   s.scale_factor = normalisation(frames, F, UV);
+  const FaceDistortion d = face_distortion_scaled(frames, F, UV, s.scale_factor);
   for (int f = 0; f < F.rows(); ++f) {
     s.flipped_triangles += d.flipped[f];
     s.collapsed_triangles += std::isfinite(d.angle[f]) ? 0 : 1;

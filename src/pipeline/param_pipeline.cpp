@@ -1,13 +1,17 @@
 // The parameterize job of pipeline.h (`intrinsic param` without its command
 // line): request checks, reading and validating the mesh, the solve (charts
 // for several components, optimal lambda (paper section 5.1), boundary
-// optimization (section 5.2), constraints) and the distortion summary.
+// optimization (section 5.2), constraints) and the distortion summary, with
+// the output mesh written at the same time when the request names one.
 #include <chrono>
+#include <cstdio>
+#include <future>
 
 #include "intrinsic/charts.h"
 #include "intrinsic/error.h"
 #include "intrinsic/parameterizer.h"
 #include "intrinsic/pipeline.h"
+#include "mesh/topology_build.h"
 
 namespace intrinsic {
 namespace {
@@ -17,12 +21,19 @@ double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std
 
 }  // namespace
 
-// Several components allowed (charts), or only the largest kept.
-Mesh validated_mesh(const MeshData& data, const ParamRequest& r) {
+namespace {
+
+Mesh checked(const MeshData& data, const ValidateOptions& vo) { return make_mesh(data, vo); }
+Mesh checked(MeshData&& data, const ValidateOptions& vo) { return detail::make_mesh_taking(std::move(data), vo); }
+
+// Several components allowed (charts), or only the largest kept. `Data`:
+// a MeshData to copy from, or one to take over.
+template <class Data>
+Mesh validate(Data&& data, const ParamRequest& r) {
   ValidateOptions vo;
   vo.allow_several_components = true;
   vo.allow_closed = r.largest_component;  // a closed small piece may be dropped; the kept one is checked later
-  Mesh mesh = make_mesh(data, vo);
+  Mesh mesh = checked(std::forward<Data>(data), vo);
   if (r.largest_component && mesh.topology.num_components > 1) {
     const int reoriented = mesh.validation.reoriented_faces;
     mesh = make_mesh(component_data(mesh, largest_component(mesh)));
@@ -30,6 +41,10 @@ Mesh validated_mesh(const MeshData& data, const ParamRequest& r) {
   }
   return mesh;
 }
+
+}  // namespace
+
+Mesh validated_mesh(const MeshData& data, const ParamRequest& r) { return validate(data, r); }
 
 ParamOptions resolved_options(const ParamRequest& r, const Mesh& mesh) {
   ParamOptions options = r.options;
@@ -80,6 +95,35 @@ void solve(const ParamRequest& r, const MeshData& data, const ParamOptions& opti
   out.map = parameterizer.solve();
 }
 
+// The distortion summary, and the output mesh when asked, side by side:
+// the writer's last steps and the summary's serial sums each leave a core
+// idle that the other can use. The summary stays on this thread: its arrays
+// (80 MB at 1M) then come from the main malloc arena, which gives them back,
+// where a worker's arena would keep them resident.
+void measure_and_write(const ParamRequest& r, ParamOutcome& out) {
+  const auto t0 = Clock::now();
+  if (r.output.empty()) {
+    out.distortion = summarize_distortion(out.mesh.V, out.mesh.F, out.map.UV);
+    out.metrics_ms = ms_since(t0);
+    return;
+  }
+  // The future's destructor waits for the write, so an exception here
+  // leaves no thread behind; a failed write is rethrown by get().
+  std::future<double> written = std::async(std::launch::async, [&] {
+    write_mesh(r.output, out.mesh.V, out.mesh.F, out.map.UV, r.write);
+    return ms_since(t0);
+  });
+  try {
+    out.distortion = summarize_distortion(out.mesh.V, out.mesh.F, out.map.UV);
+  } catch (...) {
+    written.wait();
+    std::remove(r.output.c_str());  // no output without its outcome
+    throw;
+  }
+  out.metrics_ms = ms_since(t0);
+  out.write_ms = written.get();
+}
+
 // `owned`: the caller's copy of `data` (the file just read), emptied once the
 // mesh is validated: at 1M vertices it is 56 MB that the factorization need
 // not carry. Only the file's faces stay, for constraints (which name them).
@@ -87,16 +131,21 @@ ParamOutcome run(const MeshData& data, const ParamRequest& r, double read_ms, Me
   ParamOutcome out;
   out.read_ms = read_ms;
   const auto t0 = Clock::now();
-  out.mesh = validated_mesh(data, r);
   if (owned) {
+    // The mesh takes the file's arrays over; validation may reorient its
+    // faces, so constraints (which name the file's faces) keep a copy.
     MatrixX3i file_faces;
-    if (r.has_constraints()) file_faces.swap(owned->F);
+    if (r.has_constraints()) file_faces = owned->F;
+    MeshData taken = std::move(*owned);
     *owned = MeshData();
+    out.mesh = validate(std::move(taken), r);
     owned->F.swap(file_faces);
+  } else {
+    out.mesh = validate(data, r);
   }
   out.validate_ms = ms_since(t0);
   solve(r, data, resolved_options(r, out.mesh), out);
-  out.distortion = summarize_distortion(out.mesh.V, out.mesh.F, out.map.UV);
+  measure_and_write(r, out);
   return out;
 }
 

@@ -6,7 +6,8 @@
 // Both go straight into compressed column storage: the pattern of K is the
 // vertex adjacency plus the diagonal, built from the faces by a counting
 // pass, and each face then adds its weights in place (no triplet list, which
-// at 1M vertices costs 12 x #F triplets of 16 bytes and a sort).
+// at 1M vertices costs 12 x #F triplets of 16 bytes and a sort). Every pass
+// runs on all cores with the same result on any number of them.
 #include "intrinsic/assemble.h"
 
 #include <algorithm>
@@ -30,9 +31,8 @@ SparseMatrix make_csc(int rows, int cols, const std::vector<int>& begin, std::ve
 
 // Adds the contributions of faces [f0, f1) to the values of K (pattern in
 // begin/row, diagonal positions in diag).
-void add_faces(const MatrixX3d& V, const MatrixX3i& F, const WeightOptions& w, int f0, int f1,
-               const std::vector<int>& begin, const std::vector<int>& row, const std::vector<int>& diag,
-               double* value) {
+void add_faces(const MatrixX3d& V, const MatrixX3i& F, const WeightOptions& w, int f0, int f1, const int* begin,
+               const int* row, const std::vector<int>& diag, double* value) {
   for (int f = f0; f < f1; ++f) {
     const Eigen::Matrix3d W = face_weights(V, F, f, w);
     for (int c = 0; c < 3; ++c)
@@ -48,52 +48,93 @@ void add_faces(const MatrixX3d& V, const MatrixX3i& F, const WeightOptions& w, i
   }
 }
 
+// The pattern of K in compressed columns: every vertex's column holds itself
+// and its face neighbours, sorted, without repeats; diag[v] is the position
+// of (v, v). Counting and filling run on all cores, each part of the faces
+// with its own counts (so its own slots in each column); the order within a
+// column then depends on the parts, but the sort makes it canonical, so the
+// pattern is the same on any number of threads. Written straight into K.
+std::vector<int> build_pattern(const MatrixX3i& F, SparseMatrix& K) {
+  const int n = static_cast<int>(K.cols());
+  const std::int64_t m = F.rows();
+  const int parts = detail::parallel_parts(m);
+  // at[p][j]: first slot of part p in column j (after j's own entry).
+  std::vector<std::vector<int>> at(parts, std::vector<int>(static_cast<size_t>(n), 0));
+  detail::parallel_for_parts(m, parts, [&](int p, std::int64_t f0, std::int64_t f1) {
+    for (int c = 0; c < 3; ++c)
+      for (std::int64_t f = f0; f < f1; ++f) at[p][F(f, c)] += 2;  // each incident face names two
+  });
+  std::vector<int> begin(static_cast<size_t>(n) + 1, 0);
+  for (int j = 0; j < n; ++j) {
+    int slot = begin[j] + 1;
+    for (int p = 0; p < parts; ++p) {
+      const int count = at[p][j];
+      at[p][j] = slot;
+      slot += count;
+    }
+    begin[j + 1] = slot;
+  }
+  std::vector<int> row(begin[n]);
+  detail::parallel_for_parts(m, parts, [&](int p, std::int64_t f0, std::int64_t f1) {
+    std::vector<int>& fill = at[p];
+    for (std::int64_t f = f0; f < f1; ++f)
+      for (int c = 0; c < 3; ++c) {
+        const int j = F(f, c);
+        row[fill[j]++] = F(f, (c + 1) % 3);
+        row[fill[j]++] = F(f, (c + 2) % 3);
+      }
+  });
+  at.clear();
+  // Sorted and deduplicated per column in place, then copied into K.
+  std::vector<int> count(n), diag(n);
+  detail::parallel_for(n, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t v = first; v < last; ++v) {
+      row[begin[v]] = static_cast<int>(v);
+      std::sort(row.begin() + begin[v], row.begin() + begin[v + 1]);
+      const auto end = std::unique(row.begin() + begin[v], row.begin() + begin[v + 1]);
+      count[v] = static_cast<int>(end - (row.begin() + begin[v]));
+      diag[v] = static_cast<int>(std::lower_bound(row.begin() + begin[v], end, static_cast<int>(v)) - row.begin()) - begin[v];
+    }
+  });
+  int* outer = K.outerIndexPtr();
+  outer[0] = 0;
+  for (int v = 0; v < n; ++v) outer[v + 1] = outer[v] + count[v];
+  K.resizeNonZeros(outer[n]);
+  int* inner = K.innerIndexPtr();
+  detail::parallel_for(n, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t v = first; v < last; ++v) {
+      std::copy(row.begin() + begin[v], row.begin() + begin[v] + count[v], inner + outer[v]);
+      diag[v] += outer[v];
+    }
+  });
+  return diag;
+}
+
 }  // namespace
 
 SparseMatrix assemble_weight_matrix(const MatrixX3d& V, const MatrixX3i& F, const WeightOptions& w) {
   const int n = static_cast<int>(V.rows());
   const int m = static_cast<int>(F.rows());
-  // Pattern: every vertex's column holds itself and its face neighbours
-  // (each incident face names two), then sorted and deduplicated.
-  std::vector<int> begin(n + 1, 0);
-  for (int f = 0; f < m; ++f)
-    for (int c = 0; c < 3; ++c) begin[F(f, c) + 1] += 2;
-  for (int v = 0; v < n; ++v) begin[v + 1] += begin[v] + 1;
-  std::vector<int> row(begin[n]), fill(begin.begin(), begin.end() - 1);
-  for (int v = 0; v < n; ++v) row[fill[v]++] = v;
-  for (int f = 0; f < m; ++f)
-    for (int c = 0; c < 3; ++c) {
-      const int j = F(f, c);
-      row[fill[j]++] = F(f, (c + 1) % 3);
-      row[fill[j]++] = F(f, (c + 2) % 3);
-    }
-  std::vector<int> diag(n);
-  detail::parallel_for(n, [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t v = first; v < last; ++v) std::sort(row.begin() + begin[v], row.begin() + begin[v + 1]);
-  });
-  int out = 0;
-  for (int v = 0; v < n; ++v) {
-    const int b = begin[v], e = begin[v + 1];
-    begin[v] = out;
-    for (int k = b; k < e; ++k)
-      if (k == b || row[k] != row[k - 1]) {
-        if (row[k] == v) diag[v] = out;
-        row[out++] = row[k];
-      }
-  }
-  begin[n] = out;
-
+  SparseMatrix K(n, n);
+  const std::vector<int> diag = build_pattern(F, K);
+  const int nnz = static_cast<int>(K.nonZeros());
   // Values: each part of the faces adds into its own array (faces share
-  // vertices), summed after in part order.
+  // vertices; part 0 into K's), summed after in part order, entry by entry
+  // on all cores: the same sums whatever the threads.
   const int parts = detail::parallel_parts(m, 50000);
-  std::vector<std::vector<double>> values(parts, std::vector<double>(out, 0.0));
+  double* value = K.valuePtr();
+  std::fill(value, value + nnz, 0.0);
+  std::vector<std::vector<double>> values(parts - 1, std::vector<double>(nnz, 0.0));
   detail::parallel_for_parts(m, parts, [&](int part, std::int64_t f0, std::int64_t f1) {
-    add_faces(V, F, w, static_cast<int>(f0), static_cast<int>(f1), begin, row, diag, values[part].data());
+    add_faces(V, F, w, static_cast<int>(f0), static_cast<int>(f1), K.outerIndexPtr(), K.innerIndexPtr(), diag,
+              part == 0 ? value : values[part - 1].data());
   });
-  std::vector<double> value = std::move(values[0]);
-  for (int part = 1; part < parts; ++part)
-    for (int k = 0; k < out; ++k) value[k] += values[part][k];
-  return make_csc(n, n, begin, std::move(row), std::move(value));
+  if (parts > 1)
+    detail::parallel_for(nnz, [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t k = first; k < last; ++k)
+        for (int part = 1; part < parts; ++part) value[k] += values[part - 1][k];
+    });
+  return K;
 }
 
 Partition partition(int num_vertices, const std::vector<char>& is_fixed, const std::vector<char>& is_used) {
