@@ -131,7 +131,7 @@ struct LinearSolver::Impl {
     {
       detail::ComplexSparse M;
       if (!detail::hermitian_from_real_form(A, M)) return -1;
-      M_lower = detail::ComplexSparse(M.triangularView<Eigen::Lower>());
+      detail::ComplexSparse(M.triangularView<Eigen::Lower>()).swap(M_lower);  // assigning would copy it
     }
     SparseMatrix().swap(A);  // frees (Eigen 3.4: assigning an empty matrix keeps the storage)
     zchol = std::make_unique<detail::ComplexSupernodalCholesky>();
