@@ -9,6 +9,11 @@
 // analysis time includes building M from the real form; ours is given M.
 // The solve is one complex right-hand side, without refinement.
 //   complex_cholesky_bench [VERTICES] [ROUNDS]
+// With --relax first: our complex factor (the machine's threads) under
+// several supernode amalgamations (suitesparse.h: SupernodeRelaxation),
+// alternating within each round: nnz(L), flops, analysis and numeric time,
+// and one unrefined 2-column solve.
+//   complex_cholesky_bench --relax [VERTICES] [ROUNDS]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -43,10 +48,61 @@ struct Row {
   double flops = 0, nnz = 0;
 };
 
+#if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_HAVE_OPENBLAS)
+// The amalgamations compared by --relax: CHOLMOD's default first, then
+// tighter ones (fewer columns merged, fewer explicit zeros allowed).
+struct NamedRelaxation {
+  const char* name;
+  detail::SupernodeRelaxation relax;
+};
+const NamedRelaxation kRelaxations[] = {
+    {"cholmod 4,16,48 / 0.8,0.1,0.05", {{4, 16, 48}, {0.8, 0.1, 0.05}}},
+    {"4,4,32 / 0.8,0.05,0.01", {{4, 4, 32}, {0.8, 0.05, 0.01}}},
+    {"8,8,32 / 0.8,0.05,0.01", {{8, 8, 32}, {0.8, 0.05, 0.01}}},
+    {"4,8,32 / 0.5,0.05,0.01", {{4, 8, 32}, {0.5, 0.05, 0.01}}},
+    {"none 0,0,0 / 0,0,0", {{0, 0, 0}, {0, 0, 0}}},
+};
+
+int relax_sweep(const detail::ComplexSparse& M, int rounds) {
+  const detail::ComplexSparse lower = M.triangularView<Eigen::Lower>();
+  const Eigen::MatrixXcd rhs = Eigen::MatrixXcd::Random(M.rows(), 2);
+  std::map<std::string, Row> rows;
+  for (int round = 0; round < rounds; ++round)
+    for (const NamedRelaxation& r : kRelaxations) {
+      detail::ComplexSupernodalCholesky f;
+      f.set_relaxation(r.relax);
+      if (!f.factor(lower)) { std::cerr << "ours failed\n"; return 1; }
+      Row& row = rows[r.name];
+      row.analyse.push_back(f.analyse_ms);
+      row.factor.push_back(f.factor_ms);
+      const auto t = std::chrono::steady_clock::now();
+      f.solve(rhs);
+      row.solve.push_back(ms_since(t));
+      row.flops = f.flops();
+      row.nnz = f.factor_nonzeros();
+    }
+  std::printf("natural system: n = %d complex unknowns, %d rounds, medians, %d threads\n\n", static_cast<int>(M.rows()),
+              rounds, detail::hardware_threads());
+  std::printf("| nrelax / zrelax | analysis s | numeric s | GFlop (real) | GFlop/s | nnz(L) | L MB | solve (2 rhs) s |\n|---|---|---|---|---|---|---|---|\n");
+  for (const NamedRelaxation& r : kRelaxations) {
+    const Row& row = rows[r.name];
+    const double f = median(row.factor);
+    std::printf("| %s | %.3f | %.3f | %.2f | %.2f | %.0f | %.0f | %.3f |\n", r.name, median(row.analyse) / 1000, f / 1000,
+                row.flops / 1e9, row.flops / 1e6 / f, row.nnz, row.nnz * 16 / 1e6, median(row.solve) / 1000);
+  }
+  return 0;
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
 #if defined(INTRINSIC_HAVE_SUITESPARSE) && defined(INTRINSIC_HAVE_OPENBLAS)
+  const bool sweep = argc > 1 && std::string(argv[1]) == "--relax";
+  if (sweep) {
+    --argc;
+    ++argv;
+  }
   const int n = argc > 1 ? std::stoi(argv[1]) : 1000000;
   const int rounds = argc > 2 ? std::stoi(argv[2]) : 3;
   GenerateOptions g;
@@ -62,6 +118,7 @@ int main(int argc, char** argv) {
   A.makeCompressed();
   detail::ComplexSparse M;
   if (!detail::hermitian_from_real_form(A, M)) { std::cerr << "not a real form\n"; return 1; }
+  if (sweep) return relax_sweep(M, rounds);
   const Eigen::MatrixXd rhs = Eigen::MatrixXd::Random(A.rows(), 1);
   const Eigen::MatrixXcd rhs_z = detail::complex_from_real_form(rhs);
   const int threads = detail::hardware_threads();

@@ -11,6 +11,7 @@
 
 #include "intrinsic/assemble.h"
 #include "intrinsic/error.h"
+#include "util/parallel_for.h"
 
 namespace intrinsic {
 namespace {
@@ -52,28 +53,37 @@ SparseMatrix area_coupling(int n, const std::vector<std::vector<int>>& loops) {
   return B;
 }
 
+// Column offsets first (column j and n + j each hold K's column j and B's),
+// then the columns filled in parallel: each writes its own range.
 SparseMatrix real_form_matrix(const SparseMatrix& K, const SparseMatrix& B) {
   const Eigen::Index n = K.rows();
   SparseMatrix Q(2 * n, 2 * n);
   Q.resizeNonZeros(2 * (K.nonZeros() + B.nonZeros()));
-  Eigen::Index out = 0;
-  auto append = [&](const SparseMatrix& M, Eigen::Index j, Eigen::Index row_shift, double sign) {
-    for (SparseMatrix::InnerIterator it(M, j); it; ++it) {
-      Q.innerIndexPtr()[out] = static_cast<int>(it.row() + row_shift);
-      Q.valuePtr()[out++] = sign * it.value();
-    }
+  int* outer = Q.outerIndexPtr();
+  int* rows = Q.innerIndexPtr();
+  double* values = Q.valuePtr();
+  auto column_size = [](const SparseMatrix& M, Eigen::Index j) {
+    return static_cast<int>(M.isCompressed() ? M.outerIndexPtr()[j + 1] - M.outerIndexPtr()[j]
+                                             : M.innerNonZeroPtr()[j]);
   };
-  for (Eigen::Index j = 0; j < n; ++j) {  // u columns: K over B
-    Q.outerIndexPtr()[j] = static_cast<int>(out);
-    append(K, j, 0, 1);
-    append(B, j, n, 1);
-  }
-  for (Eigen::Index j = 0; j < n; ++j) {  // v columns: -B over K
-    Q.outerIndexPtr()[n + j] = static_cast<int>(out);
-    append(B, j, 0, -1);
-    append(K, j, n, 1);
-  }
-  Q.outerIndexPtr()[2 * n] = static_cast<int>(out);
+  outer[0] = 0;
+  for (Eigen::Index j = 0; j < n; ++j) outer[j + 1] = outer[j] + column_size(K, j) + column_size(B, j);
+  for (Eigen::Index j = 0; j < n; ++j) outer[n + j + 1] = outer[n + j] + column_size(K, j) + column_size(B, j);
+  detail::parallel_for(n, [&](std::int64_t begin, std::int64_t end) {
+    for (std::int64_t j = begin; j < end; ++j) {
+      auto append = [&](Eigen::Index& out, const SparseMatrix& M, Eigen::Index row_shift, double sign) {
+        for (SparseMatrix::InnerIterator it(M, j); it; ++it) {
+          rows[out] = static_cast<int>(it.row() + row_shift);
+          values[out++] = sign * it.value();
+        }
+      };
+      Eigen::Index u = outer[j], v = outer[n + j];
+      append(u, K, 0, 1);   // u column: K over B
+      append(u, B, n, 1);
+      append(v, B, 0, -1);  // v column: -B over K
+      append(v, K, n, 1);
+    }
+  });
   return Q;
 }
 

@@ -47,15 +47,17 @@ void Parameterizer::Impl::build_natural(const std::vector<FixedVertex>& given) {
   n = static_cast<int>(mesh->V.rows());
   fixed = given;
   filled_holes = 0;
+  // Swapped in, not assigned: Eigen 3.4's SparseMatrix assignment copies
+  // (168 MB at 1M vertices), even from a temporary.
   SparseMatrix Q;
   bool symmetric = true;
   if (natural_boundary) {
-    Q = assemble_natural_system(*mesh);  // every loop natural
+    assemble_natural_system(*mesh).swap(Q);  // every loop natural
   } else {
     const SparseMatrix K = assemble_weight_matrix(mesh->V, mesh->F, o.weights);
     std::vector<std::vector<int>> loops;
     for (size_t k = 1; k < t.component_loops[0].size(); ++k) loops.push_back(t.boundary_loops[t.component_loops[0][k]]);
-    Q = real_form_matrix(K, natural_hole_weight(o.weights) * area_coupling(n, loops));
+    real_form_matrix(K, natural_hole_weight(o.weights) * area_coupling(n, loops)).swap(Q);
     symmetric = is_symmetric(o.weights);
   }
   std::vector<char> fixed2(2 * n, 0), used2(2 * n, 0);

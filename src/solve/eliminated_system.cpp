@@ -12,7 +12,7 @@ EliminatedSystem::EliminatedSystem(SparseMatrix&& K, const std::vector<char>& is
   p_ = intrinsic::partition(static_cast<int>(K.rows()), is_known, is_used);
   SparseMatrix A;
   split_matrix(K, p_, A, K_IB_);
-  K = SparseMatrix();
+  SparseMatrix().swap(K);  // frees it (Eigen 3.4: assigning an empty matrix keeps the storage)
   solver_.set_ill_conditioned(how.ill_conditioned);
   // The free unknowns keep K's order, u's before v's: with u and v of a
   // vertex known together, A is again a real form.

@@ -131,9 +131,9 @@ struct LinearSolver::Impl {
     {
       detail::ComplexSparse M;
       if (!detail::hermitian_from_real_form(A, M)) return -1;
-      M_lower = detail::ComplexSparse(M.triangularView<Eigen::Lower>());
+      detail::ComplexSparse(M.triangularView<Eigen::Lower>()).swap(M_lower);  // assigning would copy it
     }
-    A = SparseMatrix();
+    SparseMatrix().swap(A);  // frees (Eigen 3.4: assigning an empty matrix keeps the storage)
     zchol = std::make_unique<detail::ComplexSupernodalCholesky>();
     if (zchol->factor(M_lower)) {
       used = SolverKind::SupernodalCholesky;
@@ -141,7 +141,7 @@ struct LinearSolver::Impl {
     }
     zchol.reset();
     A = detail::real_form_from_hermitian(detail::ComplexSparse(M_lower.selfadjointView<Eigen::Lower>()));
-    M_lower = detail::ComplexSparse();
+    detail::ComplexSparse().swap(M_lower);
     return 0;
   }
 #endif
@@ -225,7 +225,12 @@ void LinearSolver::factor(const SparseMatrix& A) { factor(SparseMatrix(A)); }
 
 void LinearSolver::factor(SparseMatrix&& matrix) {
   Impl& s = *impl_;
-  s.A = std::move(matrix);
+  // Eigen 3.4's SparseMatrix has no move assignment (std::move copies) and
+  // assigning an empty matrix keeps the storage: swaps take the caller's
+  // matrix and free the previous one (at 1M vertices the natural map's
+  // real form is 168 MB).
+  SparseMatrix().swap(s.A);
+  s.A.swap(matrix);
   s.A.makeCompressed();
   const SparseMatrix& A = s.A;
   s.transposed.reset();
@@ -238,8 +243,8 @@ void LinearSolver::factor(SparseMatrix&& matrix) {
 #endif
 #ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
   s.schol.reset(); s.zchol.reset();
-  s.M_lower = detail::ComplexSparse();
-  s.rebuilt = SparseMatrix();
+  detail::ComplexSparse().swap(s.M_lower);
+  SparseMatrix().swap(s.rebuilt);
   s.rebuilt_once = std::make_unique<std::once_flag>();
 #endif
   ++s.factorizations;

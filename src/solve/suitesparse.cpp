@@ -102,11 +102,12 @@ LongPattern permuted_lower(const SparseMatrix& A, const std::vector<int>& order)
 // The analysis the library's own numeric factorizations share (see the
 // header): CHOLMOD's supernodes, relaxed amalgamation and postorder on the
 // ordering the conformal system gets.
-bool supernodal_analysis(const SparseMatrix& A, SupernodalSymbolic& out) {
-  return supernodal_analysis(A, A.rows() == 0 ? std::vector<int>() : level_set_nested_dissection(A), out);
+bool supernodal_analysis(const SparseMatrix& A, SupernodalSymbolic& out, const SupernodeRelaxation& relax) {
+  return supernodal_analysis(A, A.rows() == 0 ? std::vector<int>() : level_set_nested_dissection(A), out, relax);
 }
 
-bool supernodal_analysis(const SparseMatrix& A, const std::vector<int>& order, SupernodalSymbolic& out) {
+bool supernodal_analysis(const SparseMatrix& A, const std::vector<int>& order, SupernodalSymbolic& out,
+                         const SupernodeRelaxation& relax) {
   out = SupernodalSymbolic();
   const int n = static_cast<int>(A.rows());
   out.n = n;
@@ -123,6 +124,10 @@ bool supernodal_analysis(const SparseMatrix& A, const std::vector<int>& order, S
   c.method[0].ordering = CHOLMOD_NATURAL;  // the order is the pattern's own
   c.postorder = 1;
   c.print = 0;
+  for (int k = 0; k < 3; ++k) {
+    c.nrelax[k] = relax.nrelax[k];
+    c.zrelax[k] = relax.zrelax[k];
+  }
   cholmod_sparse cs = symmetric_view(n, static_cast<Long>(pattern.i.size()), pattern, nullptr, CHOLMOD_PATTERN);
   cholmod_factor* L = cholmod_l_analyze(&cs, &c);
   if (!L || !L->is_super) {

@@ -7,6 +7,7 @@
 
 #ifdef INTRINSIC_HAVE_SUITESPARSE
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -46,16 +47,28 @@ struct SupernodalSymbolic {
   int nscol(int s) const { return super[s + 1] - super[s]; }
   std::int64_t nsrow(int s) const { return pi[s + 1] - pi[s]; }
 };
+// CHOLMOD's relaxed amalgamation (cholmod_common nrelax, zrelax): a child
+// supernode merges into its parent when the merged one has ns columns and
+// a fraction z of explicit zeros with ns <= nrelax[0], or ns <= nrelax[1]
+// and z < zrelax[0], or ns <= nrelax[2] and z < zrelax[1], or z < zrelax[2].
+// Larger supernodes run faster BLAS but store and multiply the zeros. The
+// default is CHOLMOD's; the complex factor chooses a tighter one
+// (supernodal_cholesky.h).
+struct SupernodeRelaxation {
+  std::size_t nrelax[3] = {4, 16, 48};
+  double zrelax[3] = {0.8, 0.1, 0.05};
+};
 // False when CHOLMOD cannot (out of memory); A must be compressed and its
 // pattern symmetric (of each pair (i, j), (j, i) the entry read is the one
 // below the diagonal of the permuted matrix). A 0 x 0 matrix gives no
 // supernodes.
-bool supernodal_analysis(const SparseMatrix& A, SupernodalSymbolic& out);
+bool supernodal_analysis(const SparseMatrix& A, SupernodalSymbolic& out, const SupernodeRelaxation& relax = {});
 // The same on a permutation computed beforehand (order[k]: the row and
 // column of A eliminated k-th, e.g. level_set_nested_dissection(A) computed
 // while something else ran); CHOLMOD may postorder it, so out.perm is the
 // permutation to use.
-bool supernodal_analysis(const SparseMatrix& A, const std::vector<int>& order, SupernodalSymbolic& out);
+bool supernodal_analysis(const SparseMatrix& A, const std::vector<int>& order, SupernodalSymbolic& out,
+                         const SupernodeRelaxation& relax = {});
 
 // Supernodal Cholesky of a symmetric positive definite matrix (both
 // triangles stored; the lower one is used).

@@ -22,8 +22,18 @@
 #include <memory>
 
 #include "intrinsic/linear_solver.h"
+#include "solve/suitesparse.h"
 
 namespace intrinsic::detail {
+
+// The complex factor's amalgamation, tighter than CHOLMOD's default: chosen
+// by nnz(L), flops and numeric time at 300k and 1M vertices
+// (docs/performance/natural-memory.md; complex_cholesky_bench --relax). Up
+// to 4 columns always merge (as CHOLMOD's); beyond that only with under 5%
+// (up to 32 columns) or 1% explicit zeros. CHOLMOD's up to 16 columns with
+// 80% zeros made 13% of L's 83M entries at 1M vertices explicit zeros, for
+// no measurable speed.
+inline const SupernodeRelaxation kComplexRelaxation = {{4, 4, 32}, {0.8, 0.05, 0.01}};
 
 template <class T>
 class SupernodalCholeskyOf {
@@ -32,6 +42,10 @@ class SupernodalCholeskyOf {
   using Dense = Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic>;
   // threads: how many to use; 0 = the machine's cores.
   explicit SupernodalCholeskyOf(int threads = 0);
+  // The supernode amalgamation of the analysis (suitesparse.h). By default
+  // CHOLMOD's for double; tighter for complex entries, which cost 16 bytes
+  // each (docs/performance/natural-memory.md): kComplexRelaxation.
+  void set_relaxation(const SupernodeRelaxation& relax);
   ~SupernodalCholeskyOf();
   SupernodalCholeskyOf(const SupernodalCholeskyOf&) = delete;
   SupernodalCholeskyOf& operator=(const SupernodalCholeskyOf&) = delete;
