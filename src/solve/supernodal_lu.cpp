@@ -202,14 +202,15 @@ bool SupernodalLU::Impl::analyse(const SparseMatrix& A) {
 // to U's rows. C(c, r) is read at its place in A, column perm[r], found by
 // bisection of that column's rows: A's pattern is symmetric, so row c has
 // its entries where column c has, and no transpose of A is needed (at 1M
-// vertices it took 84 MB and a serial pass). Every entry of C lands once:
+// vertices it took about 88 MB and a serial pass). Every entry of C lands once:
 // C(r, c) with r before c's supernode is in U's rows of r's supernode.
 // Done where s is factored, so the panels are filled on the thread that
 // works on them. map: each row's position in s's row list (set for s; other
 // rows hold stale positions, hence the check). floor: the least pivot of
 // each of s's columns, 1e-14 of its largest entry in A. False when an entry of
-// column c falls outside the factor's pattern; an upper entry without its
-// mirror is not placed at all, which numeric() finds by counting (placed).
+// column c falls outside the factor's pattern. An entry C(r, c) right of
+// r's supernode whose mirror C(c, r) is absent is read by no supernode:
+// numeric() finds that by counting the entries placed (placed).
 bool SupernodalLU::Impl::assemble_node(int s, const int* map, double* floor, Long& placed) {
   const int k1 = super[s], k2 = super[s + 1];
   const Long nsrow = pi[s + 1] - pi[s], nscol = k2 - k1, below = nsrow - nscol;
