@@ -13,7 +13,10 @@
 // add, each one more solve. A line before the table gives
 // the LU's flops in the top supernodes and those of them that run on one
 // thread whatever the thread count (machine-independent: the bound on what
-// a second core can give).
+// a second core can give), and one the solve stage of the authalic map as
+// the pipeline runs it: LinearSolver's refined solve of the right-hand side
+// of the circle boundary (its refinement steps, which random right-hand
+// sides do not show, and their cost).
 //   supernodal_bench [VERTICES] [ROUNDS]
 #include <algorithm>
 #include <chrono>
@@ -29,6 +32,7 @@
 #include "intrinsic/assemble.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/generate.h"
+#include "intrinsic/linear_solver.h"
 #include "intrinsic/mesh.h"
 #include "intrinsic/weights.h"
 
@@ -46,16 +50,27 @@ namespace {
 using intrinsic::bench::median;
 using intrinsic::bench::ms_since;
 
-SparseMatrix interior_system(const Mesh& mesh, Method method) {
+// The interior system of the method with the outer loop fixed on the
+// circle (arc-length spacing, as `intrinsic param`); boundary_rhs, if
+// given, gets its right-hand side (u and v).
+SparseMatrix interior_system(const Mesh& mesh, Method method, Eigen::MatrixXd* boundary_rhs = nullptr) {
   WeightOptions w;
   w.method = method;
   const SparseMatrix K = assemble_weight_matrix(mesh.V, mesh.F, w);
+  const std::vector<int>& loop = mesh.topology.boundary_loops[0];
   std::vector<char> fixed(mesh.V.rows(), 0);
-  for (int v : mesh.topology.boundary_loops[0]) fixed[v] = 1;
+  for (int v : loop) fixed[v] = 1;
   const Partition p = partition(static_cast<int>(mesh.V.rows()), fixed, mesh.topology.is_used);
   SparseMatrix A, B;
   split_matrix(K, p, A, B);
   A.makeCompressed();
+  if (boundary_rhs) {
+    Eigen::MatrixXd all = Eigen::MatrixXd::Zero(mesh.V.rows(), 2);
+    for (const FixedVertex& f : circle_boundary(mesh.V, loop, Spacing::ArcLength)) all.row(f.vertex) = f.uv.transpose();
+    Eigen::MatrixXd UB(B.cols(), 2);
+    for (int k = 0; k < B.cols(); ++k) UB.row(k) = all.row(p.fixed_vertices[k]);
+    *boundary_rhs = -(B * UB);
+  }
   return A;
 }
 
@@ -101,10 +116,13 @@ int main(int argc, char** argv) {
   g.rings = std::max(2, static_cast<int>(std::lround(std::sqrt(n / 3.0))));
   const Mesh mesh = make_mesh(generate_wavy_patch(g));
   const SparseMatrix C = interior_system(mesh, Method::Conformal);
-  const SparseMatrix U = interior_system(mesh, Method::Authalic);
+  Eigen::MatrixXd boundary_rhs;
+  const SparseMatrix U = interior_system(mesh, Method::Authalic, &boundary_rhs);
   const Eigen::MatrixXd rhs = Eigen::MatrixXd::Random(C.rows(), 2);
   const int threads = detail::hardware_threads();
   std::map<std::string, Row> rows;
+  std::vector<double> refined_solve;
+  double refined_residual = 0;
   auto time = [&](const std::string& name, auto&& f, const SparseMatrix& A) {
     Row& r = rows[name];
     if (!f.factor(A)) { std::cerr << name << ": factor failed\n"; return; }
@@ -124,6 +142,14 @@ int main(int argc, char** argv) {
     { detail::SupernodalCholesky f(threads); time("conformal ours, " + std::to_string(threads) + " threads", f, C); }
     { detail::SupernodalLU f(1); time("authalic supernodal LU, 1 thread", f, U); }
     { detail::SupernodalLU f(threads); time("authalic supernodal LU, " + std::to_string(threads) + " threads", f, U); }
+    {  // the solve stage of `intrinsic param --method authalic`: refined, on the circle's right-hand side
+      LinearSolver solver(SolverKind::Auto, false);
+      solver.factor(U);
+      const auto t = std::chrono::steady_clock::now();
+      const Eigen::MatrixXd X = solver.solve(boundary_rhs);
+      refined_solve.push_back(ms_since(t));
+      refined_residual = (U * X - boundary_rhs).norm() / boundary_rhs.norm();
+    }
   }
   std::printf("n = %d unknowns (%d vertices), %d rounds, medians\n\n", static_cast<int>(C.rows()),
               static_cast<int>(mesh.V.rows()), rounds);
@@ -133,6 +159,10 @@ int main(int argc, char** argv) {
       std::printf("supernodal LU: %.2f of %.2f GFlop in the top supernodes (after the subtrees), %.2f GFlop of those on "
                   "one thread whatever the thread count; %d top supernodes split between threads\n\n",
                   f.top_flops() / 1e9, f.flops() / 1e9, f.serial_flops() / 1e9, f.split_supernodes());
+    if (f.factor_nonzeros() > 0)
+      std::printf("authalic LinearSolver solve on the circle's right-hand side (2 columns, refined; %d refinement "
+                  "steps, each one more LU solve and backward error): %.3f s, relative residual %.1e\n\n",
+                  refinement_steps(f, U, boundary_rhs, 3), median(refined_solve) / 1000, refined_residual);
   }
   std::printf("| system / factorization | ordering + analysis s | numeric factor s | GFlop | GFlop/s | solve (2 rhs) s | nnz(factor) | max residual | refinement steps |\n|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& [name, r] : rows) {

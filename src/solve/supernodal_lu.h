@@ -39,7 +39,8 @@ class SupernodalLU {
   SupernodalLU& operator=(const SupernodalLU&) = delete;
   // False when a pivot is zero, not finite or below 1e-14 of the largest
   // entry of its column of A (the matrix needs pivoting). A's pattern must
-  // be symmetric (the values need not be).
+  // be symmetric (the values need not be): also false when an entry falls
+  // outside the factor's pattern or lacks the mirror it is read through.
   bool factor(const SparseMatrix& A);
   // A X = B, or A^T X = B with the same factors. No refinement here.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B, bool transposed = false) const;
