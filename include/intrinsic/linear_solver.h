@@ -82,6 +82,7 @@ class LinearSolver {
   std::string name() const;       // solver_name(kind())
   int factorizations() const;     // how many numeric factorizations so far
   int iterations() const;         // last iterative solve, 0 for direct
+  int refinement_steps() const;   // last solve's refinement steps (complex form only; 0 otherwise)
   const SparseMatrix& matrix() const;
   // A X with the factored matrix A (a residual check), from the complex
   // form when A itself was not kept.
