@@ -62,8 +62,10 @@ class LinearSolver {
   // The supernodal LU refines (at most 3 steps) while that backward error
   // exceeds 16 ulps, whatever this flag says. The supernodal Cholesky
   // refines (at most 5 steps) while it exceeds 16 ulps; on the complex form
-  // it refines as CHOLMOD does ill-conditioned systems, whatever this flag
-  // says (the complex form is only the natural map's).
+  // it always refines, whatever this flag says (the complex form is only the
+  // natural map's), with residuals exact to about twice double precision, at
+  // least one step and at most 5, until the error left is below an ulp
+  // (refinement_steps() counts them).
   // UMFPACK, Eigen's solvers and the iterative ones do not refine.
   void set_ill_conditioned(bool on);
 
@@ -82,6 +84,7 @@ class LinearSolver {
   std::string name() const;       // solver_name(kind())
   int factorizations() const;     // how many numeric factorizations so far
   int iterations() const;         // last iterative solve, 0 for direct
+  int refinement_steps() const;   // last solve's refinement steps (complex form only; 0 otherwise)
   const SparseMatrix& matrix() const;
   // A X with the factored matrix A (a residual check), from the complex
   // form when A itself was not kept.

@@ -120,11 +120,6 @@ Eigen::MatrixXcd hermitian_lower_product(const ComplexSparse& lower, const Eigen
   return lower_product<double>(lower, Z, nullptr, 1.0);
 }
 
-Eigen::MatrixXcd hermitian_lower_residual(const ComplexSparse& lower, const Eigen::MatrixXcd& Z,
-                                          const Eigen::MatrixXcd& B) {
-  return lower_product<long double>(lower, Z, &B, -1.0L);
-}
-
 // Column j: K's entries (rows < m) over B's (rows >= m); column m + j: -B
 // over K, the layout hermitian_from_real_form accepts.
 SparseMatrix real_form_from_hermitian(const ComplexSparse& M) {

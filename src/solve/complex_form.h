@@ -25,12 +25,16 @@ bool hermitian_from_real_form(const SparseMatrix& A, ComplexSparse& M);
 // entries) beside the factor.
 Eigen::MatrixXcd hermitian_lower_product(const ComplexSparse& lower, const Eigen::MatrixXcd& Z);
 
-// B - M Z from M's lower triangle, each sum accumulated in long double
-// (64-bit mantissa on x86) and rounded once: the residual of the natural
-// map's mixed-precision refinement (LinearSolver::set_ill_conditioned),
-// which gains accuracy only if the residual is more exact than the solve.
+// B - M Z from M's lower triangle, each entry to about twice double
+// precision (exact products, compensated sums) and rounded once: the
+// residual of the natural map's mixed-precision refinement
+// (LinearSolver::set_ill_conditioned), which gains accuracy only as far as
+// the residual is more exact than the solve. Rows are split over the cores
+// (detail::thread_limit); the result does not depend on how many. With
+// `backward_error`, also max_i |R|_i / (|M| |Z| + |B|)_i, complex moduli
+// taken as |re| + |im| (hermitian_residual.cpp).
 Eigen::MatrixXcd hermitian_lower_residual(const ComplexSparse& lower, const Eigen::MatrixXcd& Z,
-                                          const Eigen::MatrixXcd& B);
+                                          const Eigen::MatrixXcd& B, double* backward_error = nullptr);
 
 // The real form [K -B; B K] (2m x 2m, compressed) of M = K + iB given with
 // both triangles: hermitian_from_real_form's inverse (zero parts of M's

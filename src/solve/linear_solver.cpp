@@ -132,6 +132,7 @@ struct LinearSolver::Impl {
   SolverKind used = SolverKind::Auto;
   int factorizations = 0;
   mutable int iterations = 0;
+  mutable int refinement_steps = 0;  // of the last complex-form solve
   mutable std::unique_ptr<LinearSolver> transposed;  // lazily, for adjoint solves
   std::unique_ptr<EigenLLT> llt;
   std::unique_ptr<EigenLU> lu;
@@ -331,6 +332,7 @@ Eigen::MatrixXd LinearSolver::solve(const Eigen::MatrixXd& B) const {
   const Impl& s = *impl_;
   Eigen::MatrixXd X(B.rows(), B.cols());
   s.iterations = 0;
+  s.refinement_steps = 0;
   if (s.llt) X = s.llt->solve(B);
 #ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
   else if (s.zchol) X = s.complex_cholesky_solve(B);
@@ -426,22 +428,32 @@ Eigen::MatrixXd LinearSolver::Impl::cholesky_solve(const Eigen::MatrixXd& B) con
 #endif
 
 #ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
-// The complex factor's answer, refined as CHOLMOD refines ill-conditioned
-// systems (suitesparse.cpp, CholmodFactor::solve): the residual accumulated
-// in long double from M's lower triangle, one step always, at most 5, until
-// the correction is below 1e-12 of the solution or no longer halves. The
-// complex form is only the natural map's (two pins: ill-conditioned), so it
-// always refines this way.
+// The complex factor's answer, refined with residuals exact to about twice
+// double precision (detail::hermitian_lower_residual; a long-double residual
+// left the 1M-vertex map up to 1.2e-11 from its exact solution, see
+// docs/performance/natural-accuracy.md). The complex form is only the
+// natural map's (two pins: ill-conditioned), so it always refines: one step
+// always, at most 5. A step multiplies the error by about the relative error
+// rho of a solve, which the first correction measures (it is the first
+// solve's error; later, the ratio of the last two corrections), so the error
+// left after a step is about its correction times rho. Refinement stops when
+// that is below an ulp of the solution, or when a correction no longer
+// halves (the solution is then as exact as doubles hold it).
 Eigen::MatrixXd LinearSolver::Impl::complex_cholesky_solve(const Eigen::MatrixXd& B) const {
   const Eigen::MatrixXcd Bz = detail::complex_from_real_form(B);
   Eigen::MatrixXcd X = zchol->solve(Bz);
-  double previous_correction = std::numeric_limits<double>::infinity();
+  double previous = std::numeric_limits<double>::infinity();
+  refinement_steps = 0;
   for (int step = 0; step < 5; ++step) {
+    ++refinement_steps;
     const Eigen::MatrixXcd D = zchol->solve(detail::hermitian_lower_residual(M_lower, X, Bz));
     X += D;
-    const double correction = D.cwiseAbs().maxCoeff() / X.cwiseAbs().maxCoeff();
-    if (!(correction > 1e-12) || !(correction < 0.5 * previous_correction)) break;
-    previous_correction = correction;
+    const double size = X.cwiseAbs().maxCoeff(), correction = D.cwiseAbs().maxCoeff() / size;
+    const double rho = step == 0 ? correction : correction / previous;
+    if (!(size > 0) || !(correction * rho > std::numeric_limits<double>::epsilon()) ||
+        !(correction < 0.5 * previous))
+      break;
+    previous = correction;
   }
   return detail::real_form(X);
 }
@@ -465,6 +477,7 @@ SolverKind LinearSolver::kind() const {
 std::string LinearSolver::name() const { return solver_name(kind()); }
 int LinearSolver::factorizations() const { return impl_->factorizations; }
 int LinearSolver::iterations() const { return impl_->iterations; }
+int LinearSolver::refinement_steps() const { return impl_->refinement_steps; }
 const SparseMatrix& LinearSolver::matrix() const {
 #ifdef INTRINSIC_HAVE_SUPERNODAL_CHOLESKY
   const Impl& s = *impl_;
