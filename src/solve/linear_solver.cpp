@@ -18,6 +18,7 @@
 
 #ifdef INTRINSIC_HAVE_SUITESPARSE
 #include "solve/complex_form.h"
+#include "solve/ordering_ahead.h"
 #include "solve/suitesparse.h"
 #include "solve/supernodal_cholesky.h"
 #include "solve/supernodal_lu.h"
@@ -87,6 +88,7 @@ struct LinearSolver::Impl {
   double tolerance;
   bool ill_conditioned = false;
   bool complex_form = false;
+  std::shared_ptr<detail::AnalysisAhead> ahead;  // for the next factor() only
   SparseMatrix A;
   SolverKind used = SolverKind::Auto;
   int factorizations = 0;
@@ -243,6 +245,11 @@ void LinearSolver::factor(SparseMatrix&& matrix) {
   s.rebuilt_once = std::make_unique<std::once_flag>();
 #endif
   ++s.factorizations;
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+  // The supernodal backends' supernodal_analysis(A) takes it from this thread.
+  const std::shared_ptr<detail::AnalysisAhead> ahead = std::move(s.ahead);
+  const detail::AnalysisAhead::Scope ahead_scope(ahead.get());
+#endif
   const std::string n = std::to_string(A.rows());
   switch (s.requested) {
     case SolverKind::Auto:
@@ -336,6 +343,9 @@ Eigen::MatrixXd LinearSolver::solve_transposed(const Eigen::MatrixXd& B) const {
 
 void LinearSolver::set_ill_conditioned(bool on) { impl_->ill_conditioned = on; }
 void LinearSolver::set_complex_form(bool on) { impl_->complex_form = on; }
+void LinearSolver::set_analysis_ahead(std::shared_ptr<detail::AnalysisAhead> ahead) {
+  impl_->ahead = std::move(ahead);
+}
 
 #ifdef INTRINSIC_HAVE_SUPERNODAL_LU
 // The supernodal LU's answer, refined while its componentwise backward error

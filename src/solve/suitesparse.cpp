@@ -16,6 +16,7 @@
 #include "intrinsic/error.h"
 #include "solve/complex_form.h"
 #include "solve/ordering.h"
+#include "solve/ordering_ahead.h"
 #include "solve/solver_threads.h"
 #include "util/parallel_for.h"
 
@@ -101,8 +102,10 @@ LongPattern permuted_lower(const SparseMatrix& A, const std::vector<int>& order)
 
 // The analysis the library's own numeric factorizations share (see the
 // header): CHOLMOD's supernodes, relaxed amalgamation and postorder on the
-// ordering the conformal system gets.
+// ordering the conformal system gets; taken from the analysis ahead
+// installed on this thread when it analysed A's pattern (ordering_ahead.h).
 bool supernodal_analysis(const SparseMatrix& A, SupernodalSymbolic& out) {
+  if (AnalysisAhead* ahead = AnalysisAhead::current(); ahead && ahead->take(A, out)) return true;
   return supernodal_analysis(A, A.rows() == 0 ? std::vector<int>() : level_set_nested_dissection(A), out);
 }
 
