@@ -1,7 +1,9 @@
 // Parameterizer construction (paper sections 4.1, 4.2; docs/maths.md §2-§4):
 // choose the fixed unknowns, close or free the holes, assemble, eliminate,
-// factor once, and place the boundary in output coordinates.
+// factor once (its ordering and symbolic analysis computed beside the
+// assembly: solve/ordering_ahead.h), and place the boundary in output coordinates.
 #include <cmath>
+#include <system_error>
 
 #include "core/failure_diagnosis.h"
 #include "core/hole_fill.h"
@@ -84,8 +86,12 @@ std::shared_ptr<detail::AnalysisAhead> Parameterizer::Impl::analyse_ahead(const 
                                                                           const std::vector<char>& is_fixed,
                                                                           const std::vector<char>& is_used) const {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
-  if (detail::analysis_ahead_wanted(o.solver, static_cast<int>(is_fixed.size())))
-    return std::make_shared<detail::AnalysisAhead>(F, is_fixed, is_used);
+  try {
+    if (detail::analysis_ahead_wanted(o.solver, static_cast<int>(is_fixed.size())))
+      return std::make_shared<detail::AnalysisAhead>(F, is_fixed, is_used);
+  } catch (const std::system_error&) {
+    // No thread to be had: the solver analyses A itself, as without this.
+  }
 #else
   (void)F;
   (void)is_fixed;
