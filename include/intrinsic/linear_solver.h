@@ -14,6 +14,9 @@
 #include <string>
 
 namespace intrinsic {
+namespace detail {
+class AnalysisAhead;  // src/solve/ordering_ahead.h (internal)
+}
 
 using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, int indices
 
@@ -79,6 +82,14 @@ class LinearSolver {
   // keeps only the complex form's lower triangle, not A (matrix() then
   // rebuilds A on first call; multiply() needs no rebuild).
   void set_complex_form(bool on);
+
+  // An ordering and symbolic analysis of A's pattern computed ahead (on
+  // another thread while A's values were assembled; internal,
+  // src/solve/ordering_ahead.h). The next factor() gives it to the
+  // supernodal backends, which use it when A's pattern is exactly the one
+  // analysed and analyse A themselves otherwise: the factor is the same bit
+  // for bit either way. Other backends ignore it.
+  void set_analysis_ahead(std::shared_ptr<detail::AnalysisAhead> ahead);
 
   SolverKind kind() const;        // the backend actually used (never Auto after factor)
   std::string name() const;       // solver_name(kind())

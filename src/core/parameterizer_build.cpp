@@ -1,13 +1,16 @@
 // Parameterizer construction (paper sections 4.1, 4.2; docs/maths.md §2-§4):
 // choose the fixed unknowns, close or free the holes, assemble, eliminate,
-// factor once, and place the boundary in output coordinates.
+// factor once (its ordering and symbolic analysis computed beside the
+// assembly: solve/ordering_ahead.h), and place the boundary in output coordinates.
 #include <cmath>
+#include <system_error>
 
 #include "core/failure_diagnosis.h"
 #include "core/hole_fill.h"
 #include "core/natural_system.h"
 #include "core/parameterizer_impl.h"
 #include "intrinsic/assemble.h"
+#include "solve/ordering_ahead.h"
 
 namespace intrinsic {
 
@@ -24,6 +27,7 @@ void Parameterizer::Impl::build_fixed(const std::vector<FixedVertex>& given) {
   for (const FixedVertex& fv : given) is_fixed[fv.vertex] = 1;
   filled_holes = 0;
   SparseMatrix K;
+  std::shared_ptr<detail::AnalysisAhead> ahead;
   // Only a surface with holes is copied to be filled (at 1M vertices the
   // copy of V and F is 48 MB and a good part of the assembly time).
   if (o.holes == HoleRule::Fill && mesh->topology.component_loops[0].size() > 1) {
@@ -31,11 +35,18 @@ void Parameterizer::Impl::build_fixed(const std::vector<FixedVertex>& given) {
     filled_holes = s.filled;
     is_fixed.resize(s.V.rows(), 0);
     is_used.resize(s.V.rows(), 1);
+    ahead = analyse_ahead(s.F, is_fixed, is_used);
+    // The thread reads s.F: wait for it before s goes, even on an exception.
+    struct Release {
+      detail::AnalysisAhead* a;
+      ~Release() { if (a) a->faces_released(); }
+    } release{ahead.get()};
     K = assemble_weight_matrix(s.V, s.F, o.weights);
   } else {
+    ahead = analyse_ahead(mesh->F, is_fixed, is_used);
     K = assemble_weight_matrix(mesh->V, mesh->F, o.weights);
   }
-  factor(std::move(K), is_fixed, is_used, is_symmetric(o.weights), t_assemble);
+  factor(std::move(K), is_fixed, is_used, is_symmetric(o.weights), t_assemble, std::move(ahead));
   UB.resize(sys->known_count(), 2);
   for (const FixedVertex& fv : given) UB.row(p().fixed_index[fv.vertex]) = fv.uv.transpose();
   update_fixed_list();
@@ -69,11 +80,34 @@ void Parameterizer::Impl::build_natural(const std::vector<FixedVertex>& given) {
   update_fixed_list();
 }
 
+// The ordering and symbolic analysis of the free block's pattern, started
+// on another thread before the weights are assembled (solve/ordering_ahead.h:
+// the same factorization, bit for bit), or null where the solver would not
+// use it or the mesh is too small to gain.
+std::shared_ptr<detail::AnalysisAhead> Parameterizer::Impl::analyse_ahead(const MatrixX3i& F,
+                                                                          const std::vector<char>& is_fixed,
+                                                                          const std::vector<char>& is_used) const {
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+  try {
+    if (detail::analysis_ahead_wanted(o.solver, static_cast<int>(is_fixed.size())))
+      return std::make_shared<detail::AnalysisAhead>(F, is_fixed, is_used);
+  } catch (const std::system_error&) {
+    // No thread to be had: the solver analyses A itself, as without this.
+  }
+#else
+  (void)F;
+  (void)is_fixed;
+  (void)is_used;
+#endif
+  return nullptr;
+}
+
 // The natural layout's system is ill-conditioned (two pins only): its
 // solves always refine (LinearSolver::set_ill_conditioned).
 void Parameterizer::Impl::factor(SparseMatrix&& K, const std::vector<char>& is_fixed,
                                  const std::vector<char>& is_used, bool symmetric,
-                                 std::chrono::steady_clock::time_point t_assemble) {
+                                 std::chrono::steady_clock::time_point t_assemble,
+                                 std::shared_ptr<detail::AnalysisAhead> ahead) {
   timings.assemble_ms = detail::elapsed_ms(t_assemble);
   const auto t_factor = std::chrono::steady_clock::now();
   sys.reset();
@@ -83,6 +117,7 @@ void Parameterizer::Impl::factor(SparseMatrix&& K, const std::vector<char>& is_f
     how.symmetric = symmetric;
     how.ill_conditioned = natural;
     how.complex_form = natural && symmetric;  // docs/maths.md §3.6
+    how.analysis_ahead = std::move(ahead);
     sys = std::make_unique<detail::EliminatedSystem>(std::move(K), is_fixed, is_used, how);
   } catch (const Error& e) {
     throw_diagnosed(e);

@@ -57,7 +57,10 @@ struct Parameterizer::Impl {
   void build_fixed(const std::vector<FixedVertex>& given);
   void build_natural(const std::vector<FixedVertex>& given);
   void factor(SparseMatrix&& K, const std::vector<char>& is_fixed, const std::vector<char>& is_used,
-              bool symmetric, std::chrono::steady_clock::time_point t_assemble);
+              bool symmetric, std::chrono::steady_clock::time_point t_assemble,
+              std::shared_ptr<detail::AnalysisAhead> ahead = nullptr);
+  std::shared_ptr<detail::AnalysisAhead> analyse_ahead(const MatrixX3i& F, const std::vector<char>& is_fixed,
+                                                       const std::vector<char>& is_used) const;
   detail::PlacementRule initial_placement_rule();
   void place_initially();
   HolesApplied holes_applied() const;

@@ -17,6 +17,7 @@ EliminatedSystem::EliminatedSystem(SparseMatrix&& K, const std::vector<char>& is
   // The free unknowns keep K's order, u's before v's: with u and v of a
   // vertex known together, A is again a real form.
   solver_.set_complex_form(how.complex_form);
+  solver_.set_analysis_ahead(how.analysis_ahead);
   if (A.rows() > 0) {
     solver_.factor(std::move(A));
     factored_ = true;

@@ -6,6 +6,7 @@
 // solve through it.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "intrinsic/assemble.h"
@@ -21,6 +22,8 @@ class EliminatedSystem {
     bool symmetric = true;
     bool ill_conditioned = false;
     bool complex_form = false;  // K is a real form [K' -B; B K'] and the known unknowns come in pairs
+    // A's ordering and analysis computed ahead (LinearSolver::set_analysis_ahead), or null.
+    std::shared_ptr<AnalysisAhead> analysis_ahead;
   };
   // Partitions the unknowns of K (known where is_known, absent where not
   // is_used) and factors A.

@@ -20,6 +20,7 @@
 
 #ifdef INTRINSIC_HAVE_SUITESPARSE
 #include "solve/complex_form.h"
+#include "solve/ordering_ahead.h"
 #include "solve/suitesparse.h"
 #include "solve/supernodal_cholesky.h"
 #include "solve/supernodal_lu.h"
@@ -128,6 +129,12 @@ struct LinearSolver::Impl {
   double tolerance;
   bool ill_conditioned = false;
   bool complex_form = false;
+  std::shared_ptr<detail::AnalysisAhead> ahead;  // for the next factor() only
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+  // Taken from `ahead` by factor() when A's pattern is the one analysed;
+  // the first supernodal backend moves from it, so it is reset after use.
+  std::unique_ptr<detail::SupernodalSymbolic> analysed_ahead;
+#endif
   SparseMatrix A;
   SolverKind used = SolverKind::Auto;
   int factorizations = 0;
@@ -202,7 +209,9 @@ struct LinearSolver::Impl {
                         (requested == SolverKind::Auto && !complex_form && !ill_conditioned);
     if (!wanted) return false;
     schol = std::make_unique<detail::SupernodalCholesky>();
-    if (schol->factor(A)) { used = SolverKind::SupernodalCholesky; return true; }
+    const bool factored = schol->factor(A, analysed_ahead.get());
+    analysed_ahead.reset();  // moved from: a later backend analyses A itself
+    if (factored) { used = SolverKind::SupernodalCholesky; return true; }
     schol.reset();
 #endif
     return false;
@@ -233,7 +242,9 @@ struct LinearSolver::Impl {
     // (a pivot that needs pivoting) goes on to UMFPACK.
     if (requested == SolverKind::Auto || requested == SolverKind::SupernodalLU) {
       slu = std::make_unique<detail::SupernodalLU>();
-      if (slu->factor(A)) { used = SolverKind::SupernodalLU; return true; }
+      const bool factored = slu->factor(A, analysed_ahead.get());
+      analysed_ahead.reset();
+      if (factored) { used = SolverKind::SupernodalLU; return true; }
       slu.reset();
     }
 #endif
@@ -290,6 +301,13 @@ void LinearSolver::factor(SparseMatrix&& matrix) {
   s.rebuilt_once = std::make_unique<std::once_flag>();
 #endif
   ++s.factorizations;
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+  s.analysed_ahead.reset();
+  if (const std::shared_ptr<detail::AnalysisAhead> ahead = std::move(s.ahead)) {
+    auto analysed = std::make_unique<detail::SupernodalSymbolic>();
+    if (ahead->take(A, *analysed)) s.analysed_ahead = std::move(analysed);
+  }  // dropped here, its thread joined, whether A matched or not
+#endif
   const std::string n = std::to_string(A.rows());
   switch (s.requested) {
     case SolverKind::Auto:
@@ -384,6 +402,9 @@ Eigen::MatrixXd LinearSolver::solve_transposed(const Eigen::MatrixXd& B) const {
 
 void LinearSolver::set_ill_conditioned(bool on) { impl_->ill_conditioned = on; }
 void LinearSolver::set_complex_form(bool on) { impl_->complex_form = on; }
+void LinearSolver::set_analysis_ahead(std::shared_ptr<detail::AnalysisAhead> ahead) {
+  impl_->ahead = std::move(ahead);
+}
 
 #ifdef INTRINSIC_HAVE_SUPERNODAL_LU
 // The supernodal LU's answer, refined while its componentwise backward error

@@ -326,13 +326,14 @@ void SupernodalCholeskyOf<T>::set_relaxation(const SupernodeRelaxation& relax) {
 }
 
 template <class T>
-bool SupernodalCholeskyOf<T>::factor(const Sparse& A) {
+bool SupernodalCholeskyOf<T>::factor(const Sparse& A, SupernodalSymbolic* analysed) {
   Impl& s = *impl_;
   if (A.rows() != A.cols() || !A.isCompressed())
     throw_numerical("internal: supernodal Cholesky needs a compressed square matrix");
   const auto t0 = std::chrono::steady_clock::now();
   decltype(s.Lx)().swap(s.Lx);  // frees the previous factor before the analysis
-  if (!analyse(A, s.S, s.relax)) return false;
+  if (analysed) s.S = std::move(*analysed);
+  else if (!analyse(A, s.S, s.relax)) return false;
   s.updates = descendant_lists(s.S);
   s.make_schedule();
   analyse_ms = ms_since(t0);

@@ -53,7 +53,9 @@ class SupernodalCholeskyOf {
   // analysis fails. A's lower triangle is read. A real A must store both
   // triangles (the ordering reads its graph); a complex (Hermitian) one may
   // store its lower triangle only.
-  bool factor(const Sparse& A);
+  // `analysed`: A's analysis computed beforehand with the default
+  // relaxation (solve/ordering_ahead.h), moved from; null to analyse A here.
+  bool factor(const Sparse& A, SupernodalSymbolic* analysed = nullptr);
   // A X = B. No refinement here (LinearSolver refines).
   Dense solve(const Dense& B) const;
   double factor_nonzeros() const;  // stored entries of L (supernodal, with explicit zeros)

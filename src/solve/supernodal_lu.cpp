@@ -142,7 +142,7 @@ struct SupernodalLU::Impl {
   const SparseMatrix* A = nullptr;
   std::vector<int> iperm;
 
-  bool analyse(const SparseMatrix& A);
+  bool analyse(const SparseMatrix& A, SupernodalSymbolic* analysed);
   bool assemble_node(int s, const int* map, double* floor, Long& placed);
   double update_block(int s, int c1, int c2, const int* map, std::vector<double>& work);
   void block_solves(int s, int c1, int c2, int node_threads);
@@ -164,9 +164,10 @@ struct SupernodalLU::Impl {
 // CHOLMOD's supernodal symbolic analysis (suitesparse.h), the one the
 // supernodal Cholesky of the conformal system gets. False when CHOLMOD
 // cannot (out of memory): UMFPACK may still.
-bool SupernodalLU::Impl::analyse(const SparseMatrix& A) {
+bool SupernodalLU::Impl::analyse(const SparseMatrix& A, SupernodalSymbolic* analysed) {
   SupernodalSymbolic S;
-  if (!supernodal_analysis(A, S)) return false;
+  if (analysed) S = std::move(*analysed);
+  else if (!supernodal_analysis(A, S)) return false;
   updates = descendant_lists(S);
   std::vector<double> cost(S.nsuper, 0.0);
   for (int s = 0; s < S.nsuper; ++s)
@@ -421,7 +422,7 @@ SupernodalLU::SupernodalLU(int threads) : impl_(std::make_unique<Impl>()) {
 }
 SupernodalLU::~SupernodalLU() = default;
 
-bool SupernodalLU::factor(const SparseMatrix& A) {
+bool SupernodalLU::factor(const SparseMatrix& A, SupernodalSymbolic* analysed) {
   Impl& s = *impl_;
   if (A.rows() != A.cols() || !A.isCompressed()) throw_numerical("internal: supernodal LU needs a compressed square matrix");
   const auto t0 = std::chrono::steady_clock::now();
@@ -433,7 +434,7 @@ bool SupernodalLU::factor(const SparseMatrix& A) {
     s.pi = s.px = s.ux = {0};
     return true;
   }
-  if (!s.analyse(A)) return false;
+  if (!s.analyse(A, analysed)) return false;
   analyse_ms = ms_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
   bool ok;

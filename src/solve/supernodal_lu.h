@@ -27,6 +27,8 @@
 
 namespace intrinsic::detail {
 
+struct SupernodalSymbolic;  // solve/suitesparse.h
+
 class SupernodalLU {
  public:
   // threads: how many run independent subtrees of the elimination tree
@@ -41,7 +43,9 @@ class SupernodalLU {
   // entry of its column of A (the matrix needs pivoting). A's pattern must
   // be symmetric (the values need not be): also false when an entry falls
   // outside the factor's pattern or lacks the mirror it is read through.
-  bool factor(const SparseMatrix& A);
+  // `analysed`: A's analysis computed beforehand (solve/ordering_ahead.h),
+  // moved from; null to analyse A here.
+  bool factor(const SparseMatrix& A, SupernodalSymbolic* analysed = nullptr);
   // A X = B, or A^T X = B with the same factors. No refinement here.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B, bool transposed = false) const;
   double factor_nonzeros() const;  // stored entries of L and U (supernodal, with their explicit zeros)

@@ -1,0 +1,84 @@
+// The ordering and symbolic analysis of a fixed-boundary system computed
+// ahead, on another thread, while the weights are assembled (internal).
+//
+// The fill-reducing ordering (ordering.h) and CHOLMOD's supernodal analysis
+// (suitesparse.h) read only the pattern of A = K_II, and that pattern is
+// known before any weight is: the vertex adjacency of the faces, plus the
+// diagonal, restricted to the free vertices (docs/maths.md §2.3). The
+// Parameterizer starts them from the faces before it assembles K, and
+// LinearSolver::factor takes the result in place of analysing A
+// (LinearSolver::set_analysis_ahead). On 2 cores the gain is where one side
+// leaves a core idle: the top levels of the dissection and CHOLMOD's
+// analysis run on one thread, and so does most of the assembly's pattern
+// pass (docs/performance/ordering-overlap.md).
+//
+// The result is the same bit for bit: the ordering and the analysis are
+// deterministic functions of the pattern, and the analysis ahead is used only
+// when A's compressed pattern is exactly the one analysed (compared entry by
+// entry), else A is analysed as before.
+#pragma once
+
+#ifdef INTRINSIC_HAVE_SUITESPARSE
+
+#include <atomic>
+#include <exception>
+#include <future>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "intrinsic/linear_solver.h"
+#include "intrinsic/mesh.h"
+#include "solve/suitesparse.h"
+
+namespace intrinsic::detail {
+
+// The pattern of K_II for the faces F (indices below is_known.size()): free
+// vertex v (used, not known) is unknown free_index(v), numbered in vertex
+// order as intrinsic::partition numbers them; column j holds the free
+// neighbours of its vertex and itself, rows ascending. The values are left
+// unset (never read).
+SparseMatrix free_block_pattern(const MatrixX3i& F, const std::vector<char>& is_known,
+                                const std::vector<char>& is_used);
+
+class AnalysisAhead {
+ public:
+  // Starts the pattern, its ordering and its analysis on a new thread. F is
+  // read until faces_released(); the other arguments are copied.
+  AnalysisAhead(const MatrixX3i& F, const std::vector<char>& is_known, const std::vector<char>& is_used);
+  ~AnalysisAhead();  // waits for the thread
+  AnalysisAhead(const AnalysisAhead&) = delete;
+  AnalysisAhead& operator=(const AnalysisAhead&) = delete;
+
+  // Waits until the thread no longer reads F (the pattern is built).
+  void faces_released();
+  // Waits for the analysis; true, with it moved into `out`, when A's
+  // pattern is the one analysed and the analysis succeeded. Once only.
+  bool take(const SparseMatrix& A, SupernodalSymbolic& out);
+
+ private:
+  void run(const MatrixX3i& F, const std::vector<char>& is_known, const std::vector<char>& is_used);
+
+  std::promise<void> faces_done_;
+  std::future<void> faces_future_;
+  SparseMatrix pattern_;
+  SupernodalSymbolic symbolic_;
+  bool analysed_ = false;
+  bool taken_ = false;
+  std::thread thread_;
+};
+
+// Whether to analyse ahead for this solver choice: only the supernodal
+// backends (Auto's choice for the fixed-boundary systems) use it, and only
+// systems of at least analysis_ahead_min_vertices() vertices (20000 by
+// default: below, the thread costs about what it saves). Tests and benches
+// set that to 0 (always) or INT_MAX (never) to compare both paths.
+bool analysis_ahead_wanted(SolverKind kind, int vertices);
+std::atomic<int>& analysis_ahead_min_vertices();
+// How many take() calls matched so far (process-wide): lets tests and
+// benches see that the path ahead was the one taken.
+std::atomic<long>& analysis_ahead_taken();
+
+}  // namespace intrinsic::detail
+
+#endif
