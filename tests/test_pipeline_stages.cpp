@@ -10,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <string>
 #include <utility>
 
 #include "cli_support.h"
@@ -21,6 +22,7 @@
 #include "mesh/topology_build.h"
 #include "test_support.h"
 #include "util/parallel_for.h"
+#include "util/vertex_adjacency.h"
 
 namespace intrinsic {
 namespace {
@@ -76,6 +78,78 @@ TEST(PipelineStages, UniqueEdgesEqualASetOfEdges) {
       ASSERT_EQ(E(k, 0), i) << k;
       ASSERT_EQ(E(k, 1), j) << k;
       ++k;
+    }
+  }
+}
+
+// The adjacency of the faces as one std::set per new vertex number, straight
+// from the definition: the kept vertices sharing a face with a kept vertex.
+std::vector<std::set<int>> adjacency_sets(const MatrixX3i& F, const std::vector<int>& number, int count,
+                                          detail::AdjacencyNeighbours which) {
+  std::vector<std::set<int>> sets(count);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      for (int e = 0; e < 3; ++e) {
+        const int a = number[F(f, c)], b = number[F(f, e)];
+        if (c == e || a < 0 || b < 0) continue;
+        if (which != detail::AdjacencyNeighbours::LargerOnly || b > a) sets[a].insert(b);
+      }
+  if (which == detail::AdjacencyNeighbours::AllAndSelf)
+    for (int k = 0; k < count; ++k) sets[k].insert(k);
+  return sets;
+}
+
+void expect_pattern_is(const SparseMatrix& P, const std::vector<std::set<int>>& sets, const std::string& what) {
+  ASSERT_EQ(P.rows(), static_cast<Eigen::Index>(sets.size())) << what;
+  ASSERT_EQ(P.cols(), static_cast<Eigen::Index>(sets.size())) << what;
+  ASSERT_TRUE(P.isCompressed()) << what;
+  int k = 0;
+  for (size_t j = 0; j < sets.size(); ++j) {
+    ASSERT_EQ(P.outerIndexPtr()[j], k) << what << ", column " << j;
+    for (int i : sets[j]) ASSERT_EQ(P.innerIndexPtr()[k++], i) << what << ", column " << j;
+  }
+  ASSERT_EQ(P.outerIndexPtr()[sets.size()], k) << what;
+}
+
+// util/vertex_adjacency.h against sets built here, on a mesh large enough
+// for the faces to split into parts, whose faces around three vertices are
+// dropped (those three are unused) and with two vertices no face names at
+// the end: every vertex kept with its own number, and a subset (every third
+// vertex, one unused vertex and one named by faces left out) numbered
+// backwards, so that the new order is not the vertices'. Each of the three
+// kinds of column, on 1 to 3 threads.
+TEST(PipelineStages, VertexAdjacencyEqualsSetsOnASubset) {
+  const MeshData d = big_patch();
+  const int n = static_cast<int>(d.V.rows()) + 2;
+  const int unused[] = {1000, 20000, 40000};
+  std::vector<int> rows;
+  for (int f = 0; f < d.F.rows(); ++f) {
+    bool drop = false;
+    for (int c = 0; c < 3; ++c)
+      for (int u : unused) drop = drop || d.F(f, c) == u;
+    if (!drop) rows.push_back(f);
+  }
+  const MatrixX3i F = d.F(rows, Eigen::all);
+  ASSERT_GT(F.rows(), 100000);  // two parts at least
+  ASSERT_LT(F.rows(), d.F.rows());
+  std::vector<int> identity(n), subset(n, -1);
+  for (int v = 0; v < n; ++v) identity[v] = v;
+  int count = 0;
+  for (int v = n - 1; v >= 0; --v)
+    if (v % 3 != 0 && v != unused[1] && v != 777) subset[v] = count++;
+  using detail::AdjacencyNeighbours;
+  for (AdjacencyNeighbours which :
+       {AdjacencyNeighbours::All, AdjacencyNeighbours::AllAndSelf, AdjacencyNeighbours::LargerOnly}) {
+    const std::vector<std::set<int>> all = adjacency_sets(F, identity, n, which);
+    const std::vector<std::set<int>> some = adjacency_sets(F, subset, count, which);
+    for (int threads : {1, 2, 3}) {
+      const std::string what = "kind " + std::to_string(static_cast<int>(which)) + ", " + std::to_string(threads) +
+                               " threads";
+      expect_pattern_is(with_threads(threads, [&] { return detail::vertex_adjacency_pattern(F, n, {}, which); }),
+                        all, what + ", every vertex");
+      expect_pattern_is(
+          with_threads(threads, [&] { return detail::vertex_adjacency_pattern(F, count, subset, which); }), some,
+          what + ", a subset");
     }
   }
 }

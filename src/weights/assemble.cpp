@@ -5,14 +5,17 @@
 //
 // Both go straight into compressed column storage: the pattern of K is the
 // vertex adjacency plus the diagonal, built from the faces by a counting
-// pass, and each face then adds its weights in place (no triplet list, which
-// at 1M vertices costs 12 x #F triplets of 16 bytes and a sort). Every pass
-// runs on all cores with the same result on any number of them.
+// pass (util/vertex_adjacency.h), and each face then adds its weights in
+// place (no triplet list, which at 1M vertices costs 12 x #F triplets of 16
+// bytes and a sort). Every pass runs on all cores with the same result on
+// any number of them.
 #include "intrinsic/assemble.h"
 
 #include <algorithm>
 
 #include "util/parallel_for.h"
+#include "util/vertex_adjacency.h"
+#include "weights/assemble_stages.h"
 
 namespace intrinsic {
 namespace {
@@ -48,64 +51,15 @@ void add_faces(const MatrixX3d& V, const MatrixX3i& F, const WeightOptions& w, i
   }
 }
 
-// The pattern of K in compressed columns: every vertex's column holds itself
-// and its face neighbours, sorted, without repeats; diag[v] is the position
-// of (v, v). Counting and filling run on all cores, each part of the faces
-// with its own counts (so its own slots in each column); the order within a
-// column then depends on the parts, but the sort makes it canonical, so the
-// pattern is the same on any number of threads. Written straight into K.
-std::vector<int> build_pattern(const MatrixX3i& F, SparseMatrix& K) {
+// diag[v]: the position of (v, v) in K's values.
+std::vector<int> diagonal_positions(const SparseMatrix& K) {
   const int n = static_cast<int>(K.cols());
-  const std::int64_t m = F.rows();
-  const int parts = detail::parallel_parts(m);
-  // at[p][j]: first slot of part p in column j (after j's own entry).
-  std::vector<std::vector<int>> at(parts, std::vector<int>(static_cast<size_t>(n), 0));
-  detail::parallel_for_parts(m, parts, [&](int p, std::int64_t f0, std::int64_t f1) {
-    for (int c = 0; c < 3; ++c)
-      for (std::int64_t f = f0; f < f1; ++f) at[p][F(f, c)] += 2;  // each incident face names two
-  });
-  std::vector<int> begin(static_cast<size_t>(n) + 1, 0);
-  for (int j = 0; j < n; ++j) {
-    int slot = begin[j] + 1;
-    for (int p = 0; p < parts; ++p) {
-      const int count = at[p][j];
-      at[p][j] = slot;
-      slot += count;
-    }
-    begin[j + 1] = slot;
-  }
-  std::vector<int> row(begin[n]);
-  detail::parallel_for_parts(m, parts, [&](int p, std::int64_t f0, std::int64_t f1) {
-    std::vector<int>& fill = at[p];
-    for (std::int64_t f = f0; f < f1; ++f)
-      for (int c = 0; c < 3; ++c) {
-        const int j = F(f, c);
-        row[fill[j]++] = F(f, (c + 1) % 3);
-        row[fill[j]++] = F(f, (c + 2) % 3);
-      }
-  });
-  at.clear();
-  // Sorted and deduplicated per column in place, then copied into K.
-  std::vector<int> count(n), diag(n);
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  std::vector<int> diag(n);
   detail::parallel_for(n, [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t v = first; v < last; ++v) {
-      row[begin[v]] = static_cast<int>(v);
-      std::sort(row.begin() + begin[v], row.begin() + begin[v + 1]);
-      const auto end = std::unique(row.begin() + begin[v], row.begin() + begin[v + 1]);
-      count[v] = static_cast<int>(end - (row.begin() + begin[v]));
-      diag[v] = static_cast<int>(std::lower_bound(row.begin() + begin[v], end, static_cast<int>(v)) - row.begin()) - begin[v];
-    }
-  });
-  int* outer = K.outerIndexPtr();
-  outer[0] = 0;
-  for (int v = 0; v < n; ++v) outer[v + 1] = outer[v] + count[v];
-  K.resizeNonZeros(outer[n]);
-  int* inner = K.innerIndexPtr();
-  detail::parallel_for(n, [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t v = first; v < last; ++v) {
-      std::copy(row.begin() + begin[v], row.begin() + begin[v] + count[v], inner + outer[v]);
-      diag[v] += outer[v];
-    }
+    for (std::int64_t v = first; v < last; ++v)
+      diag[v] = static_cast<int>(std::lower_bound(inner + outer[v], inner + outer[v + 1], static_cast<int>(v)) - inner);
   });
   return diag;
 }
@@ -113,10 +67,22 @@ std::vector<int> build_pattern(const MatrixX3i& F, SparseMatrix& K) {
 }  // namespace
 
 SparseMatrix assemble_weight_matrix(const MatrixX3d& V, const MatrixX3i& F, const WeightOptions& w) {
-  const int n = static_cast<int>(V.rows());
+  SparseMatrix K = detail::weight_matrix_pattern(F, static_cast<int>(V.rows()));
+  detail::assemble_weight_values(V, F, w, K);
+  return K;
+}
+
+namespace detail {
+
+// The pattern is the vertex adjacency with the diagonal, built on all cores
+// (util/vertex_adjacency.h): the same on any number of threads.
+SparseMatrix weight_matrix_pattern(const MatrixX3i& F, int n) {
+  return vertex_adjacency_pattern(F, n, {}, AdjacencyNeighbours::AllAndSelf);
+}
+
+void assemble_weight_values(const MatrixX3d& V, const MatrixX3i& F, const WeightOptions& w, SparseMatrix& K) {
   const int m = static_cast<int>(F.rows());
-  SparseMatrix K(n, n);
-  const std::vector<int> diag = build_pattern(F, K);
+  const std::vector<int> diag = diagonal_positions(K);
   const int nnz = static_cast<int>(K.nonZeros());
   // Values: each part of the faces adds into its own array (faces share
   // vertices; part 0 into K's), summed after in part order, entry by entry
@@ -134,8 +100,9 @@ SparseMatrix assemble_weight_matrix(const MatrixX3d& V, const MatrixX3i& F, cons
       for (std::int64_t k = first; k < last; ++k)
         for (int part = 1; part < parts; ++part) value[k] += values[part - 1][k];
     });
-  return K;
 }
+
+}  // namespace detail
 
 Partition partition(int num_vertices, const std::vector<char>& is_fixed, const std::vector<char>& is_used) {
   Partition p;
