@@ -1,13 +1,16 @@
 // The ordering and analysis computed ahead of the weights
-// (src/solve/ordering_ahead.h): the pattern built from the faces is the
-// assembled free block's, the analysis taken is the one analysing A gives,
+// (src/solve/ordering_ahead.h): the pattern built from the faces or from
+// K's is the assembled free block's, the analysis taken is the one
+// analysing A gives (also from a pattern handed over built),
 // a different pattern is refused, and the factorizations and maps through
 // that path are the plain path's bit for bit (conformal: supernodal
 // Cholesky; authalic and mixed: supernodal LU), with holes filled or free,
 // for 1 to 3 threads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <climits>
+#include <set>
 #include <vector>
 
 #include "intrinsic/assemble.h"
@@ -18,6 +21,7 @@
 #include "solve/suitesparse.h"
 #include "test_support.h"
 #include "util/parallel_for.h"
+#include "weights/assemble_stages.h"
 
 #ifdef INTRINSIC_HAVE_SUITESPARSE
 
@@ -63,16 +67,60 @@ struct AheadAbove {
   ~AheadAbove() { detail::analysis_ahead_min_vertices() = saved; }
 };
 
+void expect_same_pattern(const SparseMatrix& P, const SparseMatrix& A, const char* what) {
+  ASSERT_EQ(P.rows(), A.rows()) << what;
+  ASSERT_EQ(P.cols(), A.cols()) << what;
+  ASSERT_EQ(P.nonZeros(), A.nonZeros()) << what;
+  EXPECT_TRUE(std::equal(P.outerIndexPtr(), P.outerIndexPtr() + P.cols() + 1, A.outerIndexPtr())) << what;
+  EXPECT_TRUE(std::equal(P.innerIndexPtr(), P.innerIndexPtr() + P.nonZeros(), A.innerIndexPtr())) << what;
+}
+
 // A holed disk: the centre vertices of the removed fans are unused, so the
-// free numbering skips vertices as partition() does.
+// free numbering skips vertices as partition() does. Both ways of building
+// the pattern (from the faces; from K's pattern, as the Parameterizer does)
+// give the free block that split_matrix cuts from the assembled K, and that
+// block is the free vertices' adjacency as a set written here.
 TEST(OrderingAhead, PatternIsTheAssembledFreeBlock) {
   const Mesh mesh = make_mesh(test::holed_wavy(3));
   const Split s = assembled_split(mesh, WeightOptions{});
-  const SparseMatrix P = detail::free_block_pattern(mesh.F, s.known, s.used);
-  ASSERT_EQ(P.rows(), s.A.rows());
-  ASSERT_EQ(P.nonZeros(), s.A.nonZeros());
-  EXPECT_TRUE(std::equal(P.outerIndexPtr(), P.outerIndexPtr() + P.cols() + 1, s.A.outerIndexPtr()));
-  EXPECT_TRUE(std::equal(P.innerIndexPtr(), P.innerIndexPtr() + P.nonZeros(), s.A.innerIndexPtr()));
+  const int n = static_cast<int>(mesh.V.rows());
+  ASSERT_LT(std::count(s.used.begin(), s.used.end(), 1), n);  // some unused
+  expect_same_pattern(detail::free_block_pattern(mesh.F, s.known, s.used), s.A, "from the faces");
+  const SparseMatrix K = detail::weight_matrix_pattern(mesh.F, n);
+  expect_same_pattern(detail::free_block_pattern(K, s.known, s.used), s.A, "from K's pattern");
+  std::vector<int> free_index(n, -1);
+  int nf = 0;
+  for (int v = 0; v < n; ++v)
+    if (s.used[v] && !s.known[v]) free_index[v] = nf++;
+  std::vector<std::set<int>> sets(nf);
+  for (int j = 0; j < nf; ++j) sets[j].insert(j);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      for (int e = 0; e < 3; ++e) {
+        const int a = free_index[mesh.F(f, c)], b = free_index[mesh.F(f, e)];
+        if (a >= 0 && b >= 0) sets[a].insert(b);
+      }
+  ASSERT_EQ(s.A.cols(), nf);
+  for (int j = 0; j < nf; ++j) {
+    const std::vector<int> column(s.A.innerIndexPtr() + s.A.outerIndexPtr()[j],
+                                  s.A.innerIndexPtr() + s.A.outerIndexPtr()[j + 1]);
+    ASSERT_EQ(column, std::vector<int>(sets[j].begin(), sets[j].end())) << "column " << j;
+  }
+}
+
+// A pattern handed over built (the Parameterizer's way): its analysis is
+// the one analysing A gives, and the pattern given is taken, not copied.
+TEST(OrderingAhead, TakesTheAnalysisOfAGivenPattern) {
+  const Mesh mesh = make_mesh(test::holed_wavy(2));
+  const Split s = assembled_split(mesh, WeightOptions{});
+  detail::SupernodalSymbolic plain, ahead_result;
+  ASSERT_TRUE(detail::supernodal_analysis(s.A, plain));
+  SparseMatrix P = detail::free_block_pattern(detail::weight_matrix_pattern(mesh.F, static_cast<int>(mesh.V.rows())),
+                                              s.known, s.used);
+  detail::AnalysisAhead ahead(std::move(P));
+  EXPECT_EQ(P.nonZeros(), 0);
+  ASSERT_TRUE(ahead.take(s.A, ahead_result));
+  expect_same_analysis(plain, ahead_result);
 }
 
 TEST(OrderingAhead, TakesTheAnalysisOfA) {

@@ -3,6 +3,7 @@
 // factor once (its ordering and symbolic analysis computed beside the
 // assembly: solve/ordering_ahead.h), and place the boundary in output coordinates.
 #include <cmath>
+#include <new>
 #include <system_error>
 
 #include "core/failure_diagnosis.h"
@@ -11,6 +12,7 @@
 #include "core/parameterizer_impl.h"
 #include "intrinsic/assemble.h"
 #include "solve/ordering_ahead.h"
+#include "weights/assemble_stages.h"
 
 namespace intrinsic {
 
@@ -28,6 +30,13 @@ void Parameterizer::Impl::build_fixed(const std::vector<FixedVertex>& given) {
   filled_holes = 0;
   SparseMatrix K;
   std::shared_ptr<detail::AnalysisAhead> ahead;
+  // K's pattern first, its free block handed to the ordering thread, then
+  // the values into it: the faces' adjacency is counted once for both.
+  auto assemble = [&](const MatrixX3d& V, const MatrixX3i& F) {
+    detail::weight_matrix_pattern(F, static_cast<int>(V.rows())).swap(K);
+    ahead = analyse_ahead(K, is_fixed, is_used);
+    detail::assemble_weight_values(V, F, o.weights, K);
+  };
   // Only a surface with holes is copied to be filled (at 1M vertices the
   // copy of V and F is 48 MB and a good part of the assembly time).
   if (o.holes == HoleRule::Fill && mesh->topology.component_loops[0].size() > 1) {
@@ -35,16 +44,9 @@ void Parameterizer::Impl::build_fixed(const std::vector<FixedVertex>& given) {
     filled_holes = s.filled;
     is_fixed.resize(s.V.rows(), 0);
     is_used.resize(s.V.rows(), 1);
-    ahead = analyse_ahead(s.F, is_fixed, is_used);
-    // The thread reads s.F: wait for it before s goes, even on an exception.
-    struct Release {
-      detail::AnalysisAhead* a;
-      ~Release() { if (a) a->faces_released(); }
-    } release{ahead.get()};
-    K = assemble_weight_matrix(s.V, s.F, o.weights);
+    assemble(s.V, s.F);
   } else {
-    ahead = analyse_ahead(mesh->F, is_fixed, is_used);
-    K = assemble_weight_matrix(mesh->V, mesh->F, o.weights);
+    assemble(mesh->V, mesh->F);
   }
   factor(std::move(K), is_fixed, is_used, is_symmetric(o.weights), t_assemble, std::move(ahead));
   UB.resize(sys->known_count(), 2);
@@ -80,22 +82,24 @@ void Parameterizer::Impl::build_natural(const std::vector<FixedVertex>& given) {
   update_fixed_list();
 }
 
-// The ordering and symbolic analysis of the free block's pattern, started
-// on another thread before the weights are assembled (solve/ordering_ahead.h:
-// the same factorization, bit for bit), or null where the solver would not
-// use it or the mesh is too small to gain.
-std::shared_ptr<detail::AnalysisAhead> Parameterizer::Impl::analyse_ahead(const MatrixX3i& F,
+// The ordering and symbolic analysis of the free block of K's pattern,
+// started on another thread before the weights are assembled
+// (solve/ordering_ahead.h: the same factorization, bit for bit), or null
+// where the solver would not use it or the mesh is too small to gain.
+std::shared_ptr<detail::AnalysisAhead> Parameterizer::Impl::analyse_ahead(const SparseMatrix& K_pattern,
                                                                           const std::vector<char>& is_fixed,
                                                                           const std::vector<char>& is_used) const {
 #ifdef INTRINSIC_HAVE_SUITESPARSE
   try {
     if (detail::analysis_ahead_wanted(o.solver, static_cast<int>(is_fixed.size())))
-      return std::make_shared<detail::AnalysisAhead>(F, is_fixed, is_used);
+      return std::make_shared<detail::AnalysisAhead>(detail::free_block_pattern(K_pattern, is_fixed, is_used));
   } catch (const std::system_error&) {
     // No thread to be had: the solver analyses A itself, as without this.
+  } catch (const std::bad_alloc&) {
+    // No room for the pattern's copy: likewise.
   }
 #else
-  (void)F;
+  (void)K_pattern;
   (void)is_fixed;
   (void)is_used;
 #endif

@@ -59,7 +59,7 @@ struct Parameterizer::Impl {
   void factor(SparseMatrix&& K, const std::vector<char>& is_fixed, const std::vector<char>& is_used,
               bool symmetric, std::chrono::steady_clock::time_point t_assemble,
               std::shared_ptr<detail::AnalysisAhead> ahead = nullptr);
-  std::shared_ptr<detail::AnalysisAhead> analyse_ahead(const MatrixX3i& F, const std::vector<char>& is_fixed,
+  std::shared_ptr<detail::AnalysisAhead> analyse_ahead(const SparseMatrix& K_pattern, const std::vector<char>& is_fixed,
                                                        const std::vector<char>& is_used) const;
   detail::PlacementRule initial_placement_rule();
   void place_initially();

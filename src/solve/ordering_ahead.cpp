@@ -13,48 +13,64 @@
 #include "solve/supernodal_cholesky.h"
 #include "solve/supernodal_lu.h"
 #include "util/parallel_for.h"
+#include "util/vertex_adjacency.h"
 
 namespace intrinsic::detail {
 
-// The counting pass of assemble_weight_matrix (src/weights/assemble.cpp),
-// on the free vertices only: each face names two neighbours of each of its
-// corners; sorted and deduplicated per column.
-SparseMatrix free_block_pattern(const MatrixX3i& F, const std::vector<char>& is_known,
-                                const std::vector<char>& is_used) {
+namespace {
+
+// Free vertex v (used, not known) is unknown free_index[v], in vertex order
+// as intrinsic::partition numbers them; -1 for the others.
+std::vector<int> free_numbering(const std::vector<char>& is_known, const std::vector<char>& is_used, int& count) {
   const int n = static_cast<int>(is_known.size());
   std::vector<int> free_index(n, -1);
-  int nf = 0;
+  count = 0;
   for (int v = 0; v < n; ++v)
-    if (is_used[v] && !is_known[v]) free_index[v] = nf++;
-  std::vector<int> begin(nf + 1, 0);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c)
-      if (free_index[F(f, c)] >= 0) begin[free_index[F(f, c)] + 1] += 2;
-  for (int j = 0; j < nf; ++j) begin[j + 1] += begin[j] + 1;
-  std::vector<int> row(begin[nf]), fill(begin.begin(), begin.end() - 1);
-  for (int j = 0; j < nf; ++j) row[fill[j]++] = j;
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const int j = free_index[F(f, c)];
-      if (j < 0) continue;
-      for (int d : {(c + 1) % 3, (c + 2) % 3})
-        if (free_index[F(f, d)] >= 0) row[fill[j]++] = free_index[F(f, d)];
-    }
-  parallel_for(nf, [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t j = first; j < last; ++j) std::sort(row.begin() + begin[j], row.begin() + fill[j]);
-  });
-  int out = 0;
-  for (int j = 0; j < nf; ++j) {
-    const int b = begin[j], e = fill[j];
-    begin[j] = out;
-    for (int k = b; k < e; ++k)
-      if (k == b || row[k] != row[k - 1]) row[out++] = row[k];
-  }
-  begin[nf] = out;
+    if (is_used[v] && !is_known[v]) free_index[v] = count++;
+  return free_index;
+}
+
+}  // namespace
+
+SparseMatrix free_block_pattern(const MatrixX3i& F, const std::vector<char>& is_known,
+                                const std::vector<char>& is_used) {
+  int nf = 0;
+  const std::vector<int> free_index = free_numbering(is_known, is_used, nf);
+  return vertex_adjacency_pattern(F, nf, free_index, AdjacencyNeighbours::AllAndSelf);
+}
+
+// Column by column, the free rows of each free vertex's column, renumbered;
+// the numbering increases with the vertex, so the rows stay ascending.
+// Counted and copied on all cores.
+SparseMatrix free_block_pattern(const SparseMatrix& K, const std::vector<char>& is_known,
+                                const std::vector<char>& is_used) {
+  int nf = 0;
+  const std::vector<int> free_index = free_numbering(is_known, is_used, nf);
+  std::vector<int> column(nf);  // the vertex of each free unknown
+  for (int v = 0; v < static_cast<int>(free_index.size()); ++v)
+    if (free_index[v] >= 0) column[free_index[v]] = v;
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
   SparseMatrix P(nf, nf);
-  P.resizeNonZeros(out);  // values allocated, never written nor read
-  std::copy(begin.begin(), begin.end(), P.outerIndexPtr());
-  std::copy(row.begin(), row.begin() + out, P.innerIndexPtr());
+  int* begin = P.outerIndexPtr();
+  begin[0] = 0;
+  parallel_for(nf, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t j = first; j < last; ++j) {
+      int count = 0;
+      for (int k = outer[column[j]]; k < outer[column[j] + 1]; ++k) count += free_index[inner[k]] >= 0;
+      begin[j + 1] = count;
+    }
+  });
+  for (int j = 0; j < nf; ++j) begin[j + 1] += begin[j];
+  P.resizeNonZeros(begin[nf]);  // values allocated, never written nor read
+  int* row = P.innerIndexPtr();
+  parallel_for(nf, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t j = first; j < last; ++j) {
+      int out = begin[j];
+      for (int k = outer[column[j]]; k < outer[column[j] + 1]; ++k)
+        if (free_index[inner[k]] >= 0) row[out++] = free_index[inner[k]];
+    }
+  });
   return P;
 }
 
@@ -65,6 +81,12 @@ AnalysisAhead::AnalysisAhead(const MatrixX3i& F, const std::vector<char>& is_kno
   thread_ = std::thread([this, &F, known = is_known, used = is_used] { run(F, known, used); });
 }
 
+AnalysisAhead::AnalysisAhead(SparseMatrix&& pattern) : faces_future_(faces_done_.get_future()) {
+  pattern_.swap(pattern);  // Eigen 3.4's SparseMatrix has no move: a swap takes it without a copy
+  faces_done_.set_value();  // no faces read
+  thread_ = std::thread([this] { analyse(); });
+}
+
 AnalysisAhead::~AnalysisAhead() {
   if (thread_.joinable()) thread_.join();
 }
@@ -72,11 +94,18 @@ AnalysisAhead::~AnalysisAhead() {
 // Any failure (out of memory) leaves analysed_ false: factor() then
 // analyses A itself, as without this.
 void AnalysisAhead::run(const MatrixX3i& F, const std::vector<char>& is_known, const std::vector<char>& is_used) {
-  bool released = false;
   try {
-    pattern_ = free_block_pattern(F, is_known, is_used);
-    released = true;
+    free_block_pattern(F, is_known, is_used).swap(pattern_);
+  } catch (...) {
     faces_done_.set_value();
+    return;
+  }
+  faces_done_.set_value();
+  analyse();
+}
+
+void AnalysisAhead::analyse() {
+  try {
     if (pattern_.rows() > 0) {
       const std::vector<int> order = level_set_nested_dissection(pattern_);
       analysed_ = supernodal_analysis(pattern_, order, symbolic_);
@@ -90,7 +119,6 @@ void AnalysisAhead::run(const MatrixX3i& F, const std::vector<char>& is_known, c
 #endif
   } catch (...) {
     analysed_ = false;
-    if (!released) faces_done_.set_value();
   }
 }
 
@@ -102,6 +130,12 @@ bool AnalysisAhead::take(const SparseMatrix& A, SupernodalSymbolic& out) {
   if (taken_) return false;
   taken_ = true;
   if (thread_.joinable()) thread_.join();
+  // Kept although the Parameterizer's pattern comes from K's own
+  // (free_block_pattern(K, ...)): A is K's free block as split_matrix
+  // copies it, P the same block as free_block_pattern restricts it, two
+  // separate codes reading the partition each their own way, so a pattern
+  // of other faces, another known set or another numbering is refused. It
+  // costs one pass over 7M ints at 1M vertices (a few ms).
   const SparseMatrix& P = pattern_;
   const bool same = analysed_ && A.isCompressed() && A.rows() == P.rows() && A.cols() == P.cols() &&
                     A.nonZeros() == P.nonZeros() &&
@@ -111,7 +145,7 @@ bool AnalysisAhead::take(const SparseMatrix& A, SupernodalSymbolic& out) {
     out = std::move(symbolic_);
     analysis_ahead_taken().fetch_add(1, std::memory_order_relaxed);
   }
-  pattern_ = SparseMatrix();
+  SparseMatrix().swap(pattern_);  // frees it (assigning an empty SparseMatrix keeps the storage)
   symbolic_ = SupernodalSymbolic();
   return same;
 }

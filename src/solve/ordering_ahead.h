@@ -5,8 +5,9 @@
 // (suitesparse.h) read only the pattern of A = K_II, and that pattern is
 // known before any weight is: the vertex adjacency of the faces, plus the
 // diagonal, restricted to the free vertices (docs/maths.md §2.3). The
-// Parameterizer starts them from the faces before it assembles K, and
-// LinearSolver::factor takes the result in place of analysing A
+// Parameterizer builds K's pattern, starts them on its free block before it
+// assembles K's values into that pattern (so the adjacency is counted once),
+// and LinearSolver::factor takes the result in place of analysing A
 // (LinearSolver::set_analysis_ahead). On 2 cores the gain is where one side
 // leaves a core idle: the top levels of the dissection and CHOLMOD's
 // analysis run on one thread, and so does most of the assembly's pattern
@@ -38,7 +39,13 @@ namespace intrinsic::detail {
 // order as intrinsic::partition numbers them; column j holds the free
 // neighbours of its vertex and itself, rows ascending. The values are left
 // unset (never read).
+// Built from the faces (util/vertex_adjacency.h).
 SparseMatrix free_block_pattern(const MatrixX3i& F, const std::vector<char>& is_known,
+                                const std::vector<char>& is_used);
+// The same pattern taken from K's (weights/assemble_stages.h: the vertex
+// adjacency with the diagonal, compressed, over is_known.size() vertices),
+// so that the faces' adjacency is counted once for both.
+SparseMatrix free_block_pattern(const SparseMatrix& K, const std::vector<char>& is_known,
                                 const std::vector<char>& is_used);
 
 class AnalysisAhead {
@@ -46,6 +53,9 @@ class AnalysisAhead {
   // Starts the pattern, its ordering and its analysis on a new thread. F is
   // read until faces_released(); the other arguments are copied.
   AnalysisAhead(const MatrixX3i& F, const std::vector<char>& is_known, const std::vector<char>& is_used);
+  // Starts the ordering and analysis of a free block's pattern built
+  // already (taken: `pattern` is left empty); no faces are read.
+  explicit AnalysisAhead(SparseMatrix&& pattern);
   ~AnalysisAhead();  // waits for the thread
   AnalysisAhead(const AnalysisAhead&) = delete;
   AnalysisAhead& operator=(const AnalysisAhead&) = delete;
@@ -58,6 +68,7 @@ class AnalysisAhead {
 
  private:
   void run(const MatrixX3i& F, const std::vector<char>& is_known, const std::vector<char>& is_used);
+  void analyse();  // orders and analyses pattern_
 
   std::promise<void> faces_done_;
   std::future<void> faces_future_;
