@@ -78,46 +78,33 @@ bool hermitian_from_real_form(const SparseMatrix& A, ComplexSparse& M) {
   return true;
 }
 
-namespace {
-
-// start + sign M Z, M from its lower triangle: each stored (i, j), i > j,
-// stands for M(i, j) and M(j, i) = conj(M(i, j)). Sums in Real (double or
-// long double), the complex products written out in real arithmetic.
-template <class Real>
-Eigen::MatrixXcd lower_product(const ComplexSparse& lower, const Eigen::MatrixXcd& Z, const Eigen::MatrixXcd* start,
-                               Real sign) {
+// M Z, M from its lower triangle: each stored (i, j), i > j, stands for
+// M(i, j) and M(j, i) = conj(M(i, j)). The complex products are written out
+// in real arithmetic.
+Eigen::MatrixXcd hermitian_lower_product(const ComplexSparse& lower, const Eigen::MatrixXcd& Z) {
   const Eigen::Index n = lower.rows();
   Eigen::MatrixXcd Y(n, Z.cols());
-  std::vector<Real> re(static_cast<size_t>(n)), im(static_cast<size_t>(n));
+  std::vector<double> re(static_cast<size_t>(n)), im(static_cast<size_t>(n));
   for (Eigen::Index c = 0; c < Z.cols(); ++c) {
-    for (Eigen::Index i = 0; i < n; ++i) {
-      re[i] = start ? (*start)(i, c).real() : 0;
-      im[i] = start ? (*start)(i, c).imag() : 0;
-    }
+    std::fill(re.begin(), re.end(), 0.0);
+    std::fill(im.begin(), im.end(), 0.0);
     for (Eigen::Index j = 0; j < lower.outerSize(); ++j) {
-      const Real zr = Z(j, c).real(), zi = Z(j, c).imag();
+      const double zr = Z(j, c).real(), zi = Z(j, c).imag();
       for (ComplexSparse::InnerIterator it(lower, j); it; ++it) {
         const Eigen::Index i = it.row();
-        const Real mr = sign * it.value().real(), mi = sign * it.value().imag();
+        const double mr = it.value().real(), mi = it.value().imag();
         re[i] += mr * zr - mi * zi;
         im[i] += mr * zi + mi * zr;
         if (i != j) {
-          const Real xr = Z(i, c).real(), xi = Z(i, c).imag();
+          const double xr = Z(i, c).real(), xi = Z(i, c).imag();
           re[j] += mr * xr + mi * xi;
           im[j] += mr * xi - mi * xr;
         }
       }
     }
-    for (Eigen::Index i = 0; i < n; ++i)
-      Y(i, c) = std::complex<double>(static_cast<double>(re[i]), static_cast<double>(im[i]));
+    for (Eigen::Index i = 0; i < n; ++i) Y(i, c) = std::complex<double>(re[i], im[i]);
   }
   return Y;
-}
-
-}  // namespace
-
-Eigen::MatrixXcd hermitian_lower_product(const ComplexSparse& lower, const Eigen::MatrixXcd& Z) {
-  return lower_product<double>(lower, Z, nullptr, 1.0);
 }
 
 // Column j: K's entries (rows < m) over B's (rows >= m); column m + j: -B

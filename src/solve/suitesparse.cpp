@@ -224,7 +224,7 @@ bool CholmodFactor::factor(const SparseMatrix& input, Structure structure) {
   const SparseMatrix copy = input.isCompressed() ? SparseMatrix() : compressed(input);
   const SparseMatrix& A = input.isCompressed() ? input : copy;
   s.A = &input;
-  s.abs_A = SparseMatrix();
+  SparseMatrix().swap(s.abs_A);  // frees it: assigning an empty SparseMatrix keeps the storage (Eigen 3.4)
   s.abs_A_once = std::make_unique<std::once_flag>();
   ComplexSparse M;
   s.complex = structure == Structure::ComplexPairs && hermitian_from_real_form(A, M);
