@@ -39,7 +39,8 @@ namespace intrinsic::detail {
 // order as intrinsic::partition numbers them; column j holds the free
 // neighbours of its vertex and itself, rows ascending. The values are left
 // unset (never read).
-// Built from the faces (util/vertex_adjacency.h).
+// Built from the faces (util/vertex_adjacency.h), for a caller without K's
+// pattern (the faces constructor below).
 SparseMatrix free_block_pattern(const MatrixX3i& F, const std::vector<char>& is_known,
                                 const std::vector<char>& is_used);
 // The same pattern taken from K's (weights/assemble_stages.h: the vertex
@@ -51,7 +52,8 @@ SparseMatrix free_block_pattern(const SparseMatrix& K, const std::vector<char>& 
 class AnalysisAhead {
  public:
   // Starts the pattern, its ordering and its analysis on a new thread. F is
-  // read until faces_released(); the other arguments are copied.
+  // read until faces_released(); the other arguments are copied. (The
+  // Parameterizer, which has K's pattern, uses the constructor below.)
   AnalysisAhead(const MatrixX3i& F, const std::vector<char>& is_known, const std::vector<char>& is_used);
   // Starts the ordering and analysis of a free block's pattern built
   // already (taken: `pattern` is left empty); no faces are read.
