@@ -130,7 +130,7 @@ TEST(OrderingAhead, TakesTheAnalysisOfA) {
   const Split s = assembled_split(mesh, WeightOptions{});
   detail::SupernodalSymbolic plain, ahead_result;
   ASSERT_TRUE(detail::supernodal_analysis(s.A, plain));
-  detail::AnalysisAhead ahead(mesh.F, s.known, s.used);
+  detail::AnalysisAhead ahead(detail::free_block_pattern(mesh.F, s.known, s.used));
   ASSERT_TRUE(ahead.take(s.A, ahead_result));
   expect_same_analysis(plain, ahead_result);
   EXPECT_FALSE(ahead.take(s.A, ahead_result));  // once only
@@ -147,7 +147,7 @@ TEST(OrderingAhead, RefusesAnotherPattern) {
       more_known[v] = 1;
       break;
     }
-  detail::AnalysisAhead ahead(mesh.F, more_known, s.used);
+  detail::AnalysisAhead ahead(detail::free_block_pattern(mesh.F, more_known, s.used));
   detail::SupernodalSymbolic out;
   out.nsuper = -7;
   EXPECT_FALSE(ahead.take(s.A, out));
@@ -157,7 +157,8 @@ TEST(OrderingAhead, RefusesAnotherPattern) {
   LinearSolver plain(SolverKind::Auto, true), refused(SolverKind::Auto, true);
   plain.factor(s.A);
   const long before = detail::analysis_ahead_taken().load();
-  refused.set_analysis_ahead(std::make_shared<detail::AnalysisAhead>(mesh.F, more_known, s.used));
+  refused.set_analysis_ahead(
+      std::make_shared<detail::AnalysisAhead>(detail::free_block_pattern(mesh.F, more_known, s.used)));
   refused.factor(s.A);
   EXPECT_EQ(detail::analysis_ahead_taken().load(), before);
   EXPECT_TRUE(plain.solve(rhs) == refused.solve(rhs));
@@ -177,7 +178,8 @@ TEST(OrderingAhead, LinearSolverSameSolutionToTheBit) {
     LinearSolver plain(SolverKind::Auto, symmetric), ahead(SolverKind::Auto, symmetric);
     plain.factor(s.A);
     const long before = detail::analysis_ahead_taken().load();
-    ahead.set_analysis_ahead(std::make_shared<detail::AnalysisAhead>(mesh.F, s.known, s.used));
+    ahead.set_analysis_ahead(
+        std::make_shared<detail::AnalysisAhead>(detail::free_block_pattern(mesh.F, s.known, s.used)));
     ahead.factor(s.A);
     EXPECT_EQ(detail::analysis_ahead_taken().load(), before + 1) << method_name(c.m);
     EXPECT_EQ(ahead.kind(), plain.kind());

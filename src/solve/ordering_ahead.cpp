@@ -74,16 +74,8 @@ SparseMatrix free_block_pattern(const SparseMatrix& K, const std::vector<char>& 
   return P;
 }
 
-AnalysisAhead::AnalysisAhead(const MatrixX3i& F, const std::vector<char>& is_known,
-                             const std::vector<char>& is_used)
-    : faces_future_(faces_done_.get_future()) {
-  // The copies are the thread's; F is read until faces_done_.
-  thread_ = std::thread([this, &F, known = is_known, used = is_used] { run(F, known, used); });
-}
-
-AnalysisAhead::AnalysisAhead(SparseMatrix&& pattern) : faces_future_(faces_done_.get_future()) {
+AnalysisAhead::AnalysisAhead(SparseMatrix&& pattern) {
   pattern_.swap(pattern);  // Eigen 3.4's SparseMatrix has no move: a swap takes it without a copy
-  faces_done_.set_value();  // no faces read
   thread_ = std::thread([this] { analyse(); });
 }
 
@@ -93,17 +85,6 @@ AnalysisAhead::~AnalysisAhead() {
 
 // Any failure (out of memory) leaves analysed_ false: factor() then
 // analyses A itself, as without this.
-void AnalysisAhead::run(const MatrixX3i& F, const std::vector<char>& is_known, const std::vector<char>& is_used) {
-  try {
-    free_block_pattern(F, is_known, is_used).swap(pattern_);
-  } catch (...) {
-    faces_done_.set_value();
-    return;
-  }
-  faces_done_.set_value();
-  analyse();
-}
-
 void AnalysisAhead::analyse() {
   try {
     if (pattern_.rows() > 0) {
@@ -120,10 +101,6 @@ void AnalysisAhead::analyse() {
   } catch (...) {
     analysed_ = false;
   }
-}
-
-void AnalysisAhead::faces_released() {
-  if (faces_future_.valid()) faces_future_.wait();
 }
 
 bool AnalysisAhead::take(const SparseMatrix& A, SupernodalSymbolic& out) {

@@ -23,7 +23,6 @@
 
 #include <atomic>
 #include <exception>
-#include <future>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -40,7 +39,7 @@ namespace intrinsic::detail {
 // neighbours of its vertex and itself, rows ascending. The values are left
 // unset (never read).
 // Built from the faces (util/vertex_adjacency.h), for a caller without K's
-// pattern (the faces constructor below).
+// pattern.
 SparseMatrix free_block_pattern(const MatrixX3i& F, const std::vector<char>& is_known,
                                 const std::vector<char>& is_used);
 // The same pattern taken from K's (weights/assemble_stages.h: the vertex
@@ -51,10 +50,6 @@ SparseMatrix free_block_pattern(const SparseMatrix& K, const std::vector<char>& 
 
 class AnalysisAhead {
  public:
-  // Starts the pattern, its ordering and its analysis on a new thread. F is
-  // read until faces_released(); the other arguments are copied. (The
-  // Parameterizer, which has K's pattern, uses the constructor below.)
-  AnalysisAhead(const MatrixX3i& F, const std::vector<char>& is_known, const std::vector<char>& is_used);
   // Starts the ordering and analysis of a free block's pattern built
   // already (taken: `pattern` is left empty); no faces are read.
   explicit AnalysisAhead(SparseMatrix&& pattern);
@@ -62,18 +57,13 @@ class AnalysisAhead {
   AnalysisAhead(const AnalysisAhead&) = delete;
   AnalysisAhead& operator=(const AnalysisAhead&) = delete;
 
-  // Waits until the thread no longer reads F (the pattern is built).
-  void faces_released();
   // Waits for the analysis; true, with it moved into `out`, when A's
   // pattern is the one analysed and the analysis succeeded. Once only.
   bool take(const SparseMatrix& A, SupernodalSymbolic& out);
 
  private:
-  void run(const MatrixX3i& F, const std::vector<char>& is_known, const std::vector<char>& is_used);
   void analyse();  // orders and analyses pattern_
 
-  std::promise<void> faces_done_;
-  std::future<void> faces_future_;
   SparseMatrix pattern_;
   SupernodalSymbolic symbolic_;
   bool analysed_ = false;
