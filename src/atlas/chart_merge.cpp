@@ -27,6 +27,7 @@
 // pieces, 4-11 charts each) cannot keep every piece under the bound, while
 // one or two charts above it are a small share of the atlas's surface.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -196,10 +197,18 @@ void solve_needed(const MergeContext& ctx, std::vector<Proposal>& props, size_t 
     if (!p.solved && !held[p.c] && !held[p.d]) batch.push_back(&p);
     held[p.c] = held[p.d] = 1;
   }
+  // Largest first, each core taking the next union when it is free: dealt
+  // in turn, one large union kept its core busy while the other waited at
+  // the join, and a core whose thread started late (a loaded machine) still
+  // had its share to do after the calling thread had finished its own. Each
+  // result goes to its own proposal, so nothing depends on the timing.
+  std::stable_sort(batch.begin(), batch.end(),
+                   [](const Proposal* a, const Proposal* b) { return a->task.faces.size() > b->task.faces.size(); });
   const std::int64_t n = static_cast<std::int64_t>(batch.size());
   const int parts = parallel_parts(n, 1);
-  parallel_for_parts(parts, parts, [&](int part, std::int64_t, std::int64_t) {
-    for (std::int64_t i = part; i < n; i += parts) {
+  std::atomic<std::int64_t> taken{0};
+  parallel_for_parts(parts, parts, [&](int, std::int64_t, std::int64_t) {
+    for (std::int64_t i; (i = taken.fetch_add(1)) < n;) {
       batch[i]->result = solve_union(ctx.input, ctx.clean, ctx.options, batch[i]->task);
       batch[i]->solved = true;
     }
