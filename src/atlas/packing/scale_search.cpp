@@ -32,11 +32,8 @@ void add_masks(const std::vector<PackChart>& charts, double scale, int pad, size
   parallel_for(n, [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t c = b; c < e; ++c)
       for (size_t a = first; a < std::min(last, charts[c].poses.size()); ++a) {
-        std::vector<Mask> turns = quarter_turn_masks(*charts[c].F, charts[c].poses[a], scale, pad);
-        for (Mask& m : turns) {
-          if (as_box(m, pad)) fill_frame(m);
+        for (Mask& m : quarter_turn_masks(*charts[c].F, charts[c].poses[a], scale, pad, as_box))
           masks[c].push_back(std::move(m));
-        }
       }
   }, serial ? n + 1 : 8);
 }
