@@ -32,7 +32,10 @@ int Bitmap::widest_run(int y, int n) const {
       run += 64;
       continue;
     }
-    best = std::max({best, run + __builtin_ctzll(word), longest_ones(~word)});
+    best = std::max(best, run + __builtin_ctzll(word));
+    // A run inside the word is at most its free bits: counted only when
+    // that could beat the best (the count loops once per bit of the run).
+    if (__builtin_popcountll(~word) > best) best = std::max(best, longest_ones(~word));
     run = __builtin_clzll(word);
   }
   return std::max(best, run);
