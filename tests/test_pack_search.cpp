@@ -1,6 +1,7 @@
 // The packer's masks in their four quarter turns against the texel grid
 // turned and dilated here by brute force (turns 2 and 3 are mirrored spans,
-// not a rasterization), and the scale search's layout against the thread
+// not a rasterization), masks filled as they are made against masks filled
+// afterwards, and the scale search's layout against the thread
 // count (two packings at once on two cores must decide as one at a time).
 // Charts are random polygons made here; nothing is read.
 #include <gtest/gtest.h>
@@ -101,6 +102,44 @@ TEST(PackMasks, FourTurnsAgreeWithTheGridTurnedAndDilatedByBruteForce) {
       std::swap(w, h);
     }
   }
+}
+
+// Masks made with a box predicate (filled as they are made, no search for
+// a largest box) against the masks made without one and filled afterwards,
+// as the scale search made them before: every field equal, rows of filled
+// masks listed as fill_frame lists them. The predicate accepts about half
+// the masks (by a hash of their size), so both kinds are compared.
+bool some_as_box(const Mask& m, int pad) { return (m.w * 31 + m.h * 17 + pad) % 2 == 0; }
+TEST(PackMasks, FilledAsMadeEqualFilledAfterwards) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  int filled = 0, kept = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const FlatChart c = star_chart(rng, 1 + 6 * u(rng), 3 + trial % 7);
+    const int pad = trial % 4;
+    const double scale = 0.7 + 4 * u(rng);
+    std::vector<Mask> before = quarter_turn_masks(c.mesh.data.F, c.UV, scale, pad);
+    for (Mask& m : before)
+      if (some_as_box(m, pad)) fill_frame(m);
+    const std::vector<Mask> made = quarter_turn_masks(c.mesh.data.F, c.UV, scale, pad, some_as_box);
+    ASSERT_EQ(made.size(), before.size());
+    for (size_t k = 0; k < made.size(); ++k) {
+      SCOPED_TRACE("trial " + std::to_string(trial) + " turn " + std::to_string(k));
+      const Mask &a = made[k], &b = before[k];
+      (some_as_box(b, pad) ? filled : kept) += 1;
+      EXPECT_EQ(a.w, b.w);
+      EXPECT_EQ(a.h, b.h);
+      EXPECT_EQ(a.rows, b.rows);
+      EXPECT_EQ(a.own, b.own);
+      EXPECT_EQ(a.texels, b.texels);
+      EXPECT_EQ(a.widest, b.widest);
+      EXPECT_EQ(a.by_width, b.by_width);
+      EXPECT_EQ(a.box, b.box);
+      EXPECT_EQ(a.inner, b.inner);
+    }
+  }
+  EXPECT_GT(filled, 20);
+  EXPECT_GT(kept, 20);
 }
 
 // The scale search with one thread and with two (two packings at once,

@@ -33,6 +33,7 @@
 #include <set>
 
 #include "atlas/atlas_internal.h"
+#include "atlas/batch_workers.h"
 #include "atlas/thresholds.h"
 #include "util/parallel_for.h"
 
@@ -82,6 +83,7 @@ struct MergeContext {
   const MeshData& input;
   const CleanMesh& clean;
   const ChartOptions& options;
+  BatchWorkers& workers;
 };
 
 // The neighbour chart `c` shares most glued edges with, among the pairs not failed; -1 if none.
@@ -196,13 +198,15 @@ void solve_needed(const MergeContext& ctx, std::vector<Proposal>& props, size_t 
     if (!p.solved && !held[p.c] && !held[p.d]) batch.push_back(&p);
     held[p.c] = held[p.d] = 1;
   }
-  const std::int64_t n = static_cast<std::int64_t>(batch.size());
-  const int parts = parallel_parts(n, 1);
-  parallel_for_parts(parts, parts, [&](int part, std::int64_t, std::int64_t) {
-    for (std::int64_t i = part; i < n; i += parts) {
-      batch[i]->result = solve_union(ctx.input, ctx.clean, ctx.options, batch[i]->task);
-      batch[i]->solved = true;
-    }
+  // Largest first, each core taking the next union when it is free
+  // (batch_workers.h): dealt in turn, one large union kept its core busy
+  // while the other waited at the join. Each result goes to its own
+  // proposal, so nothing depends on the timing.
+  std::stable_sort(batch.begin(), batch.end(),
+                   [](const Proposal* a, const Proposal* b) { return a->task.faces.size() > b->task.faces.size(); });
+  ctx.workers.run(static_cast<std::int64_t>(batch.size()), [&](std::int64_t i) {
+    batch[i]->result = solve_union(ctx.input, ctx.clean, ctx.options, batch[i]->task);
+    batch[i]->solved = true;
   });
 }
 
@@ -290,7 +294,9 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const ChartOpti
   for (size_t c = 0; c < charts.size(); ++c)
     for (int f : charts[c].mesh.faces) owner[f] = static_cast<int>(c);
   std::vector<char> gone(charts.size(), 0);
-  const MergeContext ctx{input, clean, options};
+  // The cores (at most 8), kept for every pass of every phase.
+  BatchWorkers workers(parallel_parts(std::int64_t{1} << 30, 1));
+  const MergeContext ctx{input, clean, options, workers};
   PairMemory memory;
   memory.bound = options.max_stretch;
   // Merging costs a solve of every union tried: a budget of faces in all

@@ -32,7 +32,10 @@ int Bitmap::widest_run(int y, int n) const {
       run += 64;
       continue;
     }
-    best = std::max({best, run + __builtin_ctzll(word), longest_ones(~word)});
+    best = std::max(best, run + __builtin_ctzll(word));
+    // A run inside the word is at most its free bits: counted only when
+    // that could beat the best (the count loops once per bit of the run).
+    if (__builtin_popcountll(~word) > best) best = std::max(best, longest_ones(~word));
     run = __builtin_clzll(word);
   }
   return std::max(best, run);
@@ -59,11 +62,29 @@ void Bitmap::set_extent(int e) {
   extent_ = e;
 }
 
+namespace {
+
+// Sets the bits [a, b) of a row, a word at a time (a span of a large chart
+// covers hundreds of texels; bit by bit, taking was a fifth of the placement).
+void set_bits(std::uint64_t* bits, int a, int b) {
+  if (a >= b) return;
+  const int first = a >> 6, last = (b - 1) >> 6;
+  const std::uint64_t lo = ~std::uint64_t{0} << (a & 63), hi = ~std::uint64_t{0} >> (63 - ((b - 1) & 63));
+  if (first == last) {
+    bits[first] |= lo & hi;
+    return;
+  }
+  bits[first] |= lo;
+  for (int w = first + 1; w < last; ++w) bits[w] = ~std::uint64_t{0};
+  bits[last] |= hi;
+}
+
+}  // namespace
+
 void Bitmap::take(const Mask& m, int x, int y) {
   for (int r = 0; r < m.h; ++r) {
     std::uint64_t* bits = &bits_[static_cast<size_t>(y + r) * words_];
-    for (const auto& s : m.own[r])
-      for (int t = x + s.first; t < x + s.second; ++t) bits[t >> 6] |= std::uint64_t{1} << (t & 63);
+    for (const auto& s : m.own[r]) set_bits(bits, x + s.first, x + s.second);
     if (!m.own[r].empty()) update_widest(y + r);
   }
 }

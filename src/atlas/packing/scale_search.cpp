@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <thread>
 #include <utility>
 
+#include "atlas/batch_workers.h"
 #include "atlas/thresholds.h"
 #include "util/parallel_for.h"
 
@@ -32,11 +32,8 @@ void add_masks(const std::vector<PackChart>& charts, double scale, int pad, size
   parallel_for(n, [&](std::int64_t b, std::int64_t e) {
     for (std::int64_t c = b; c < e; ++c)
       for (size_t a = first; a < std::min(last, charts[c].poses.size()); ++a) {
-        std::vector<Mask> turns = quarter_turn_masks(*charts[c].F, charts[c].poses[a], scale, pad);
-        for (Mask& m : turns) {
-          if (as_box(m, pad)) fill_frame(m);
+        for (Mask& m : quarter_turn_masks(*charts[c].F, charts[c].poses[a], scale, pad, as_box))
           masks[c].push_back(std::move(m));
-        }
       }
   }, serial ? n + 1 : 8);
 }
@@ -73,15 +70,19 @@ Try attempt(const std::vector<PackChart>& charts, double scale, int side, int pa
 
 // Two packings at once, each on its own core with its masks built on its
 // own thread; only when there are two cores (one core tries one scale at a
-// time, and never a scale the sequential search would not try).
+// time, and never a scale the sequential search would not try). On a
+// worker kept for the whole search (batch_workers.h): a thread started per
+// pair had to be scheduled and joined each time, and on a loaded machine
+// the calling thread waited for it; now it makes the second packing itself
+// when the worker has not begun it.
 bool two_cores() { return parallel_parts(2, 1) >= 2; }
-std::pair<Try, Try> attempt_two(const std::vector<PackChart>& charts, double a, int side_a, double b, int side_b,
-                                int pad, bool angles) {
-  Try ta, tb;
-  std::thread other([&] { tb = attempt(charts, b, side_b, pad, angles, true); });
-  ta = attempt(charts, a, side_a, pad, angles, true);
-  other.join();
-  return {std::move(ta), std::move(tb)};
+std::pair<Try, Try> attempt_two(BatchWorkers& workers, const std::vector<PackChart>& charts, double a, int side_a,
+                                double b, int side_b, int pad, bool angles) {
+  Try t[2];
+  workers.run(2, [&](std::int64_t i) {
+    t[i] = i == 0 ? attempt(charts, a, side_a, pad, angles, true) : attempt(charts, b, side_b, pad, angles, true);
+  });
+  return {std::move(t[0]), std::move(t[1])};
 }
 
 // The layouts tried so far: the one with the largest scale / extent (the
@@ -92,6 +93,7 @@ std::pair<Try, Try> attempt_two(const std::vector<PackChart>& charts, double a, 
 // sequential search would have made it: the same packings decide in the same
 // order, so the layout never depends on the cores.
 struct Search {
+  BatchWorkers& workers;
   const std::vector<PackChart>& charts;
   int side, pad;
   bool angles;  // try_scale with every pose angle
@@ -116,7 +118,7 @@ struct Search {
     double s = start;
     for (int i = 0; i < tries;) {
       if (two && i + 1 < tries) {
-        auto [a, b] = attempt_two(charts, s, side, s * step, side, pad, angles);
+        auto [a, b] = attempt_two(workers, charts, s, side, s * step, side, pad, angles);
         if (record(std::move(a)) || record(std::move(b))) return true;
         s *= step, s *= step, i += 2;
       } else {
@@ -136,7 +138,7 @@ struct Search {
         fits(mid);
         continue;
       }
-      auto [a, b] = attempt_two(charts, mid, side, std::sqrt(mid * hi), side, pad, angles);
+      auto [a, b] = attempt_two(workers, charts, mid, side, std::sqrt(mid * hi), side, pad, angles);
       if (record(std::move(a))) record(std::move(b)), ++i;
     }
   }
@@ -161,10 +163,10 @@ struct Search {
 // Brackets from the largest scale the area allows, then bisects to
 // `ratio`; the side doubles when even tiny scales fail (more charts than
 // the bitmap holds with their padding).
-Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side, int pad, double ratio, bool angles,
-                    double* largest = nullptr) {
+Layout bisect_scale(BatchWorkers& workers, const std::vector<PackChart>& charts, double area, int& side, int pad,
+                    double ratio, bool angles, double* largest = nullptr) {
   while (true) {
-    Search s{charts, side, pad, false, {}};
+    Search s{workers, charts, side, pad, false, {}};
     if (s.bracket(kStartFill * side / std::sqrt(area), kBracketStep, kBracketTries)) {
       if (s.hi == INFINITY) s.hi = kStartFill * side / std::sqrt(area) / kBracketStep;
       s.bisect(ratio, kBisectSteps);
@@ -190,11 +192,12 @@ Layout bisect_scale(const std::vector<PackChart>& charts, double area, int& side
 // The searches packed the full bitmap 3-6 times before, each failure as
 // costly as a success.
 Layout search_layout(const std::vector<PackChart>& charts, double area, int& side, int pad) {
-  if (side < kHalfBitmapMinSide) return bisect_scale(charts, area, side, pad, kFineRatio, true);
+  BatchWorkers workers(two_cores() ? 2 : 1);
+  if (side < kHalfBitmapMinSide) return bisect_scale(workers, charts, area, side, pad, kFineRatio, true);
   int half = side / 2;
   double coarse = 0;  // the largest scale that fitted (the best layout may be at a smaller one)
-  Layout best = bisect_scale(charts, area, half, (pad + 1) / 2, kCoarseRatio, false, &coarse);
-  if (half != side / 2) return bisect_scale(charts, area, side, pad, kFineRatio, true);
+  Layout best = bisect_scale(workers, charts, area, half, (pad + 1) / 2, kCoarseRatio, false, &coarse);
+  if (half != side / 2) return bisect_scale(workers, charts, area, side, pad, kFineRatio, true);
   // The half bitmap held them: its layout at twice the scale.
   best.scale *= 2, best.extent *= 2, best.zoom *= 2;
   const double guess = 2 * coarse;
@@ -209,7 +212,8 @@ Layout search_layout(const std::vector<PackChart>& charts, double area, int& sid
   };
   for (size_t i = 0; i < scales.size();) {
     if (two_cores() && i + 1 < scales.size()) {  // the first that fits, in order
-      auto [a, b] = attempt_two(charts, scales[i], limit(scales[i]), scales[i + 1], limit(scales[i + 1]), pad, false);
+      auto [a, b] =
+          attempt_two(workers, charts, scales[i], limit(scales[i]), scales[i + 1], limit(scales[i + 1]), pad, false);
       if (a.ok) return std::move(a.l);
       if (b.ok) return std::move(b.l);
       i += 2;

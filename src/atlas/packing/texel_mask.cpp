@@ -38,8 +38,8 @@ bool band_range(const Eigen::Vector2d p[3], double y0, double y1, double& lo, do
 
 // The runs of 1s of a row of 0s and 1s, found with memchr (vectorized in
 // libc): rows are mostly one or two long runs.
-Spans spans_of(const char* row, int w, int offset) {
-  Spans s;
+void runs_of(const char* row, int w, Spans& s, int offset = 0) {
+  s.clear();
   const char* end = row + w;
   for (const char* p = row; p < end;) {
     const char* b = static_cast<const char*>(std::memchr(p, 1, end - p));
@@ -49,6 +49,10 @@ Spans spans_of(const char* row, int w, int offset) {
     s.emplace_back(static_cast<int>(b - row) + offset, static_cast<int>(e - row) + offset);
     p = e;
   }
+}
+Spans spans_of(const char* row, int w, int offset) {
+  Spans s;
+  runs_of(row, w, s, offset);
   return s;
 }
 
@@ -78,9 +82,17 @@ std::array<int, 4> largest_rectangle(const Mask& m) {
   return best;
 }
 
+// The largest box of dilated texels, searched for in small masks only:
+// large masks are few and their boxes say little.
+std::array<int, 4> inner_box(const Mask& m) {
+  if (m.box) return {0, 0, m.w, m.h};
+  const bool small = static_cast<long>(m.w) * m.h <= kInnerBoxArea;
+  return small ? largest_rectangle(m) : std::array<int, 4>{0, 0, 0, 0};
+}
+
 // The widest span per row, the rows by decreasing width, whether the
-// dilated texels fill the frame, and the largest box inside them.
-void index_rows(Mask& m) {
+// dilated texels fill the frame, and (`inner`) the largest box inside them.
+void index_rows(Mask& m, bool inner = true) {
   m.widest.assign(m.h, 0);
   m.box = true;
   for (int y = 0; y < m.h; ++y) {
@@ -93,9 +105,7 @@ void index_rows(Mask& m) {
   for (int k = 1; k <= m.w + 1; ++k) start[k] += start[k - 1];
   m.by_width.resize(m.h);
   for (int y = 0; y < m.h; ++y) m.by_width[start[m.w - m.widest[y]]++] = y;
-  // Large masks are few and their boxes say little: no search for theirs.
-  const bool small = static_cast<long>(m.w) * m.h <= kInnerBoxArea;
-  m.inner = m.box ? std::array<int, 4>{0, 0, m.w, m.h} : small ? largest_rectangle(m) : std::array<int, 4>{0, 0, 0, 0};
+  m.inner = inner ? inner_box(m) : std::array<int, 4>{0, 0, 0, 0};
 }
 
 }  // namespace
@@ -133,7 +143,7 @@ std::vector<char> quarter_turn(const std::vector<char>& grid, int w, int h) {
 // first the OR of the grid rows within `pad` (one pass of byte ORs, which
 // the compiler vectorizes), then its spans are widened by `pad` on both
 // sides and merged where they touch, left to right (no sort).
-Mask mask_of(const std::vector<char>& grid, int w, int h, int pad) {
+Mask mask_of(const std::vector<char>& grid, int w, int h, int pad, bool inner) {
   Mask m;
   m.w = w + 2 * pad, m.h = h + 2 * pad;
   m.own.resize(m.h);
@@ -152,9 +162,11 @@ Mask mask_of(const std::vector<char>& grid, int w, int h, int pad) {
     }
   }
   m.rows.resize(m.h);
+  Spans runs;  // one row's runs, reused: no allocation per row
   for (int y = 0; y < m.h; ++y) {
     Spans& out = m.rows[y];
-    for (const auto& s : spans_of(band.data() + static_cast<long>(y) * w, w, 0)) {
+    runs_of(band.data() + static_cast<long>(y) * w, w, runs);
+    for (const auto& s : runs) {
       const int b = s.first, e = s.second + 2 * pad;  // the texels [b, e) of the grid widened, in frame columns
       if (!out.empty() && b <= out.back().second)
         out.back().second = std::max(out.back().second, e);
@@ -162,7 +174,7 @@ Mask mask_of(const std::vector<char>& grid, int w, int h, int pad) {
         out.emplace_back(b, e);
     }
   }
-  index_rows(m);
+  index_rows(m, inner);
   return m;
 }
 
@@ -206,16 +218,29 @@ void fill_frame(Mask& m) {
 }
 
 // One rasterization and one quarter turn of the grid: turns 2 and 3 are
-// turns 0 and 1 turned by half a turn (half_turned).
-std::vector<Mask> quarter_turn_masks(const MatrixX3i& F, const MatrixX2d& UV, double scale, int pad) {
+// turns 0 and 1 turned by half a turn (half_turned). A mask placed as its
+// frame is filled before its largest box is searched for (the search, a
+// pass over the frame's texels, found the whole frame then); the half turn
+// of a filled mask is filled again, so its rows are listed as fill_frame
+// lists them.
+std::vector<Mask> quarter_turn_masks(const MatrixX3i& F, const MatrixX2d& UV, double scale, int pad,
+                                     bool (*as_box)(const Mask&, int)) {
   const Eigen::Vector2i cells = cells_of(UV, scale);
   const int w = cells.x(), h = cells.y();
   const std::vector<char> grid = rasterize(F, UV, scale);
   std::vector<Mask> masks(4);
-  masks[0] = mask_of(grid, w, h, pad);
-  masks[1] = mask_of(quarter_turn(grid, w, h), h, w, pad);
+  masks[0] = mask_of(grid, w, h, pad, !as_box);
+  masks[1] = mask_of(quarter_turn(grid, w, h), h, w, pad, !as_box);
+  bool filled[2] = {false, false};
+  for (int k = 0; k < 2 && as_box; ++k) {
+    filled[k] = as_box(masks[k], pad);
+    if (filled[k]) fill_frame(masks[k]);
+    else masks[k].inner = inner_box(masks[k]);
+  }
   masks[2] = half_turned(masks[0]);
   masks[3] = half_turned(masks[1]);
+  for (int k = 0; k < 2; ++k)
+    if (filled[k]) fill_frame(masks[k + 2]);
   return masks;
 }
 

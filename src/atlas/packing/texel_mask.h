@@ -48,7 +48,8 @@ std::vector<char> quarter_turn(const std::vector<char>& grid, int w, int h);
 
 // The mask of a covered-texel grid (w x h, row-major): the frame, the spans,
 // and the dilation by `pad`.
-Mask mask_of(const std::vector<char>& grid, int w, int h, int pad);
+// `inner`: Mask::inner searched for (else left empty).
+Mask mask_of(const std::vector<char>& grid, int w, int h, int pad, bool inner = true);
 
 // The mask with its dilated texels grown to the whole frame. Small charts
 // are placed as such boxes: the few corner texels given up cost little, and
@@ -59,7 +60,11 @@ void fill_frame(Mask& m);
 // The chart (UV, corner at the origin) at `scale` in its four quarter turns,
 // counter-clockwise: masks[k] is the first turned k times. The grid turns
 // onto itself (texel_coordinates), so one rasterization serves all four.
-std::vector<Mask> quarter_turn_masks(const MatrixX3i& F, const MatrixX2d& UV, double scale, int pad);
+// With `as_box`, the masks it accepts (given the mask and `pad`) come
+// filled (fill_frame): as filling each afterwards, without the search for
+// a largest box that filling replaces.
+std::vector<Mask> quarter_turn_masks(const MatrixX3i& F, const MatrixX2d& UV, double scale, int pad,
+                                     bool (*as_box)(const Mask&, int) = nullptr);
 
 // UV (corner at the origin) in texel units at `scale` after `turns` quarter
 // turns counter-clockwise, each (x, y) -> (h - y, x) with h the texel height
