@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <thread>
 #include <stdexcept>
 #include <vector>
 
@@ -41,6 +42,19 @@ TEST(MergeWorkers, AnItemsExceptionReachesTheCaller) {
                            }),
                std::runtime_error);
   EXPECT_LE(done.load(), 49);
+  // An item only a worker can take (the caller is held in item 0 until
+  // another thread has passed item 1): its exception reaches the caller too.
+  std::atomic<bool> passed{false};
+  EXPECT_THROW(workers.run(2,
+                           [&](std::int64_t i) {
+                             if (i == 0) {
+                               while (!passed.load()) std::this_thread::yield();
+                               return;
+                             }
+                             passed = true;
+                             throw std::runtime_error("item 1");
+                           }),
+               std::runtime_error);
   // The workers are still usable afterwards.
   std::atomic<int> calls{0};
   workers.run(40, [&](std::int64_t) { calls.fetch_add(1); });

@@ -61,14 +61,17 @@ class BatchWorkers {
     std::unique_lock<std::mutex> lock(mutex_);
     idle_.wait(lock, [this] { return busy_ == 0; });
     job_ = nullptr;
+    if (!error) error = job.error;  // a worker's, kept under mutex_
     if (error) std::rethrow_exception(error);
   }
 
  private:
   struct Job {
+    Job(std::int64_t count, const std::function<void(std::int64_t)>* f) : n(count), fn(f) {}
     std::int64_t n;
     const std::function<void(std::int64_t)>* fn;
     std::atomic<std::int64_t> next{0};
+    std::exception_ptr error;  // the first item's exception a worker caught
     void take() {
       for (std::int64_t i; (i = next.fetch_add(1)) < n;) (*fn)(i);
     }
@@ -84,8 +87,15 @@ class BatchWorkers {
       Job* job = job_;
       ++busy_;
       lock.unlock();
-      job->take();
+      std::exception_ptr failure;
+      try {
+        job->take();
+      } catch (...) {  // handed to the caller; the other items are skipped
+        job->next = job->n;
+        failure = std::current_exception();
+      }
       lock.lock();
+      if (failure && !job->error) job->error = failure;
       if (--busy_ == 0) idle_.notify_all();
     }
   }
