@@ -109,6 +109,51 @@ TEST(Ordering, SameForAnyThreadCount) {
   EXPECT_EQ(one, three);
 }
 
+// Pieces below a size are dissected in a compact copy of their subgraph
+// (ordering.h's compact_below): that must change the time only. Never,
+// from small pieces up, by default, and from the whole graph down (every
+// search, retry and refinement then runs in a copy) give the same
+// permutation, on one thread and on several, on a disk (about 67k
+// vertices), on a matrix not compressed (each column's end given apart)
+// and on a disconnected graph.
+TEST(Ordering, CompactCopyKeepsThePermutation) {
+  const SparseMatrix A = disk_matrix(150);
+  const int n = static_cast<int>(A.rows());
+  const std::vector<int> plain = detail::level_set_nested_dissection(A, 64, 0);
+  expect_permutation(plain, n);
+  std::atomic<int>& limit = detail::thread_limit();
+  for (int threads : {1, 2, 3}) {
+    limit = threads;
+    for (int compact : {-1, 200, 5000, 30000, n}) {
+      EXPECT_EQ(plain, detail::level_set_nested_dissection(A, 64, compact))
+          << threads << " threads, compact below " << compact;
+    }
+  }
+  limit = 0;
+  SparseMatrix loose = A;
+  loose.uncompress();
+  loose.reserve(Eigen::VectorXi::Constant(n, 3));  // gaps after each column
+  ASSERT_FALSE(loose.isCompressed());
+  EXPECT_EQ(plain, detail::level_set_nested_dissection(loose, 64, 0));
+  EXPECT_EQ(plain, detail::level_set_nested_dissection(loose, 64, 5000));
+  EXPECT_EQ(plain, detail::level_set_nested_dissection(loose, 64, n));
+  // Two grids with no edge between them and isolated vertices.
+  SparseMatrix G = grid_matrix(60, 60);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < G.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(G, k); it; ++it) {
+      t.emplace_back(it.row(), it.col(), it.value());
+      t.emplace_back(it.row() + 3600, it.col() + 3600, it.value());
+    }
+  for (int v = 7200; v < 7300; ++v) t.emplace_back(v, v, 1.0);
+  SparseMatrix D(7300, 7300);
+  D.setFromTriplets(t.begin(), t.end());
+  D.makeCompressed();
+  const std::vector<int> split = detail::level_set_nested_dissection(D, 64, 0);
+  expect_permutation(split, 7300);
+  for (int compact : {100, 2000, 7300}) EXPECT_EQ(split, detail::level_set_nested_dissection(D, 64, compact));
+}
+
 TEST(Ordering, PermutationOnGridsAndDisconnectedGraphs) {
   expect_permutation(detail::level_set_nested_dissection(grid_matrix(150, 40)), 6000);
   // Two grids side by side with no edge between them, and isolated vertices.
@@ -145,7 +190,7 @@ TEST(Ordering, RefinementThinsAThickSeparatorToAColumn) {
       size1 += side[v] == 1;
     }
   detail::SeparatorRefiner refiner(A.outerIndexPtr(), nullptr, A.innerIndexPtr(), n);
-  refiner.refine(separator, side, owner, 7, size0, size1, 0.6, 4);
+  refiner.refine(separator, side.data(), owner.data(), 7, size0, size1, 0.6, 4);
   EXPECT_EQ(static_cast<int>(separator.size()), h);
   long count[3] = {0, 0, 0};
   for (int v = 0; v < n; ++v) ++count[side[v]];

@@ -22,7 +22,10 @@ namespace intrinsic::detail {
 // symmetric pattern of the square matrix A (A's pattern must be symmetric, as
 // every mesh matrix here is; the diagonal is ignored). Deterministic: the
 // same for any thread count (it uses the cores, parallel_for.h's
-// thread_limit, above ~40k vertices).
-std::vector<int> level_set_nested_dissection(const SparseMatrix& A, int leaf_size = 64);
+// thread_limit, above ~40k vertices). Pieces of at most compact_below
+// vertices are dissected in a compact copy of their own subgraph (-1: the
+// default size; 0: never), which changes the time only, never the
+// permutation (the tests force it on and off).
+std::vector<int> level_set_nested_dissection(const SparseMatrix& A, int leaf_size = 64, int compact_below = -1);
 
 }  // namespace intrinsic::detail

@@ -16,17 +16,18 @@
 
 namespace intrinsic::detail {
 
-// A max-heap of vertices by gain (smaller vertex first among equal gains, for
-// determinism), with each vertex's position for updates.
+// A max-heap of vertices by gain (smaller key first among equal gains, for
+// determinism: the vertex's id in the whole graph), with each vertex's
+// position for updates.
 class SeparatorRefiner::Heap {
  public:
-  explicit Heap(std::vector<int>& pos) : pos_(pos) {}
+  Heap(std::vector<int>& pos, const int* key) : pos_(pos), key_(key) {}
   bool empty() const { return items_.empty(); }
   int top() const { return items_[0].vertex; }
   int top_gain() const { return items_[0].gain; }
   bool contains(int v) const { return pos_[v] >= 0; }
   void push(int v, int gain) {
-    items_.push_back({gain, v});
+    items_.push_back({gain, key_ ? key_[v] : v, v});
     pos_[v] = static_cast<int>(items_.size()) - 1;
     up(pos_[v]);
   }
@@ -55,10 +56,10 @@ class SeparatorRefiner::Heap {
 
  private:
   struct Item {
-    int gain, vertex;
+    int gain, key, vertex;
   };
   static bool before(const Item& a, const Item& b) {
-    return a.gain > b.gain || (a.gain == b.gain && a.vertex < b.vertex);
+    return a.gain > b.gain || (a.gain == b.gain && a.key < b.key);
   }
   void place(int i, const Item& it) {
     items_[i] = it;
@@ -86,11 +87,28 @@ class SeparatorRefiner::Heap {
     place(i, it);
   }
   std::vector<int>& pos_;
+  const int* key_;
   std::vector<Item> items_;
 };
 
 SeparatorRefiner::SeparatorRefiner(const int* begin, const int* end, const int* index, int n)
     : begin_(begin), end_(end), index_(index), in0_(n, 0), in1_(n, 0), moved_(n, 0), pos0_(n, -1), pos1_(n, -1) {}
+
+void SeparatorRefiner::bind(const int* begin, const int* end, const int* index, const int* key, int n) {
+  begin_ = begin;
+  end_ = end;
+  index_ = index;
+  key_ = key;
+  // Between passes moved_ is 0 and pos -1 everywhere (pass() restores them),
+  // so a longer graph only needs its new entries set.
+  if (static_cast<int>(in0_.size()) < n) {
+    in0_.resize(n, 0);
+    in1_.resize(n, 0);
+    moved_.resize(n, 0);
+    pos0_.resize(n, -1);
+    pos1_.resize(n, -1);
+  }
+}
 
 namespace {
 
@@ -109,18 +127,17 @@ bool better(const long a[3], const long b[3], double max_fraction) {
 
 }  // namespace
 
-void SeparatorRefiner::refine(std::vector<int>& separator, std::vector<signed char>& side,
-                              const std::vector<int>& owner, int tag, long size0, long size1, double max_fraction,
-                              int passes) {
+void SeparatorRefiner::refine(std::vector<int>& separator, signed char* side, const int* owner, int tag,
+                              long size0, long size1, double max_fraction, int passes) {
   long weight[3] = {size0, size1, static_cast<long>(separator.size())};
   for (int p = 0; p < passes && !separator.empty(); ++p)
     if (!pass(separator, side, owner, tag, weight, max_fraction)) break;
 }
 
 // One pass; returns whether it improved the separator.
-bool SeparatorRefiner::pass(std::vector<int>& separator, std::vector<signed char>& side,
-                            const std::vector<int>& owner, int tag, long weight[3], double max_fraction) {
-  Heap heap[2] = {Heap(pos0_), Heap(pos1_)};
+bool SeparatorRefiner::pass(std::vector<int>& separator, signed char* side, const int* owner, int tag,
+                            long weight[3], double max_fraction) {
+  Heap heap[2] = {Heap(pos0_, key_), Heap(pos1_, key_)};
   std::vector<int>* in[2] = {&in0_, &in1_};
   for (int v : separator) {
     in0_[v] = in1_[v] = 0;

@@ -19,14 +19,21 @@ class SeparatorRefiner {
   // matrix, as in ordering.cpp); n vertices.
   SeparatorRefiner(const int* begin, const int* end, const int* index, int n);
 
+  // Moves the refiner to another graph of n vertices (a piece's compact copy,
+  // ordering.cpp), its per-vertex arrays growing if needed. key[v] (null:
+  // v itself) breaks ties between equal gains, smallest first: given a
+  // compact copy's vertices' ids in the whole graph, a refinement there
+  // moves the same vertices as it would on the whole graph.
+  void bind(const int* begin, const int* end, const int* index, const int* key, int n);
+
   // Improves the separator of one piece: the vertices w with owner[w] == tag,
   // side[w] = 0 or 1 (the halves) or 2 (the separator, listed in
   // `separator`). No edge joins side 0 to side 1 before or after. Keeps
   // max(|side 0|, |side 1|) <= max_fraction * (|side 0| + |side 1|) if the
   // start does. At most `passes` passes; each is linear in the vertices it
   // touches (near the separator) times log of the separator size.
-  void refine(std::vector<int>& separator, std::vector<signed char>& side, const std::vector<int>& owner,
-              int tag, long size0, long size1, double max_fraction, int passes);
+  void refine(std::vector<int>& separator, signed char* side, const int* owner, int tag, long size0, long size1,
+              double max_fraction, int passes);
 
  private:
   struct Move {
@@ -36,13 +43,14 @@ class SeparatorRefiner {
   };
   class Heap;
 
-  bool pass(std::vector<int>& separator, std::vector<signed char>& side, const std::vector<int>& owner, int tag,
-            long weight[3], double max_fraction);
+  bool pass(std::vector<int>& separator, signed char* side, const int* owner, int tag, long weight[3],
+            double max_fraction);
   int end_of(int v) const { return end_ ? begin_[v] + end_[v] : begin_[v + 1]; }
 
   const int* begin_;
   const int* end_;
   const int* index_;
+  const int* key_ = nullptr;
   // Per-vertex counts of a separator vertex's neighbours in side 0 and 1,
   // and whether it moved in this pass. Reused across pieces.
   std::vector<int> in0_, in1_;
