@@ -45,8 +45,11 @@ SolverThreads::SolverThreads() {
   std::lock_guard<std::mutex> lock(s.mutex);
   if (s.live++ > 0) return;
 #ifdef INTRINSIC_HAVE_OPENBLAS
+  // Set only when it differs: OpenBLAS restarts a stopped thread pool on
+  // every call, even for one thread, and each new worker spins for about
+  // 0.1 s (the command-line tool stops the pool at start: app/main.cpp).
   s.blas_threads = openblas_get_num_threads();
-  openblas_set_num_threads(1);
+  if (s.blas_threads != 1) openblas_set_num_threads(1);
 #endif
 }
 
@@ -58,7 +61,7 @@ SolverThreads::~SolverThreads() {
   std::lock_guard<std::mutex> lock(s.mutex);
   if (--s.live > 0) return;
 #ifdef INTRINSIC_HAVE_OPENBLAS
-  openblas_set_num_threads(s.blas_threads);
+  if (s.blas_threads != 1) openblas_set_num_threads(s.blas_threads);
 #endif
 }
 
