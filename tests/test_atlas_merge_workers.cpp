@@ -1,20 +1,16 @@
 // The merge's kept worker threads (atlas/batch_workers.h): every item of
 // every batch run exactly once, whatever the batch size and thread count,
 // the calling thread back only when all are done, an item's exception
-// passed on after the workers have let go of the batch, and the merge's
-// charts the same with one thread and with several on a generated
-// many-part mesh (the merge solves its unions on these workers).
+// passed on after the workers have let go of the batch, whichever thread
+// ran it. (The atlas the same with 1, 2 and 3 threads: test_atlas_parts.cpp.)
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <thread>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "atlas/batch_workers.h"
-#include "intrinsic/atlas.h"
-#include "intrinsic/generate.h"
-#include "util/parallel_for.h"
 
 namespace intrinsic::detail {
 namespace {
@@ -59,22 +55,6 @@ TEST(MergeWorkers, AnItemsExceptionReachesTheCaller) {
   std::atomic<int> calls{0};
   workers.run(40, [&](std::int64_t) { calls.fetch_add(1); });
   EXPECT_EQ(calls.load(), 40);
-}
-
-TEST(MergeWorkers, SameChartsWithOneAndThreeThreads) {
-  PartsOptions o;
-  o.parts = 8;
-  o.faces = 3000;
-  const MeshData m = generate_parts(o).mesh;
-  std::atomic<int>& limit = thread_limit();
-  limit = 1;
-  const AtlasCharts one = compute_charts(m);
-  limit = 3;
-  const AtlasCharts three = compute_charts(m);
-  limit = 0;
-  EXPECT_EQ(one.face_chart, three.face_chart);
-  ASSERT_EQ(one.UV.rows(), three.UV.rows());
-  EXPECT_EQ(one.UV, three.UV);  // bit for bit
 }
 
 }  // namespace
