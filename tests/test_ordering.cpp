@@ -71,6 +71,24 @@ SparseMatrix grid_matrix(int w, int h) {
   return A;
 }
 
+// Two side x side grids with no edge between them, then `isolated`
+// vertices with no edge at all: a graph in three kinds of components.
+SparseMatrix two_grids_and_isolated(int side, int isolated) {
+  const SparseMatrix G = grid_matrix(side, side);
+  const int g = side * side, n = 2 * g + isolated;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < G.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(G, k); it; ++it) {
+      t.emplace_back(it.row(), it.col(), it.value());
+      t.emplace_back(it.row() + g, it.col() + g, it.value());
+    }
+  for (int v = 2 * g; v < n; ++v) t.emplace_back(v, v, 1.0);
+  SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
 void expect_permutation(const std::vector<int>& p, int n) {
   ASSERT_EQ(static_cast<int>(p.size()), n);
   std::vector<char> seen(n, 0);
@@ -138,17 +156,7 @@ TEST(Ordering, CompactCopyKeepsThePermutation) {
   EXPECT_EQ(plain, detail::level_set_nested_dissection(loose, 64, 5000));
   EXPECT_EQ(plain, detail::level_set_nested_dissection(loose, 64, n));
   // Two grids with no edge between them and isolated vertices.
-  SparseMatrix G = grid_matrix(60, 60);
-  std::vector<Eigen::Triplet<double>> t;
-  for (int k = 0; k < G.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(G, k); it; ++it) {
-      t.emplace_back(it.row(), it.col(), it.value());
-      t.emplace_back(it.row() + 3600, it.col() + 3600, it.value());
-    }
-  for (int v = 7200; v < 7300; ++v) t.emplace_back(v, v, 1.0);
-  SparseMatrix D(7300, 7300);
-  D.setFromTriplets(t.begin(), t.end());
-  D.makeCompressed();
+  const SparseMatrix D = two_grids_and_isolated(60, 100);
   const std::vector<int> split = detail::level_set_nested_dissection(D, 64, 0);
   expect_permutation(split, 7300);
   for (int compact : {100, 2000, 7300}) EXPECT_EQ(split, detail::level_set_nested_dissection(D, 64, compact));
@@ -157,18 +165,7 @@ TEST(Ordering, CompactCopyKeepsThePermutation) {
 TEST(Ordering, PermutationOnGridsAndDisconnectedGraphs) {
   expect_permutation(detail::level_set_nested_dissection(grid_matrix(150, 40)), 6000);
   // Two grids side by side with no edge between them, and isolated vertices.
-  SparseMatrix G = grid_matrix(30, 30);
-  SparseMatrix A(1900, 1900);
-  std::vector<Eigen::Triplet<double>> t;
-  for (int k = 0; k < G.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(G, k); it; ++it) {
-      t.emplace_back(it.row(), it.col(), it.value());
-      t.emplace_back(it.row() + 900, it.col() + 900, it.value());
-    }
-  for (int v = 1800; v < 1900; ++v) t.emplace_back(v, v, 1.0);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  expect_permutation(detail::level_set_nested_dissection(A), 1900);
+  expect_permutation(detail::level_set_nested_dissection(two_grids_and_isolated(30, 100)), 1900);
 }
 
 // A separator two columns thick across a w x h grid: refinement must bring
