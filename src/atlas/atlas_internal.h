@@ -106,6 +106,9 @@ struct FlatChart {
   // Per face of the chart (mesh.faces order): max(s1, 1/s2) at the chart's
   // own scale (the atlas's texel density) and the face's 3D area.
   std::vector<double> face_stretch, face_area;
+  // The fraction of its smallest bounding box the flattened chart fills
+  // (chart_box): merges keep charts compact by it.
+  double box_fill = 1;
 };
 
 // Flattens `chart` (the map `map` chooses, by default the natural conformal

@@ -48,29 +48,45 @@ bool segments_cross(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Ei
          std::max(p.y(), q.y()) >= std::min(r.y(), s.y()) && std::max(r.y(), s.y()) >= std::min(p.y(), q.y());
 }
 
-// Non-adjacent boundary segments that meet, found through a uniform grid.
-bool boundary_crosses(const std::vector<int>& loop, const MatrixX2d& UV) {
-  const int n = static_cast<int>(loop.size());
+// Boundary segments that meet without being neighbours on one loop, over
+// every loop of the chart (its outer boundary and its holes), found through
+// a uniform grid.
+bool boundary_crosses(const std::vector<std::vector<int>>& loops, const MatrixX2d& UV) {
+  struct Segment {
+    int a, b;      // local vertices
+    int loop, at;  // which loop, and where on it
+  };
+  std::vector<Segment> seg;
+  for (size_t l = 0; l < loops.size(); ++l)
+    for (size_t i = 0; i < loops[l].size(); ++i)
+      seg.push_back({loops[l][i], loops[l][(i + 1) % loops[l].size()], static_cast<int>(l), static_cast<int>(i)});
+  const int n = static_cast<int>(seg.size());
   if (n < 4) return false;
-  Eigen::Vector2d lo = UV.row(loop[0]).transpose(), hi = lo;
-  for (int v : loop) lo = lo.cwiseMin(UV.row(v).transpose()), hi = hi.cwiseMax(UV.row(v).transpose());
+  Eigen::Vector2d lo = UV.row(seg[0].a).transpose(), hi = lo;
+  for (const Segment& s : seg) lo = lo.cwiseMin(UV.row(s.a).transpose()), hi = hi.cwiseMax(UV.row(s.a).transpose());
   const int g = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(n))));
   const Eigen::Vector2d cell = ((hi - lo) / g).cwiseMax(Eigen::Vector2d::Constant(1e-300));
   std::vector<std::vector<int>> bins(g * g);
   auto bin = [&](double x, double lo_x, double size) { return std::clamp(static_cast<int>((x - lo_x) / size), 0, g - 1); };
   for (int i = 0; i < n; ++i) {
-    const Eigen::Vector2d a = UV.row(loop[i]), b = UV.row(loop[(i + 1) % n]);
+    const Eigen::Vector2d a = UV.row(seg[i].a), b = UV.row(seg[i].b);
     for (int x = bin(std::min(a.x(), b.x()), lo.x(), cell.x()); x <= bin(std::max(a.x(), b.x()), lo.x(), cell.x()); ++x)
       for (int y = bin(std::min(a.y(), b.y()), lo.y(), cell.y()); y <= bin(std::max(a.y(), b.y()), lo.y(), cell.y()); ++y)
         bins[x * g + y].push_back(i);
   }
+  // Neighbours on one loop share a vertex: not a crossing.
+  auto adjacent = [&](const Segment& s, const Segment& t) {
+    if (s.loop != t.loop) return false;
+    const int m = static_cast<int>(loops[s.loop].size());
+    const int d = std::abs(s.at - t.at);
+    return d == 1 || d == m - 1;
+  };
   for (const std::vector<int>& b : bins)
     for (size_t s = 0; s < b.size(); ++s)
       for (size_t t = s + 1; t < b.size(); ++t) {
-        const int i = b[s], j = b[t];
-        if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // adjacent segments share a vertex
-        if (segments_cross(UV.row(loop[i]), UV.row(loop[(i + 1) % n]), UV.row(loop[j]), UV.row(loop[(j + 1) % n])))
-          return true;
+        const Segment &p = seg[b[s]], &q = seg[b[t]];
+        if (adjacent(p, q)) continue;
+        if (segments_cross(UV.row(p.a), UV.row(p.b), UV.row(q.a), UV.row(q.b))) return true;
       }
   return false;
 }
@@ -101,6 +117,25 @@ bool folds(const Mesh& mesh, const MatrixX2d& UV, double degenerate_ratio, int& 
     if (mesh.topology.is_boundary[v] && angle_sum[v] > 2 * M_PI * (1 - 1e-9)) return true;
   }
   return false;
+}
+
+// Every face's normal within 60 degrees of the chart's area-weighted mean
+// normal: the chart is a height field over its mean plane, where the natural
+// map of a chart with holes reproduces the layout (a flat one exactly).
+bool over_its_plane(const MeshData& chart) {
+  const MatrixX3d& V = chart.V;
+  const MatrixX3i& F = chart.F;
+  std::vector<Eigen::Vector3d> n(F.rows());
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int f = 0; f < F.rows(); ++f) {
+    n[f] = (V.row(F(f, 1)) - V.row(F(f, 0))).cross(V.row(F(f, 2)) - V.row(F(f, 0)));
+    sum += n[f];
+  }
+  if (!(sum.norm() > 0)) return false;
+  const Eigen::Vector3d mean = sum.normalized();
+  for (const Eigen::Vector3d& nf : n)
+    if (nf.norm() > 0 && nf.dot(mean) < 0.5 * nf.norm()) return false;
+  return true;
 }
 
 ChartMethod method_of(const ChartMapOptions& map) {
@@ -161,7 +196,7 @@ void refine(const Mesh& mesh, const ChartMapOptions& map, double degenerate_rati
   if (!(a2 > 0)) return;
   UV *= std::sqrt(a3 / a2);
   int flipped = 0;
-  if (folds(mesh, UV, degenerate_ratio, flipped) || boundary_crosses(mesh.topology.boundary_loops[0], UV)) return;
+  if (folds(mesh, UV, degenerate_ratio, flipped) || boundary_crosses(mesh.topology.boundary_loops, UV)) return;
   chart.UV = std::move(UV);
   chart.summary.refined = true;
 }
@@ -196,8 +231,13 @@ void summarize_stretch(const Mesh& mesh, FlatChart& chart) {
 ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double degenerate_ratio) {
   // Euler characteristic of the chart's own mesh before building it: most
   // charts split on a large mesh are not disks, and this needs no make_mesh.
+  // A chart with holes (genus 0, several boundary loops) is kept whole when
+  // the natural map frees every loop and the chart lies over its mean plane
+  // (a flat plate with drilled holes is one chart, not dozens of pieces).
   const long k = chart.mesh.data.F.rows(), local_edges = (3 * k + chart.mesh.open_edges) / 2;
-  if (chart.mesh.data.V.rows() - local_edges + k != 1) return ChartStatus::NotDisk;
+  const long euler = chart.mesh.data.V.rows() - local_edges + k;
+  const bool holes_allowed = map.boundary == BoundaryShape::Natural && euler <= 0 && over_its_plane(chart.mesh.data);
+  if (euler != 1 && !holes_allowed) return ChartStatus::NotDisk;
   ValidateOptions vo;
   vo.degenerate_ratio = degenerate_ratio;
   vo.allow_closed = true;
@@ -211,7 +251,10 @@ ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double d
   long boundary_edges = 0;
   for (const std::vector<int>& loop : t.boundary_loops) boundary_edges += static_cast<long>(loop.size());
   const long nf = mesh.F.rows(), edges = (3 * nf + boundary_edges) / 2;
-  if (t.boundary_loops.size() != 1 || mesh.V.rows() - edges + nf != 1) return ChartStatus::NotDisk;
+  const long loops = static_cast<long>(t.boundary_loops.size());
+  // Genus 0 with at least one loop: a disk, or (when allowed) a disk with holes.
+  if (loops == 0 || mesh.V.rows() - edges + nf != 2 - loops || (loops > 1 && !holes_allowed))
+    return ChartStatus::NotDisk;
   // A cut edge (a user's seam, a non-manifold or inconsistent edge) whose two
   // ends are glued around it would be an interior edge of the chart's mesh:
   // the cut would not be in the UVs. Split until it lies on the boundary.
@@ -232,9 +275,10 @@ ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double d
     if (solved != ChartStatus::Valid) return solved;
   }
   if (folds(mesh, chart.UV, degenerate_ratio, s.flipped)) return ChartStatus::Flipped;
-  if (boundary_crosses(t.boundary_loops[0], chart.UV)) return ChartStatus::BoundaryCrossing;
+  if (boundary_crosses(t.boundary_loops, chart.UV)) return ChartStatus::BoundaryCrossing;
   if (nf > 1 && map.boundary == BoundaryShape::Natural && map.isometric_iterations > 0) refine(mesh, map, degenerate_ratio, chart);
   summarize_stretch(mesh, chart);
+  chart.box_fill = chart_box(chart).fill;
   return ChartStatus::Valid;
 }
 

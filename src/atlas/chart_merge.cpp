@@ -49,6 +49,7 @@ struct UnionTask {
   std::vector<int> faces;  // sorted
   int component = 0;
   double limit = INFINITY, face_limit = INFINITY;
+  double min_fill = 0;  // of its smallest box (ChartBox::fill)
 };
 
 struct UnionResult {
@@ -64,7 +65,7 @@ UnionResult solve_union(const MeshData& input, const CleanMesh& clean, const Cha
   r.merged.summary.component = task.component;
   if (flatten_chart(r.merged, options.chart_map, options.degenerate_ratio) != ChartStatus::Valid) return r;
   r.stretch = r.merged.summary.face_stretch_p95;
-  r.valid = within_stretch(r.merged.summary, task.limit, task.face_limit) &&
+  r.valid = within_stretch(r.merged.summary, task.limit, task.face_limit) && r.merged.box_fill >= task.min_fill &&
             (static_cast<long>(task.faces.size()) < kSparseMinFaces || packs_well(chart_box(r.merged), clean.surface_area));
   return r;
 }
@@ -180,6 +181,13 @@ std::vector<Proposal> propose(const MergeContext& ctx, double bound, int wanted,
     p.task.limit = small ? std::max(bound, charts[d].summary.face_stretch_p95) : bound;
     // Down to max_charts (wanted > 0) only validity bounds a union.
     p.task.face_limit = wanted > 0 ? INFINITY : ctx.options.max_face_stretch;
+    // Compact charts pack: a union may not fill its box much less than its
+    // two charts fill theirs (area-weighted), so a thin trim is not merged
+    // onto a panel at an angle, nor two panels into an L (thresholds.h).
+    // Down to max_charts the user asked for fewer charts, whatever shape.
+    const double ac = charts[c].summary.area_3d, ad = charts[d].summary.area_3d;
+    if (wanted == 0 && ac + ad > 0)
+      p.task.min_fill = std::min(kMergeMinFill, kMergeFillKeep * (ac * charts[c].box_fill + ad * charts[d].box_fill) / (ac + ad));
     props.push_back(std::move(p));
   }
   return props;

@@ -31,6 +31,11 @@ constexpr int kSparseMinFaces = 64;
 constexpr double kSparseMinShare = 0.005;
 
 // --- Merging (chart_merge.cpp) ---
+// A union must fill at least kMergeFillKeep of the area-weighted box fill of
+// its two charts, or kMergeMinFill of its own box (whichever is less: two
+// ragged charts may still merge into a compact one).
+constexpr double kMergeFillKeep = 0.9;
+constexpr double kMergeMinFill = 0.8;
 // A failed pair is never retried when its union's stretch was more than this
 // many times as far above 1 as the bound: on the assets such pairs failed on
 // every retry as the neighbour grew (spot: 2.29, then 2.07, 2.06, 1.89), and
