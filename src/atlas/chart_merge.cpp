@@ -85,16 +85,26 @@ struct MergeContext {
   const CleanMesh& clean;
   const ChartOptions& options;
   BatchWorkers& workers;
+  // Edges whose faces' normals are closer than this (the segmentation's
+  // sharp angle) join charts; across sharper ones (a box's edges, a
+  // panel's folded rim) charts stay apart, as texture artists cut there.
+  double cos_sharp = -2;
 };
 
-// The neighbour chart `c` shares most glued edges with, among the pairs not failed; -1 if none.
+// The neighbour chart `c` shares most glued edges with, counting only edges
+// that are not sharp (but every edge of a sliver), among the pairs not
+// failed; -1 if none.
 int best_neighbour(const MergeContext& ctx, const std::vector<int>& owner, const FlatChart& chart, int c,
                    const PairMemory& memory) {
   std::map<int, int> shared;
+  // A sliver (under min_chart_faces) may join across a sharp edge: alone it
+  // is a chart no one wants.
+  const double cos_sharp = static_cast<int>(chart.mesh.faces.size()) < ctx.options.min_chart_faces ? -2 : ctx.cos_sharp;
   for (int f : chart.mesh.faces)
     for (int k = 0; k < 3; ++k) {
       const int g = ctx.clean.glued[3 * f + k];
-      if (g >= 0 && owner[g] >= 0 && owner[g] != c) ++shared[owner[g]];
+      if (g >= 0 && owner[g] >= 0 && owner[g] != c && ctx.clean.normal[f].dot(ctx.clean.normal[g]) >= cos_sharp)
+        ++shared[owner[g]];
     }
   int best = -1, most = 0;
   for (const auto& [d, n] : shared)
@@ -304,7 +314,8 @@ void merge_charts(const MeshData& input, const CleanMesh& clean, const ChartOpti
   std::vector<char> gone(charts.size(), 0);
   // The cores (at most 8), kept for every pass of every phase.
   BatchWorkers workers(parallel_parts(std::int64_t{1} << 30, 1));
-  const MergeContext ctx{input, clean, options, workers};
+  const bool cones = options.segmentation == Segmentation::NormalCones && options.seams.empty();
+  const MergeContext ctx{input, clean, options, workers, cones ? std::cos(options.sharp_angle_deg * M_PI / 180) : -2.0};
   PairMemory memory;
   memory.bound = options.max_stretch;
   // Merging costs a solve of every union tried: a budget of faces in all

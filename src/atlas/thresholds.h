@@ -10,7 +10,7 @@ namespace intrinsic::detail {
 // --- Sparse charts (packs_well, atlas_packing.cpp) ---
 // A chart must fill at least this fraction of its smallest bounding box: a
 // ring, a C or a spiral fills less and wastes the rest of its box.
-constexpr double kMinBoxFill = 0.15;
+constexpr double kMinBoxFill = 0.5;
 // ... and at least this fraction of the square on its box's longer side
 // (the square the packer must find room for) ...
 constexpr double kMinSquareFill = 0.15;
