@@ -33,6 +33,12 @@ struct CleanMesh {
   std::vector<double> area;
   double surface_area = 0;  // the sum of `area`, in face order
   std::vector<Eigen::Vector3d> centroid;  // per face: the mean of its corners
+  // Per face: its place among all faces ordered by their corners' positions
+  // (each face's corners sorted, then compared lexicographically), and the
+  // faces in that order. Traversals break ties by it, never by the face's
+  // index, so the charts do not depend on the order faces and vertices are
+  // listed in.
+  std::vector<int> rank, ranked;
   std::vector<int> component;  // per face: connected component (faces sharing vertices)
   int components = 0;
   AtlasCleaning cleaning;

@@ -61,6 +61,27 @@ void face_geometry(const MeshData& in, double ratio, CleanMesh& m) {
   for (double a : m.area) m.surface_area += a;
 }
 
+// CleanMesh::rank and ranked: faces ordered by their corners' positions
+// (ties, faces on the same corners, by index).
+void rank_faces(const MeshData& in, CleanMesh& m) {
+  const int nf = static_cast<int>(in.F.rows());
+  using Key = std::array<double, 9>;
+  std::vector<Key> key(nf);
+  for (int f = 0; f < nf; ++f) {
+    std::array<Eigen::Vector3d, 3> c = {in.V.row(in.F(f, 0)), in.V.row(in.F(f, 1)), in.V.row(in.F(f, 2))};
+    std::sort(c.begin(), c.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    });
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d) key[f][3 * k + d] = c[k][d];
+  }
+  m.ranked.resize(nf);
+  std::iota(m.ranked.begin(), m.ranked.end(), 0);
+  std::sort(m.ranked.begin(), m.ranked.end(), [&](int a, int b) { return key[a] != key[b] ? key[a] < key[b] : a < b; });
+  m.rank.assign(nf, 0);
+  for (int k = 0; k < nf; ++k) m.rank[m.ranked[k]] = k;
+}
+
 // Manifold edges (exactly two good faces) as pairs of half-edges, from the
 // half-edges of good faces sorted by undirected edge; counts the others and
 // the inconsistently listed ones.
@@ -251,6 +272,7 @@ CleanMesh clean_mesh(const MeshData& input, const ChartOptions& options) {
   check_input(input);
   CleanMesh m;
   face_geometry(input, options.degenerate_ratio, m);
+  rank_faces(input, m);
   orient_and_glue(input, options.reorient, m);
   count_components(input, m);
   return m;

@@ -18,12 +18,14 @@
 namespace intrinsic::detail {
 namespace {
 
-// The glued neighbours of face f, in increasing face order (-1 last): the
-// traversals below then do not depend on where each face's listing starts
-// or on its winding (a face written reversed lists its edges in another order).
+// The glued neighbours of face f, in increasing rank (-1 last): the
+// traversals below then depend neither on where each face's listing starts,
+// its winding (a face written reversed lists its edges in another order),
+// nor on the order of the faces (CleanMesh::rank).
 std::array<int, 3> neighbours(const CleanMesh& m, int f) {
   std::array<int, 3> g = {m.glued[3 * f], m.glued[3 * f + 1], m.glued[3 * f + 2]};
-  std::sort(g.begin(), g.end(), [](int a, int b) { return (a < 0 ? INT32_MAX : a) < (b < 0 ? INT32_MAX : b); });
+  std::sort(g.begin(), g.end(),
+            [&](int a, int b) { return (a < 0 ? INT32_MAX : m.rank[a]) < (b < 0 ? INT32_MAX : m.rank[b]); });
   return g;
 }
 
@@ -37,13 +39,13 @@ struct Grower {
 
   // Grows chart `id` from `seed`; returns its faces (sorted).
   std::vector<int> grow(int seed, int id) {
-    using Item = std::pair<double, int>;  // (cost, face): smallest cost first, then smallest face
+    using Item = std::pair<double, int>;  // (cost, rank): smallest cost first, then smallest rank
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     std::vector<int> faces;
-    heap.emplace(0.0, seed);
+    heap.emplace(0.0, m.rank[seed]);
     while (!heap.empty()) {
-      const int f = heap.top().second;
+      const int f = m.ranked[heap.top().second];
       heap.pop();
       if (label[f] >= 0) continue;
       if (!faces.empty() && m.normal[f].dot(sum.normalized()) < cos_cone) continue;
@@ -54,7 +56,7 @@ struct Grower {
       for (int c = 0; c < 3; ++c) {
         const int g = m.glued[3 * f + c];
         if (g < 0 || label[g] >= 0 || m.normal[f].dot(m.normal[g]) < cos_sharp) continue;
-        heap.emplace(1 - m.normal[g].dot(mean), g);
+        heap.emplace(1 - m.normal[g].dot(mean), m.rank[g]);
       }
     }
     for (int f : faces)
@@ -86,12 +88,11 @@ int farthest(const CleanMesh& m, const std::vector<int>& faces, const ChartFaceI
 // neighbours in one other chart (a tooth of a ragged boundary) moves there,
 // unless one of those two edges is sharp. It has at most one neighbour left
 // in its own chart, so that chart stays connected. A few passes, in face
-// order (deterministic).
+// order of rank (deterministic, whatever order the faces are listed in).
 void straighten(const CleanMesh& m, double cos_sharp, std::vector<int>& label) {
-  const int nf = static_cast<int>(label.size());
   for (int pass = 0; pass < 4; ++pass) {
     int moved = 0;
-    for (int f = 0; f < nf; ++f) {
+    for (int f : m.ranked) {
       if (label[f] < 0) continue;
       int other[3];
       for (int c = 0; c < 3; ++c) {
@@ -118,7 +119,7 @@ std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& cl
   Grower g{input, clean, components ? -2.0 : std::cos(options.max_normal_deviation_deg * M_PI / 180),
            components ? -2.0 : std::cos(options.sharp_angle_deg * M_PI / 180), std::vector<int>(nf, -1), {}};
   std::vector<std::vector<int>> charts;
-  int next = 0;  // lowest face that may still be unassigned
+  int next = 0;  // lowest rank that may still be unassigned
   while (true) {
     int seed = -1;
     while (!g.frontier.empty() && seed < 0) {
@@ -126,7 +127,8 @@ std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& cl
       g.frontier.pop_front();
     }
     while (seed < 0 && next < nf) {
-      if (clean.good[next] && g.label[next] < 0) seed = next;
+      const int f = clean.ranked[next];
+      if (clean.good[f] && g.label[f] < 0) seed = f;
       ++next;
     }
     if (seed < 0) break;
@@ -144,7 +146,10 @@ std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& cl
 
 std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::vector<int>& faces) {
   const ChartFaceIndex index(faces, static_cast<int>(clean.glued.size() / 3));
-  const int a = farthest(clean, faces, index, faces.front());
+  // Faces by rank: the split does not depend on the faces' order.
+  std::vector<int> by_rank = faces;
+  std::sort(by_rank.begin(), by_rank.end(), [&](int x, int y) { return clean.rank[x] < clean.rank[y]; });
+  const int a = farthest(clean, faces, index, by_rank.front());
   const int b = farthest(clean, faces, index, a);
   // Two fronts grown together by distance (Dijkstra over the path through
   // face centroids): each face goes to the nearer of a and b, so the cut
@@ -153,12 +158,13 @@ std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::
   // connected.
   std::vector<int> side(faces.size(), -1);
   std::vector<double> dist(faces.size(), INFINITY);
-  using Item = std::pair<double, int>;  // (distance, face): nearest first, then smallest face
+  using Item = std::pair<double, int>;  // (distance, rank): nearest first, then smallest rank
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
-  dist[index(a)] = 0, side[index(a)] = 0, heap.emplace(0.0, a);
-  if (b != a) dist[index(b)] = 0, side[index(b)] = 1, heap.emplace(0.0, b);
+  dist[index(a)] = 0, side[index(a)] = 0, heap.emplace(0.0, clean.rank[a]);
+  if (b != a) dist[index(b)] = 0, side[index(b)] = 1, heap.emplace(0.0, clean.rank[b]);
   while (!heap.empty()) {
-    const auto [d, f] = heap.top();
+    const double d = heap.top().first;
+    const int f = clean.ranked[heap.top().second];
     heap.pop();
     const int kf = index(f);
     if (d > dist[kf]) continue;
@@ -166,7 +172,7 @@ std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::
       const int k = g < 0 ? -1 : index(g);
       if (k < 0) continue;
       const double dg = d + (clean.centroid[g] - clean.centroid[f]).norm();
-      if (dg < dist[k]) dist[k] = dg, side[k] = side[kf], heap.emplace(dg, g);
+      if (dg < dist[k]) dist[k] = dg, side[k] = side[kf], heap.emplace(dg, clean.rank[g]);
     }
   }
   // Teeth: a face with two of its neighbours on the other side goes there
@@ -174,7 +180,8 @@ std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::
   // passes in face order.
   for (int pass = 0; pass < 4; ++pass) {
     int moved = 0;
-    for (size_t k = 0; k < faces.size(); ++k) {
+    for (int f : by_rank) {
+      const int k = index(f);
       if (side[k] < 0 || faces[k] == a || faces[k] == b) continue;
       int other = 0;
       for (int g : neighbours(clean, faces[k])) {
@@ -187,9 +194,9 @@ std::array<std::vector<int>, 2> split_in_two(const CleanMesh& clean, const std::
   }
   std::array<std::vector<int>, 2> halves;
   for (size_t k = 0; k < faces.size(); ++k) halves[side[k] == 1 ? 1 : 0].push_back(faces[k]);
-  if (halves[1].empty()) {  // not connected or a == b: peel one face off
-    halves[1].push_back(halves[0].back());
-    halves[0].pop_back();
+  if (halves[1].empty()) {  // not connected or a == b: peel one face off (the last by rank)
+    halves[1].push_back(by_rank.back());
+    halves[0].erase(std::find(halves[0].begin(), halves[0].end(), by_rank.back()));
   }
   return halves;
 }
