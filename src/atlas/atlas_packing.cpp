@@ -56,6 +56,9 @@ ChartBox planar_chart_box(const ChartMesh& chart) {
 }
 
 bool packs_well(const ChartBox& box, double surface_area) {
+  // A box this small wastes little whatever the chart's shape (and the
+  // packer puts small masks into the gaps of large ones).
+  if (box.longer * box.shorter < kSparseMinShare * surface_area) return true;
   const double square_fill = box.fill * box.shorter / box.longer;  // of the square on the longer side
   return box.fill >= kMinBoxFill && (square_fill >= kMinSquareFill || box.fill >= kStripBoxFill) &&
          box.longer * box.longer <= kMaxSideOverSurface * kMaxSideOverSurface * surface_area;

@@ -49,10 +49,7 @@ detail::ChartStatus flatten_one(const MeshData& input, const detail::CleanMesh& 
   const double surface_area = clean.surface_area;
   chart.mesh = detail::chart_mesh(input, clean, faces);
   chart.summary.component = clean.component[faces.front()];
-  double area = 0;
-  for (int f : faces) area += clean.area[f];
-  const bool packs = !own && static_cast<long>(faces.size()) >= detail::kSparseMinFaces &&
-                     area >= detail::kSparseMinShare * surface_area;
+  const bool packs = !own && static_cast<long>(faces.size()) >= detail::kSparseMinFaces;
   if (packs && !detail::packs_well(detail::planar_chart_box(chart.mesh), surface_area))
     return detail::ChartStatus::Sparse;
   detail::ChartStatus status = detail::flatten_chart(chart, options.chart_map, options.degenerate_ratio);

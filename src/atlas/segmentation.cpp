@@ -14,6 +14,7 @@
 #include <queue>
 
 #include "atlas/atlas_internal.h"
+#include "atlas/thresholds.h"
 
 namespace intrinsic::detail {
 namespace {
@@ -110,6 +111,77 @@ void straighten(const CleanMesh& m, double cos_sharp, std::vector<int>& label) {
   }
 }
 
+
+// Each chart's most interior face (the farthest, in glued steps, from its
+// border; the lowest rank on ties), from a search started at every border
+// face at once.
+std::vector<int> interior_faces(const CleanMesh& m, const std::vector<int>& label, int charts) {
+  const int nf = static_cast<int>(label.size());
+  std::vector<int> depth(nf, -1);
+  std::deque<int> queue;
+  for (int f : m.ranked) {
+    if (label[f] < 0) continue;
+    bool border = false;
+    for (int c = 0; c < 3; ++c) border |= m.glued[3 * f + c] < 0 || label[m.glued[3 * f + c]] != label[f];
+    if (border) depth[f] = 0, queue.push_back(f);
+  }
+  while (!queue.empty()) {
+    const int f = queue.front();
+    queue.pop_front();
+    for (int g : neighbours(m, f))
+      if (g >= 0 && depth[g] < 0 && label[g] == label[f]) depth[g] = depth[f] + 1, queue.push_back(g);
+  }
+  std::vector<int> seed(charts, -1);
+  for (int f : m.ranked)
+    if (label[f] >= 0 && (seed[label[f]] < 0 || depth[f] > depth[seed[label[f]]])) seed[label[f]] = f;
+  return seed;
+}
+
+// One step of a Lloyd relaxation of the charts (as variational shape
+// approximation does): every chart reseeded at its most interior face and
+// all of them regrown at once, each face going to the chart that reaches it
+// at the least cost: its normal's deviation from the chart's mean normal
+// plus kCompactWeight times its path length from the seed over the chart's
+// radius, within the chart's cone and never across a sharp edge. The charts
+// become compact cells whose borders run along creases and bisectors, not
+// along the ragged edge of a cone; each stays connected (a face joins from a
+// neighbour of its own chart). Faces no chart reaches are left at -1.
+std::vector<int> regrow(const CleanMesh& m, const std::vector<int>& label, int charts, double cos_cone,
+                        double cos_sharp) {
+  const int nf = static_cast<int>(label.size());
+  std::vector<Eigen::Vector3d> normal(charts, Eigen::Vector3d::Zero());
+  std::vector<double> area(charts, 0.0);
+  for (int f : m.ranked)
+    if (label[f] >= 0) normal[label[f]] += m.area[f] * m.normal[f], area[label[f]] += m.area[f];
+  for (Eigen::Vector3d& n : normal) n = n.norm() > 0 ? n.normalized() : n;
+  struct Item {
+    double cost;
+    int rank, chart;
+    double path;
+    bool operator>(const Item& o) const { return cost != o.cost ? cost > o.cost : rank > o.rank; }
+  };
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  const std::vector<int> seed = interior_faces(m, label, charts);
+  for (int c = 0; c < charts; ++c)
+    if (seed[c] >= 0) heap.push({0.0, m.rank[seed[c]], c, 0.0});
+  std::vector<int> out(nf, -1);
+  while (!heap.empty()) {
+    const Item it = heap.top();
+    heap.pop();
+    const int f = m.ranked[it.rank];
+    if (out[f] >= 0) continue;
+    out[f] = it.chart;
+    const double radius = std::sqrt(area[it.chart] / M_PI) + 1e-300;
+    for (int g : neighbours(m, f)) {
+      if (g < 0 || out[g] >= 0 || m.normal[f].dot(m.normal[g]) < cos_sharp) continue;
+      const double deviation = 1 - m.normal[g].dot(normal[it.chart]);
+      if (1 - deviation < cos_cone) continue;
+      const double path = it.path + (m.centroid[g] - m.centroid[f]).norm();
+      heap.push({deviation + kCompactWeight * path / radius, m.rank[g], it.chart, path});
+    }
+  }
+  return out;
+}
 }  // namespace
 
 std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& clean, const ChartOptions& options) {
@@ -135,6 +207,15 @@ std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& cl
     charts.push_back(g.grow(seed, static_cast<int>(charts.size())));
   }
   if (components) return charts;
+  // Relaxed toward compact charts; faces the regrown charts leave out start
+  // charts of their own, grown as above.
+  int count = static_cast<int>(charts.size());
+  for (int step = 0; step < kRelaxSteps; ++step) {
+    g.label = regrow(clean, g.label, count, g.cos_cone, g.cos_sharp);
+    for (int f : clean.ranked)
+      if (clean.good[f] && g.label[f] < 0) g.grow(f, count++);
+  }
+  charts.resize(count);
   straighten(clean, g.cos_sharp, g.label);
   std::vector<std::vector<int>> straight(charts.size());
   for (int f = 0; f < nf; ++f)

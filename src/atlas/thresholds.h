@@ -21,14 +21,25 @@ constexpr double kStripBoxFill = 0.5;
 // Its box's longer side is at most this many times the side of a square of
 // the whole surface's area: a longer chart alone would keep the layout
 // under 1 / kMaxSideOverSurface^2 = 25% full.
-constexpr double kMaxSideOverSurface = 2;
-// Only charts of at least this many faces and this share of the surface are
-// tested (and split) for sparseness: the packer puts small masks into the
-// gaps of the large ones, so their boxes hardly matter (on a 1M-vertex
-// sphere, 98 splits of slivers under 0.5% left the utilization unchanged to
-// 13 digits, with 141 charts instead of 45).
-constexpr int kSparseMinFaces = 64;
+constexpr double kMaxSideOverSurface = 1;
+// Only charts of at least this many faces whose box covers at least this
+// share of the surface's area are tested (and split) for sparseness: the
+// packer puts small masks into the gaps of the large ones, so small boxes
+// hardly matter (on a 1M-vertex sphere, 98 splits of slivers under 0.5%
+// left the utilization unchanged to 13 digits, with 141 charts instead of
+// 45), while a thin ring or arc of little area (a lid's rim) spans a box
+// that keeps the layout half empty.
+constexpr int kSparseMinFaces = 4;
 constexpr double kSparseMinShare = 0.005;
+
+// --- Segmentation (segmentation.cpp) ---
+// Lloyd steps of the charts grown by normal cones: each regrows every chart
+// at once from its most interior face.
+constexpr int kRelaxSteps = 1;
+// A face's cost of joining a chart in those steps: its normal's deviation
+// (1 - cos) plus this times its path length from the seed over the chart's
+// radius: 0 gives the cones' ragged cells, larger values rounder ones.
+constexpr double kCompactWeight = 0.5;
 
 // --- Merging (chart_merge.cpp) ---
 // A union must fill at least kMergeFillKeep of the area-weighted box fill of
