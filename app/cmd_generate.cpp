@@ -18,8 +18,10 @@ void register_generate(CLI::App& app, Runner& run) {
   CLI::App* cmd = app.add_subcommand("generate", "Write a built-in irregular test surface");
   cmd->add_option("surface", a->name, "wave | cap | flat | strip | two-disks | sphere | torus | genus2 (closed: for `intrinsic atlas`) | "
                   "textured (a closed surface in many tiny textured charts, for `atlas --transfer-textures`) | "
-                  "parts (many closed and open machine-like parts, for `atlas` at scale)")
-      ->check(CLI::IsMember({"wave", "cap", "flat", "strip", "two-disks", "sphere", "torus", "genus2", "textured", "parts"}))
+                  "parts (many closed and open machine-like parts, for `atlas` at scale) | "
+                  "plate | box | l-panel | panel-strip | cylinder | rectangle (CAD-like parts and flat panels, for `atlas` layouts)")
+      ->check(CLI::IsMember({"wave", "cap", "flat", "strip", "two-disks", "sphere", "torus", "genus2", "textured", "parts",
+                             "plate", "box", "l-panel", "panel-strip", "cylinder", "rectangle"}))
       ->required();
   cmd->add_option("-o,--output", a->output, "Output mesh (.obj or .ply; textured: .glb, .gltf or .obj with .mtl and .png)")
       ->required();

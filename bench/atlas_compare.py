@@ -26,14 +26,29 @@ way, twice where the two overlap:
   and maxima, not in the UV scale nor the means. When `metrics` reports
   the same keys, the two must agree to 1e-6 relative or a warning is
   printed.
+- here too, per chart (`chart_measures`), with charts as `metrics` counts
+  them (faces joined through UV edges two faces share, corners identified
+  by UV and 3D position; a count that differs from `metrics`' is a
+  warning): compactness, a chart's UV area over the area of its smallest
+  enclosing rectangle of any orientation (hull of its UVs, every hull edge
+  direction tried), 1 for a rectangle, the UV-area-weighted mean over the
+  charts with UV area; and border turning, at each vertex of a chart's
+  boundary (edges one face of the chart uses) the angle between the
+  incoming and outgoing boundary edges (0 straight, 180 a reversal),
+  reported as the share of boundary vertices over the atlas turning more
+  than 60 degrees (vertices with other than two boundary edges in their
+  chart, where a chart touches itself, are left out).
 
 Table columns per tool: charts, utilization, seam length / sqrt(3D area),
-Sander L2, p95 and max face stretch, mean anisotropy, flipped (folded or
-collapsed triangles), overlapping triangles, seconds. On our row,
+Sander L2, p95 and max face stretch, mean anisotropy, compactness, share of
+border turns over 60 degrees, flipped (folded or collapsed triangles),
+overlapping triangles, seconds. On our row,
 "dominates" says whether ours is at least as good as xatlas on every count
-of DOMINANCE (below), or which counts it loses. A summary line follows:
+of DOMINANCE (below), or which counts it loses. Two summary lines follow:
 medians of the ratios ours / xatlas (charts, seam, utilization) and on how
-many meshes ours dominates; another for Blender, by the same rule.
+many meshes ours dominates; medians of ours and of xatlas's compactness and
+turning, and on how many meshes ours is at least as compact; the same two
+for Blender.
 
 Times: computation only, median of --runs runs. Ours: the report's
 clean+segment+flatten+merge+pack (no read or write); xatlas: addMesh and
@@ -259,13 +274,177 @@ def singular_values(V, VT, F, FT):
     return 0.5 * twice, s1, np.nan_to_num(s2, nan=0.0)
 
 
+def uv_corners(V, VT, F, FT):
+    """Per face corner (k, 3) an id of its texture coordinate as `metrics`
+    identifies them (src/metrics/uv_mesh.cpp, uv_charts.cpp): corners with
+    equal UV and equal 3D position are one, whatever their vt index; a corner
+    with a non-finite UV or position stands alone (per vt and vertex index)."""
+    key = np.concatenate([VT[FT].reshape(-1, 2), V[F].reshape(-1, 3)], axis=1) + 0.0  # -0.0 -> 0.0
+    finite = np.isfinite(key).all(axis=1)
+    ids = np.empty(len(key), np.int64)
+    k = np.ascontiguousarray(key[finite])
+    _, ids[finite] = np.unique(k.view(np.dtype((np.void, k.dtype.itemsize * 5))).ravel(), return_inverse=True)
+    if not finite.all():
+        pairs = np.stack([FT.ravel()[~finite], F.ravel()[~finite]], axis=1)
+        _, inv = np.unique(pairs, axis=0, return_inverse=True)
+        ids[~finite] = finite.sum() + inv.ravel()
+    return ids.reshape(-1, 3)
+
+
+def components(n, a, b):
+    """Connected-component label (0..count-1) of n nodes joined by the pairs
+    (a[i], b[i]): hooking of roots and pointer jumping, in numpy."""
+    lab = np.arange(n)
+    while len(a):
+        la, lb = lab[a], lab[b]
+        if (la == lb).all():
+            break
+        m = np.minimum(la, lb)
+        np.minimum.at(lab, la, m)
+        np.minimum.at(lab, lb, m)
+        while True:
+            nxt = lab[lab]
+            if (nxt == lab).all():
+                break
+            lab = nxt
+    return np.unique(lab, return_inverse=True)[1].ravel()
+
+
+def uv_charts(T):
+    """Chart per face, as `metrics`: faces are joined through a UV edge (two
+    corner ids of T) that exactly two face sides use; an edge used by more
+    joins nothing."""
+    m = len(T)
+    a, b = T.ravel(), T[:, [1, 2, 0]].ravel()
+    face = np.repeat(np.arange(m), 3)
+    keep = a != b
+    lo, hi, face = np.minimum(a, b)[keep], np.maximum(a, b)[keep], face[keep]
+    order = np.lexsort((hi, lo))
+    lo, hi, face = lo[order], hi[order], face[order]
+    start = np.r_[True, (lo[1:] != lo[:-1]) | (hi[1:] != hi[:-1])]
+    first = np.flatnonzero(start)
+    count = np.diff(np.r_[first, len(lo)])
+    two = first[count == 2]
+    return components(m, face[two], face[two + 1])
+
+
+def convex_hull(P):
+    """Counter-clockwise hull of the rows of P sorted by (x, y), collinear
+    points dropped (Andrew's monotone chain)."""
+    pts = P.tolist()
+    if len(pts) < 3:
+        return P
+
+    def chain(seq):
+        h = []
+        for p in seq:
+            while len(h) >= 2 and ((h[-1][0] - h[-2][0]) * (p[1] - h[-2][1])
+                                   - (h[-1][1] - h[-2][1]) * (p[0] - h[-2][0])) <= 0:
+                h.pop()
+            h.append(p)
+        return h
+
+    lower, upper = chain(pts), chain(reversed(pts))
+    return np.array(lower[:-1] + upper[:-1], float).reshape(-1, 2)
+
+
+def min_rectangle_area(H):
+    """Area of the smallest rectangle, of any orientation, enclosing the convex
+    polygon H (ccw rows): one side of it lies along a hull edge (Freeman and
+    Shapira 1975), so every hull edge direction is tried (the directions the
+    rotating calipers visit; here all projections at once, O(h^2))."""
+    if len(H) < 3:
+        return 0.0
+    P = H - H[0]
+    E = np.roll(P, -1, axis=0) - P
+    D = E / np.linalg.norm(E, axis=1)[:, None]
+    U = P @ D.T  # along each edge direction
+    W = P @ np.stack([-D[:, 1], D[:, 0]], axis=1).T  # across it
+    return float(((U.max(0) - U.min(0)) * (W.max(0) - W.min(0))).min())
+
+
+def chart_measures(V, VT, F, FT):
+    """Charts as `metrics` counts them (components of faces joined through UV
+    edges, less those whose faces are all degenerate in 3D), their compactness
+    and the turning of their borders:
+    - compactness: per chart its UV area over the area of its smallest
+      enclosing rectangle (of the hull of its UVs, any orientation); the
+      UV-area-weighted mean over charts with UV area (a chart folded over
+      itself can exceed 1);
+    - turning_over_60: the share of boundary vertices (a chart's corner ids
+      on the edges exactly one face of that chart uses) whose turning angle,
+      between the incoming and the outgoing boundary edge, exceeds 60 degrees
+      (0 straight, 180 a reversal). A boundary vertex with more or fewer than
+      two boundary edges in its chart (charts touching themselves at a
+      vertex; edges used three times) has no single turn and is left out of
+      both counts; a zero-length boundary edge counts as straight.
+    Returns (charts, compactness, turning_over_60); 0.0 where undefined."""
+    T = uv_corners(V, VT, F, FT)
+    chart = uv_charts(T)
+    nc = int(chart.max()) + 1
+    X = [V[F[:, k]] for k in range(3)]
+    longest = np.max([np.einsum("ij,ij->i", d, d) for d in (X[1] - X[0], X[2] - X[1], X[0] - X[2])], axis=0)
+    with np.errstate(invalid="ignore"):
+        solid = np.linalg.norm(np.cross(X[1] - X[0], X[2] - X[0]), axis=1) > 1e-12 * longest
+    counted = np.zeros(nc, bool)
+    counted[chart[solid]] = True
+    U = [VT[FT[:, k]] for k in range(3)]
+    d1, d2 = U[1] - U[0], U[2] - U[0]
+    area = 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+    area = np.where(np.isfinite(area), area, 0.0)
+    chart_area = np.bincount(chart, area, nc)
+
+    # Compactness: the (chart, corner) points of the charts with area, finite,
+    # sorted by chart then (u, v); a hull and its rectangle per chart.
+    uv_of = np.empty((T.max() + 1, 2))
+    uv_of[T.ravel()] = VT[FT.ravel()]
+    cc = np.unique(np.stack([np.repeat(chart, 3), T.ravel()], axis=1), axis=0)
+    pts = uv_of[cc[:, 1]]
+    keep = (chart_area[cc[:, 0]] > 0) & np.isfinite(pts).all(axis=1)
+    cc, pts = cc[keep], pts[keep]
+    order = np.lexsort((pts[:, 1], pts[:, 0], cc[:, 0]))
+    cc, pts = cc[order], pts[order]
+    cuts = np.flatnonzero(np.diff(cc[:, 0])) + 1
+    num = den = 0.0
+    for c, P in zip(cc[np.r_[0, cuts], 0] if len(cc) else [], np.split(pts, cuts)):
+        rect = min_rectangle_area(convex_hull(P))
+        if rect > 0:
+            num += chart_area[c] * chart_area[c] / rect
+            den += chart_area[c]
+    compactness = num / den if den > 0 else 0.0
+
+    # Turning: boundary edges per chart (corner pairs one face of the chart uses).
+    a, b = T.ravel(), T[:, [1, 2, 0]].ravel()
+    c3 = np.repeat(chart, 3)
+    keep = (a != b) & counted[c3]
+    e = np.unique(np.stack([c3[keep], np.minimum(a, b)[keep], np.maximum(a, b)[keep]], axis=1), axis=0,
+                  return_counts=True)
+    e = e[0][e[1] == 1]
+    # (chart, vertex, neighbour), twice per edge, grouped by (chart, vertex).
+    ends = np.concatenate([e[:, [0, 1, 2]], e[:, [0, 2, 1]]])
+    ends = ends[np.lexsort((ends[:, 1], ends[:, 0]))]
+    start = np.r_[True, (ends[1:, 0] != ends[:-1, 0]) | (ends[1:, 1] != ends[:-1, 1])] if len(ends) else []
+    first = np.flatnonzero(start)
+    degree = np.diff(np.r_[first, len(ends)])
+    two = first[degree == 2]
+    if not len(two):
+        return int(counted.sum()), compactness, 0.0
+    v, p, n = uv_of[ends[two, 1]], uv_of[ends[two, 2]], uv_of[ends[two + 1, 2]]
+    d_in, d_out = v - p, n - v
+    cross = d_in[:, 0] * d_out[:, 1] - d_in[:, 1] * d_out[:, 0]
+    turn = np.degrees(np.arctan2(np.abs(cross), np.einsum("ij,ij->i", d_in, d_out)))
+    return int(counted.sum()), compactness, float(np.mean(turn > 60))
+
+
 def uv_measures(obj):
     """The stretch and seam measures of an atlas OBJ, by the names `metrics`
-    gives them. A collapsed UV face has infinite stretch: it counts in the
+    gives them, and the charts' count ("uv_charts", to check `metrics`'),
+    compactness and border turning (chart_measures). A collapsed UV face has infinite stretch: it counts in the
     percentiles and maxima and is left out of the means (as `metrics` does)."""
     V, VT, F, FT = read_uv_obj(obj)
     if len(F) == 0:
-        return {k: 1.0 for k in STRETCH_KEYS} | {"seam_length": 0.0, "area_3d": 0.0}
+        return {k: 1.0 for k in STRETCH_KEYS} | {"seam_length": 0.0, "area_3d": 0.0, "uv_charts": 0,
+                                                   "compactness": 0.0, "turning_over_60": 0.0}
     with np.errstate(divide="ignore", invalid="ignore"):
         A, s1, s2 = singular_values(V, VT, F, FT)
         inv1, inv2 = 1 / s1, np.where(s2 > 0, 1 / s2, np.inf)
@@ -279,6 +458,7 @@ def uv_measures(obj):
         r[f"face_stretch_p{p}"] = weighted_percentile(face, A, p / 100)
     r["seam_length"] = seam_length(V, VT, F, FT)
     r["area_3d"] = float(A.sum())
+    r["uv_charts"], r["compactness"], r["turning_over_60"] = chart_measures(V, VT, F, FT)
     return r
 
 
@@ -316,6 +496,10 @@ def metrics(cli, obj, name=""):
     mine = uv_measures(obj)
     cross_check(name, mine, m.get("stretch", {}), STRETCH_KEYS)
     cross_check(name, mine, a, ATLAS_KEYS)
+    if mine["uv_charts"] != a["charts"]:
+        print(f"warning: {name}: charts is {a['charts']} by `intrinsic metrics`, {mine['uv_charts']} by "
+              "atlas_compare.py (compactness and turning are over the latter)", file=sys.stderr, flush=True)
+    del mine["uv_charts"]
     r.update(mine)
     r["seam_per_sqrt_area"] = r["seam_length"] / math.sqrt(r["area_3d"])
     return r
@@ -446,8 +630,10 @@ def check(args, meshes):
 
 COLUMNS = [("charts", "{:d}"), ("utilization", "{:.1%}"), ("seam_per_sqrt_area", "{:.3g}"), ("sander_l2", "{:.3f}"),
            ("face_stretch_p95", "{:.3f}"), ("face_stretch_max", "{:.3g}"), ("anisotropy_mean", "{:.3f}"),
-           ("flipped", "{:d}"), ("overlapping", "{:d}"), ("seconds", "{:.2f}")]
-HEADERS = ["charts", "util", "seam/sqrtA", "L2", "p95", "max", "aniso", "flipped", "overlaps", "seconds"]
+           ("compactness", "{:.3f}"), ("turning_over_60", "{:.1%}"), ("flipped", "{:d}"), ("overlapping", "{:d}"),
+           ("seconds", "{:.2f}")]
+HEADERS = ["charts", "util", "seam/sqrtA", "L2", "p95", "max", "aniso", "compact", "turn>60", "flipped", "overlaps",
+           "seconds"]
 
 
 def dominance(rows):
@@ -475,11 +661,19 @@ def print_summary(results, markdown, peer="xatlas"):
     def med(k):
         return statistics.median(o[k] / x[k] for o, x in both if x[k] > 0)
 
+    def each(k, i):
+        return statistics.median(pair[i][k] for pair in both)
+
     wins = sum(1 for o, x in both if not failed(DOMINANCE, o, x))
+    compact = sum(1 for o, x in both if o["compactness"] >= x["compactness"])
     line = (f"ours / {peer}, medians over {len(both)} meshes: charts {med('charts'):.2f}, "
             f"seam {med('seam_length'):.2f}, utilization {med('utilization'):.2f}; "
             f"ours dominates on {wins} of {len(both)}")
+    shape = (f"ours vs {peer}, medians over {len(both)} meshes: compactness {each('compactness', 0):.3f} vs "
+             f"{each('compactness', 1):.3f}, turning over 60 degrees {each('turning_over_60', 0):.1%} vs "
+             f"{each('turning_over_60', 1):.1%}; ours at least as compact on {compact} of {len(both)}")
     print(("\n" if markdown else "") + line, flush=True)
+    print(("\n" if markdown else "") + shape, flush=True)
 
 
 def main():

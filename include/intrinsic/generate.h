@@ -69,8 +69,39 @@ Eigen::Vector3d textured_asset_colour(const Eigen::Vector3d& p);
 // (with NAME.mtl, map_Kd NAME.png beside it); all files or none.
 void write_textured_asset(const std::string& path, const TexturedAsset& asset);
 
+// Shapes whose good atlas layout is known (src/mesh/generate_cad.cpp), for
+// the atlas's layout tests: unjittered grids unless said, every vertex shared
+// by all the faces meeting at it, consistently oriented, closed ones outward.
+// A machined plate as CAD exporters write it: 4 x 3 x 0.2 around the origin,
+// 8 x 6 square cells whose borders carry k = max(1, 2 * rings / 5) points a
+// side; 16 of them drilled through (radius 0.3 of the side; a diagonal
+// pattern, seed % 3 shifts it). A drilled cell's top is its border joined to
+// the hole's 4k-point circle, a solid cell's is cut in diagonal bands: long
+// thin triangles. Closed, genus 16 (Euler characteristic -30).
+MeshData generate_drilled_plate(const GenerateOptions& o);
+// A closed box 2 x 1 x 0.5 around the origin, each side a grid of squares of
+// side 0.5 / max(1, rings / 3), each cut into two triangles: genus 0.
+MeshData generate_box(const GenerateOptions& o);
+// An open flat L in z = 0, [0,3]x[0,1] and [0,1]x[0,3], with the square hole
+// [0.4,0.6]^2 in its corner block: a grid of squares, 5 * max(1, rings / 8)
+// to a unit, the hole's cells missing. Two boundary loops.
+MeshData generate_l_panel(const GenerateOptions& o);
+// An open flat panel [0,2]^2 in z = 0 (a grid of max(2, rings)^2 squares)
+// and a strip 0.1 wide folded up at 90 degrees along its edge y = 2 (the
+// points (x, 2, z), z in [0, 0.1]), one sheet sharing that edge's vertices.
+MeshData generate_panel_with_strip(const GenerateOptions& o);
+// An open tube of radius 0.2 and length 4 along x (x in [-2, 2]; two boundary
+// loops): max(6, 6 * rings / 5) points around, each ring turned half a step
+// from the last, near-equilateral triangles.
+MeshData generate_long_cylinder(const GenerateOptions& o);
+// The rectangle [0,2]x[0,1] (a grid of 2n x n squares, n = max(1, rings / 2),
+// jittered: side points along their side only, corners fixed) turned 30
+// degrees counter-clockwise about the z axis: its sides are not on the axes.
+MeshData generate_flat_rectangle(const GenerateOptions& o);
+
 // By name: "flat", "cap", "wave", "strip", "two-disks", "sphere", "torus",
-// "genus2". Throws Error(Usage).
+// "genus2", "plate", "box", "l-panel", "panel-strip", "cylinder",
+// "rectangle". Throws Error(Usage).
 MeshData generate_surface(const std::string& name, const GenerateOptions& o);
 
 // A machine-like asset of many parts (src/mesh/generate_parts.cpp), the

@@ -112,6 +112,35 @@ void straighten(const CleanMesh& m, double cos_sharp, std::vector<int>& label) {
 }
 
 
+// Flat regions: faces joined across glued edges while their normals stay
+// within kPlanarDeg degrees of the region's first face (in rank order).
+// Each region's faces are listed together, the regions in rank order.
+struct FlatRegions {
+  std::vector<int> of;     // per face: region, -1 for bad faces
+  std::vector<int> start;  // region r's faces are faces[start[r] .. start[r + 1])
+  std::vector<int> faces;
+};
+FlatRegions flat_regions(const CleanMesh& m, double cos_sharp) {
+  const int nf = static_cast<int>(m.good.size());
+  const double cos_flat = std::cos(kPlanarDeg * M_PI / 180);
+  FlatRegions r{std::vector<int>(nf, -1), {0}, {}};
+  int count = 0;
+  for (int seed : m.ranked) {
+    if (!m.good[seed] || r.of[seed] >= 0) continue;
+    r.of[seed] = count;
+    const size_t first = r.faces.size();
+    r.faces.push_back(seed);
+    for (size_t i = first; i < r.faces.size(); ++i)
+      for (int g : neighbours(m, r.faces[i]))
+        if (g >= 0 && r.of[g] < 0 && m.normal[g].dot(m.normal[seed]) >= cos_flat &&
+            m.normal[g].dot(m.normal[r.faces[i]]) >= cos_sharp)
+          r.of[g] = count, r.faces.push_back(g);
+    r.start.push_back(static_cast<int>(r.faces.size()));
+    ++count;
+  }
+  return r;
+}
+
 // Each chart's most interior face (the farthest, in glued steps, from its
 // border; the lowest rank on ties), from a search started at every border
 // face at once.
@@ -142,12 +171,14 @@ std::vector<int> interior_faces(const CleanMesh& m, const std::vector<int>& labe
 // all of them regrown at once, each face going to the chart that reaches it
 // at the least cost: its normal's deviation from the chart's mean normal
 // plus kCompactWeight times its path length from the seed over the chart's
-// radius, within the chart's cone and never across a sharp edge. The charts
+// radius, within the chart's cone and never across a sharp edge; a flat
+// region (flat_regions) is taken whole by the first chart to reach it, so a
+// flat panel is never shared between charts. The charts
 // become compact cells whose borders run along creases and bisectors, not
 // along the ragged edge of a cone; each stays connected (a face joins from a
 // neighbour of its own chart). Faces no chart reaches are left at -1.
-std::vector<int> regrow(const CleanMesh& m, const std::vector<int>& label, int charts, double cos_cone,
-                        double cos_sharp) {
+std::vector<int> regrow(const CleanMesh& m, const FlatRegions& flat, const std::vector<int>& label, int charts,
+                        double cos_cone, double cos_sharp) {
   const int nf = static_cast<int>(label.size());
   std::vector<Eigen::Vector3d> normal(charts, Eigen::Vector3d::Zero());
   std::vector<double> area(charts, 0.0);
@@ -168,16 +199,24 @@ std::vector<int> regrow(const CleanMesh& m, const std::vector<int>& label, int c
   while (!heap.empty()) {
     const Item it = heap.top();
     heap.pop();
-    const int f = m.ranked[it.rank];
-    if (out[f] >= 0) continue;
-    out[f] = it.chart;
+    const int first = m.ranked[it.rank];
+    if (out[first] >= 0) continue;
+    // A flat region goes whole to the chart that reaches it first.
+    const int region = flat.of[first];
+    const int* begin = &flat.faces[flat.start[region]];
+    const int* end = &flat.faces[0] + flat.start[region + 1];
     const double radius = std::sqrt(area[it.chart] / M_PI) + 1e-300;
-    for (int g : neighbours(m, f)) {
-      if (g < 0 || out[g] >= 0 || m.normal[f].dot(m.normal[g]) < cos_sharp) continue;
-      const double deviation = 1 - m.normal[g].dot(normal[it.chart]);
-      if (1 - deviation < cos_cone) continue;
-      const double path = it.path + (m.centroid[g] - m.centroid[f]).norm();
-      heap.push({deviation + kCompactWeight * path / radius, m.rank[g], it.chart, path});
+    for (const int* p = begin; p != end; ++p) out[*p] = it.chart;
+    for (const int* p = begin; p != end; ++p) {
+      const int f = *p;
+      const double at = it.path + (m.centroid[f] - m.centroid[first]).norm();
+      for (int g : neighbours(m, f)) {
+        if (g < 0 || out[g] >= 0 || m.normal[f].dot(m.normal[g]) < cos_sharp) continue;
+        const double deviation = 1 - m.normal[g].dot(normal[it.chart]);
+        if (1 - deviation < cos_cone) continue;
+        const double path = at + (m.centroid[g] - m.centroid[f]).norm();
+        heap.push({deviation + kCompactWeight * path / radius, m.rank[g], it.chart, path});
+      }
     }
   }
   return out;
@@ -210,8 +249,9 @@ std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& cl
   // Relaxed toward compact charts; faces the regrown charts leave out start
   // charts of their own, grown as above.
   int count = static_cast<int>(charts.size());
+  const FlatRegions flat = flat_regions(clean, g.cos_sharp);
   for (int step = 0; step < kRelaxSteps; ++step) {
-    g.label = regrow(clean, g.label, count, g.cos_cone, g.cos_sharp);
+    g.label = regrow(clean, flat, g.label, count, g.cos_cone, g.cos_sharp);
     for (int f : clean.ranked)
       if (clean.good[f] && g.label[f] < 0) g.grow(f, count++);
   }

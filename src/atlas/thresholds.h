@@ -21,7 +21,7 @@ constexpr double kStripBoxFill = 0.5;
 // Its box's longer side is at most this many times the side of a square of
 // the whole surface's area: a longer chart alone would keep the layout
 // under 1 / kMaxSideOverSurface^2 = 25% full.
-constexpr double kMaxSideOverSurface = 1;
+constexpr double kMaxSideOverSurface = 2;
 // Only charts of at least this many faces whose box covers at least this
 // share of the surface's area are tested (and split) for sparseness: the
 // packer puts small masks into the gaps of the large ones, so small boxes
@@ -40,6 +40,11 @@ constexpr int kRelaxSteps = 1;
 // (1 - cos) plus this times its path length from the seed over the chart's
 // radius: 0 gives the cones' ragged cells, larger values rounder ones.
 constexpr double kCompactWeight = 0.5;
+
+// Faces whose normals are within this many degrees of a flat region's
+// first face belong to it (a CAD part's faces are flat to rounding; a
+// scan's neighbouring faces rarely stay within a degree for long).
+constexpr double kPlanarDeg = 1;
 
 // --- Merging (chart_merge.cpp) ---
 // A union must fill at least kMergeFillKeep of the area-weighted box fill of

@@ -318,7 +318,15 @@ MeshData generate_surface(const std::string& name, const GenerateOptions& o) {
   if (name == "wave") return generate_wavy_patch(o);
   if (name == "strip") return generate_sphere_strip(o);
   if (name == "two-disks") return generate_two_disks(o);
-  throw_usage("unknown surface '" + name + "' (use flat, cap, wave, strip, two-disks, sphere, torus or genus2)");
+  if (name == "plate") return generate_drilled_plate(o);
+  if (name == "box") return generate_box(o);
+  if (name == "l-panel") return generate_l_panel(o);
+  if (name == "panel-strip") return generate_panel_with_strip(o);
+  if (name == "cylinder") return generate_long_cylinder(o);
+  if (name == "rectangle") return generate_flat_rectangle(o);
+  throw_usage("unknown surface '" + name +
+              "' (use flat, cap, wave, strip, two-disks, sphere, torus, genus2, plate, box, l-panel, panel-strip, "
+              "cylinder or rectangle)");
 }
 
 }  // namespace intrinsic
