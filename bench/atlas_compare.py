@@ -396,9 +396,12 @@ def chart_measures(V, VT, F, FT):
 
     # Compactness: the (chart, corner) points of the charts with area, finite,
     # sorted by chart then (u, v); a hull and its rectangle per chart.
-    uv_of = np.empty((T.max() + 1, 2))
+    uv_of = np.empty((int(T.max()) + 1, 2))
     uv_of[T.ravel()] = VT[FT.ravel()]
-    cc = np.unique(np.stack([np.repeat(chart, 3), T.ravel()], axis=1), axis=0)
+    nt = int(T.max()) + 1
+    assert nc * nt * nt < 2 ** 63  # keys below pack (chart, corner[, corner]) in an int64
+    cc = np.unique(np.repeat(chart, 3) * nt + T.ravel())
+    cc = np.stack([cc // nt, cc % nt], axis=1)
     pts = uv_of[cc[:, 1]]
     keep = (chart_area[cc[:, 0]] > 0) & np.isfinite(pts).all(axis=1)
     cc, pts = cc[keep], pts[keep]
@@ -417,9 +420,10 @@ def chart_measures(V, VT, F, FT):
     a, b = T.ravel(), T[:, [1, 2, 0]].ravel()
     c3 = np.repeat(chart, 3)
     keep = (a != b) & counted[c3]
-    e = np.unique(np.stack([c3[keep], np.minimum(a, b)[keep], np.maximum(a, b)[keep]], axis=1), axis=0,
-                  return_counts=True)
-    e = e[0][e[1] == 1]
+    key, count = np.unique((c3[keep] * nt + np.minimum(a, b)[keep]) * nt + np.maximum(a, b)[keep],
+                           return_counts=True)
+    key = key[count == 1]
+    e = np.stack([key // (nt * nt), key // nt % nt, key % nt], axis=1)
     # (chart, vertex, neighbour), twice per edge, grouped by (chart, vertex).
     ends = np.concatenate([e[:, [0, 1, 2]], e[:, [0, 2, 1]]])
     ends = ends[np.lexsort((ends[:, 1], ends[:, 0]))]

@@ -152,13 +152,11 @@ ChartBox chart_box(const FlatChart& chart);
 // projection is about as sparse flattened; its natural map would be solved
 // only to be split).
 ChartBox planar_chart_box(const ChartMesh& chart);
-// What the packer takes without waste: a chart filling at least 15% of its
-// box (not a ring, a C or a spiral), and either 15% of the square on its
-// longer side or, elongated, half of its box (a straight strip packs
-// lengthwise: filling the square, the only test before, cut a long handle
-// across into dozens of slivers; a V or an L of thin arms does not pack),
-// whose longer side is at most twice the side of a square of the whole
-// surface's area (a longer one alone would keep the layout under 25% full).
+// What the packer takes without waste: a chart filling at least half its
+// box (not a ring, a C, an L or a spiral), whose longer side is at most
+// twice the side of a square of the whole surface's area (a longer one
+// alone would keep the layout under 25% full) unless it is a thin strip,
+// which packs lengthwise (thresholds.h).
 bool packs_well(const ChartBox& box, double surface_area);
 
 // Scales all charts by one factor, turns them and packs their texel masks

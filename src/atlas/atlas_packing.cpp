@@ -59,9 +59,11 @@ bool packs_well(const ChartBox& box, double surface_area) {
   // A box this small wastes little whatever the chart's shape (and the
   // packer puts small masks into the gaps of large ones).
   if (box.longer * box.shorter < kSparseMinShare * surface_area) return true;
-  const double square_fill = box.fill * box.shorter / box.longer;  // of the square on the longer side
-  return box.fill >= kMinBoxFill && (square_fill >= kMinSquareFill || box.fill >= kStripBoxFill) &&
-         box.longer * box.longer <= kMaxSideOverSurface * kMaxSideOverSurface * surface_area;
+  // A thin straight strip (a trim, a pipe cut open) is never cut across,
+  // however long: it packs lengthwise.
+  const bool strip = box.longer >= kStripAspect * box.shorter;
+  return box.fill >= kMinBoxFill &&
+         (strip || box.longer * box.longer <= kMaxSideOverSurface * kMaxSideOverSurface * surface_area);
 }
 
 double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping) {

@@ -49,7 +49,9 @@ detail::ChartStatus flatten_one(const MeshData& input, const detail::CleanMesh& 
   const double surface_area = clean.surface_area;
   chart.mesh = detail::chart_mesh(input, clean, faces);
   chart.summary.component = clean.component[faces.front()];
-  const bool packs = !own && static_cast<long>(faces.size()) >= detail::kSparseMinFaces;
+  // Components: the user's pieces, split only where invalid or over the stretch bound.
+  const bool packs = !own && options.segmentation == Segmentation::NormalCones &&
+                     static_cast<long>(faces.size()) >= detail::kSparseMinFaces;
   if (packs && !detail::packs_well(detail::planar_chart_box(chart.mesh), surface_area))
     return detail::ChartStatus::Sparse;
   detail::ChartStatus status = detail::flatten_chart(chart, options.chart_map, options.degenerate_ratio);
