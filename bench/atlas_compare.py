@@ -88,7 +88,7 @@ ROOT = os.path.dirname(HERE)
 # Change the test here; the docstring and the ctest follow.
 CHECK_CRITERIA = [
     ("utilization at least xatlasjs's", lambda o, x: o["utilization"] >= x["utilization"], "utilization"),
-    ("at most 0.6 of xatlasjs's charts", lambda o, x: o["charts"] <= 0.6 * x["charts"], "charts"),
+    ("no more charts than xatlasjs", lambda o, x: o["charts"] <= x["charts"], "charts"),
     ("p95 face stretch at most xatlasjs's + 0.02",
      lambda o, x: o["face_stretch_p95"] <= x["face_stretch_p95"] + 0.02, "face_stretch_p95"),
     ("Sander L2 at most xatlasjs's + 0.01", lambda o, x: o["sander_l2"] <= x["sander_l2"] + 0.01, "sander_l2"),
@@ -198,7 +198,7 @@ def read_uv_obj(path):
     """An atlas OBJ (v, vt, f v/vt; polygons fan-triangulated) as numpy arrays
     V (n,3), VT (m,2), F (k,3) and FT (k,3), 0-based."""
     V, VT, F, FT = [], [], [], []
-    with open(path) as f:
+    with open(path, errors="replace") as f:  # names in other encodings pass through
         for line in f:
             t = line.split()
             if not t:
