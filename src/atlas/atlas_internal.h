@@ -40,6 +40,7 @@ struct CleanMesh {
   // listed in.
   std::vector<int> rank, ranked;
   std::vector<int> component;  // per face: connected component (faces sharing vertices)
+  std::vector<double> component_diameter;  // per component: its bounding box's diagonal
   int components = 0;
   AtlasCleaning cleaning;
 };
@@ -99,8 +100,13 @@ struct ChartMesh {
   MeshData data;            // local vertices (positions of their input vertex), faces as written (reversed ones 0, 2, 1)
   long open_edges = 0;      // half-edges not glued to another face of the chart: must all be boundary edges
   double boundary_length = 0;  // 3D length of those half-edges
+  // Glued half-edges (3 f + c, both sides of each edge, sorted) kept open
+  // inside the chart: a seam left where a merge closed a tube (two charts
+  // meeting along two separate borders).
+  std::vector<int> cuts;
 };
-ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces);
+ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces,
+                     std::vector<int> cuts = {});
 
 // Why a chart cannot be shipped as it is.
 enum class ChartStatus { Valid, NotDisk, Refused, SolveFailed, Flipped, BoundaryCrossing, Sparse, Stretch };
@@ -154,10 +160,12 @@ ChartBox chart_box(const FlatChart& chart);
 ChartBox planar_chart_box(const ChartMesh& chart);
 // What the packer takes without waste: a chart filling at least half its
 // box (not a ring, a C, an L or a spiral), whose longer side is at most
-// twice the side of a square of the whole surface's area (a longer one
-// alone would keep the layout under 25% full) unless it is a thin strip,
-// which packs lengthwise (thresholds.h).
-bool packs_well(const ChartBox& box, double surface_area);
+// kMaxSideOverSurface times the side of a square of the whole surface's
+// area (a longer one forces a larger square than the charts fill), unless
+// it is a strip not much longer than its part is across in 3D (`part_diameter`,
+// its connected component's bounding box diagonal: a pipe, a trim, a
+// handle), which packs lengthwise, never cut across (thresholds.h).
+bool packs_well(const ChartBox& box, double surface_area, double part_diameter);
 
 // Scales all charts by one factor, turns them and packs their texel masks
 // with padding on a bitmap (atlas_packing.cpp, packing/), and fits the layout into

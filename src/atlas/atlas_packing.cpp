@@ -55,13 +55,12 @@ ChartBox planar_chart_box(const ChartMesh& chart) {
   return box_of(P, area);
 }
 
-bool packs_well(const ChartBox& box, double surface_area) {
+bool packs_well(const ChartBox& box, double surface_area, double part_diameter) {
   // A box this small wastes little whatever the chart's shape (and the
   // packer puts small masks into the gaps of large ones).
-  if (box.longer * box.shorter < kSparseMinShare * surface_area) return true;
-  // A thin straight strip (a trim, a pipe cut open) is never cut across,
-  // however long: it packs lengthwise.
-  const bool strip = box.longer >= kStripAspect * box.shorter;
+  const double box_area = box.longer * box.shorter;
+  if (box_area < kSparseMinShare * surface_area) return true;
+  const bool strip = box.longer >= kStripAspect * box.shorter && box.longer <= kStripPartDiameters * part_diameter;
   return box.fill >= kMinBoxFill &&
          (strip || box.longer * box.longer <= kMaxSideOverSurface * kMaxSideOverSurface * surface_area);
 }

@@ -28,6 +28,7 @@
 // one or two charts above it are a small share of the atlas's surface.
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <set>
@@ -47,6 +48,8 @@ Pair key(int c, int d) { return {std::min(c, d), std::max(c, d)}; }
 // it is proposed (the same whenever it is solved).
 struct UnionTask {
   std::vector<int> faces;  // sorted
+  std::vector<int> from;   // the faces of the chart merged in (sorted)
+  std::vector<int> cuts;   // both charts' cuts (ChartMesh::cuts)
   int component = 0;
   double limit = INFINITY, face_limit = INFINITY;
   double min_fill = 0;  // of its smallest box (ChartBox::fill)
@@ -58,15 +61,75 @@ struct UnionResult {
   double stretch = INFINITY;  // of the union's map, when it flattened
 };
 
+// The half-edges (both sides) of every piece of the border between the
+// chart merged in and the other but the longest: the cuts that keep a union
+// closing a tube (two charts meeting along two separate borders) a disk.
+// Empty when the border is one piece.
+std::vector<int> tube_cuts(const MeshData& input, const CleanMesh& clean, const UnionTask& task) {
+  std::vector<std::pair<int, int>> border;  // (half-edge in `from`, its twin)
+  for (int f : task.from)
+    for (int c = 0; c < 3; ++c) {
+      const int g = clean.glued[3 * f + c];
+      if (g < 0 || std::binary_search(task.from.begin(), task.from.end(), g) ||
+          !std::binary_search(task.faces.begin(), task.faces.end(), g) ||
+          std::binary_search(task.cuts.begin(), task.cuts.end(), 3 * f + c))
+        continue;
+      for (int e = 0; e < 3; ++e)
+        if (clean.glued[3 * g + e] == f &&
+            std::minmax(input.F(g, e), input.F(g, (e + 1) % 3)) == std::minmax(input.F(f, c), input.F(f, (c + 1) % 3)))
+          border.emplace_back(3 * f + c, 3 * g + e);
+    }
+  // Pieces: border edges joined at shared vertices (union-find on edges).
+  std::vector<int> parent(border.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::map<int, int> at_vertex;
+  for (size_t i = 0; i < border.size(); ++i)
+    for (int end = 0; end < 2; ++end) {
+      const int h = border[i].first, v = input.F(h / 3, (h % 3 + end) % 3);
+      auto [it, fresh] = at_vertex.emplace(v, static_cast<int>(i));
+      if (!fresh) parent[root(static_cast<int>(i))] = root(it->second);
+    }
+  std::map<int, double> length;
+  for (size_t i = 0; i < border.size(); ++i) {
+    const int h = border[i].first;
+    length[root(static_cast<int>(i))] += (input.V.row(input.F(h / 3, h % 3)) - input.V.row(input.F(h / 3, (h % 3 + 1) % 3))).norm();
+  }
+  if (length.size() < 2) return {};
+  int keep = length.begin()->first;
+  for (const auto& [r, l] : length)
+    if (l > length[keep]) keep = r;
+  std::vector<int> cuts = task.cuts;
+  for (size_t i = 0; i < border.size(); ++i)
+    if (root(static_cast<int>(i)) != keep) cuts.push_back(border[i].first), cuts.push_back(border[i].second);
+  std::sort(cuts.begin(), cuts.end());
+  return cuts;
+}
+
 UnionResult solve_union(const MeshData& input, const CleanMesh& clean, const ChartOptions& options,
                         const UnionTask& task) {
   UnionResult r;
-  r.merged.mesh = chart_mesh(input, clean, task.faces);
+  r.merged.mesh = chart_mesh(input, clean, task.faces, task.cuts);
   r.merged.summary.component = task.component;
-  if (flatten_chart(r.merged, options.chart_map, options.degenerate_ratio) != ChartStatus::Valid) return r;
+  ChartStatus status = flatten_chart(r.merged, options.chart_map, options.degenerate_ratio);
+  if (status == ChartStatus::NotDisk) {
+    // Two charts closing a tube: the union stays open along all but the
+    // longest piece of their border (a pipe becomes one strip).
+    std::vector<int> cuts = tube_cuts(input, clean, task);
+    if (!cuts.empty()) {
+      r.merged = FlatChart();
+      r.merged.mesh = chart_mesh(input, clean, task.faces, std::move(cuts));
+      r.merged.summary.component = task.component;
+      status = flatten_chart(r.merged, options.chart_map, options.degenerate_ratio);
+    }
+  }
+  if (status != ChartStatus::Valid) return r;
   r.stretch = r.merged.summary.face_stretch_p95;
   r.valid = within_stretch(r.merged.summary, task.limit, task.face_limit) && r.merged.box_fill >= task.min_fill &&
-            (static_cast<long>(task.faces.size()) < kSparseMinFaces || packs_well(chart_box(r.merged), clean.surface_area));
+            (static_cast<long>(task.faces.size()) < kSparseMinFaces || packs_well(chart_box(r.merged), clean.surface_area, clean.component_diameter[task.component]));
   return r;
 }
 
@@ -185,6 +248,9 @@ std::vector<Proposal> propose(const MergeContext& ctx, double bound, int wanted,
     p.task.faces = charts[d].mesh.faces;
     p.task.faces.insert(p.task.faces.end(), charts[c].mesh.faces.begin(), charts[c].mesh.faces.end());
     std::sort(p.task.faces.begin(), p.task.faces.end());
+    p.task.from = charts[c].mesh.faces;
+    std::merge(charts[c].mesh.cuts.begin(), charts[c].mesh.cuts.end(), charts[d].mesh.cuts.begin(),
+               charts[d].mesh.cuts.end(), std::back_inserter(p.task.cuts));
     p.task.component = charts[d].summary.component;
     // Slivers below min_chart_faces may go up to their neighbour's own stretch.
     const bool small = static_cast<int>(charts[c].mesh.faces.size()) < ctx.options.min_chart_faces;

@@ -2,7 +2,7 @@
 // split into manifold pieces for the computation). Its vertices are the
 // corners of its faces, glued across the chart's interior edges by union-find,
 // so a vertex of the input shared by pieces that meet only there becomes one
-// vertex per piece. make_mesh is then called on this data (chart_flatten.cpp).
+// vertex per piece, and never across the chart's own cuts (ChartMesh::cuts). make_mesh is then called on this data (chart_flatten.cpp).
 #include <algorithm>
 #include <numeric>
 
@@ -18,9 +18,11 @@ int find_root(std::vector<int>& parent, int x) {
 
 }  // namespace
 
-ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces) {
+ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces,
+                     std::vector<int> cuts) {
   ChartMesh chart;
   chart.faces = faces;
+  chart.cuts = std::move(cuts);
   const int k = static_cast<int>(faces.size());
   const ChartFaceIndex index(faces, static_cast<int>(clean.glued.size() / 3));
   std::vector<int> parent(3 * k);
@@ -28,7 +30,9 @@ ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::v
   for (int i = 0; i < k; ++i) {
     const int f = faces[i];
     for (int c = 0; c < 3; ++c) {
-      const int g = clean.glued[3 * f + c], j = g < 0 ? -1 : index(g);
+      const int g = clean.glued[3 * f + c];
+      const bool cut = std::binary_search(chart.cuts.begin(), chart.cuts.end(), 3 * f + c);
+      const int j = g < 0 || cut ? -1 : index(g);
       if (j < 0) {
         ++chart.open_edges;
         chart.boundary_length += (input.V.row(input.F(f, c)) - input.V.row(input.F(f, (c + 1) % 3))).norm();

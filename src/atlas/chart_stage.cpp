@@ -52,10 +52,11 @@ detail::ChartStatus flatten_one(const MeshData& input, const detail::CleanMesh& 
   // Components: the user's pieces, split only where invalid or over the stretch bound.
   const bool packs = !own && options.segmentation == Segmentation::NormalCones &&
                      static_cast<long>(faces.size()) >= detail::kSparseMinFaces;
-  if (packs && !detail::packs_well(detail::planar_chart_box(chart.mesh), surface_area))
+  const double part_diameter = clean.component_diameter[clean.component[faces.front()]];
+  if (packs && !detail::packs_well(detail::planar_chart_box(chart.mesh), surface_area, part_diameter))
     return detail::ChartStatus::Sparse;
   detail::ChartStatus status = detail::flatten_chart(chart, options.chart_map, options.degenerate_ratio);
-  if (status == detail::ChartStatus::Valid && packs && !detail::packs_well(detail::chart_box(chart), surface_area))
+  if (status == detail::ChartStatus::Valid && packs && !detail::packs_well(detail::chart_box(chart), surface_area, part_diameter))
     status = detail::ChartStatus::Sparse;
   if (status == detail::ChartStatus::Valid && !own && faces.size() > 1 &&
       !detail::within_stretch(chart.summary, options.max_stretch, options.max_face_stretch))

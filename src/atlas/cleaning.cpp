@@ -205,6 +205,15 @@ void count_components(const MeshData& in, CleanMesh& m) {
     if (label[r] < 0) label[r] = m.components++;
     m.component[f] = label[r];
   }
+  // Each component's bounding box diagonal, from its faces' corners.
+  std::vector<Eigen::Vector3d> lo(m.components, Eigen::Vector3d::Constant(INFINITY)), hi(m.components, -lo[0]);
+  for (int f = 0; f < nf; ++f)
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d x = in.V.row(in.F(f, c));
+      lo[m.component[f]] = lo[m.component[f]].cwiseMin(x), hi[m.component[f]] = hi[m.component[f]].cwiseMax(x);
+    }
+  m.component_diameter.assign(m.components, 0.0);
+  for (int k = 0; k < m.components; ++k) m.component_diameter[k] = (hi[k] - lo[k]).norm();
 }
 
 }  // namespace

@@ -14,13 +14,20 @@ namespace intrinsic::detail {
 // 0.15 the shared assets' median utilization was about 0.61; at 0.5 0.68,
 // with 0.65 charts doubled on some (spot 21 -> 56) for 2-4% more.
 constexpr double kMinBoxFill = 0.5;
-// A chart at least this many times as long as it is wide is a strip: never
-// cut for its length (cut across, a trim's texture would jump).
-constexpr double kStripAspect = 6;
-// Its box's longer side is at most this many times the side of a square of
-// the whole surface's area: a longer chart alone would keep the layout
-// under 1 / kMaxSideOverSurface^2 = 25% full.
-constexpr double kMaxSideOverSurface = 2;
+// A chart at least kStripAspect times as long as it is wide and at most
+// kStripPartDiameters times as long as its part is across in 3D (a pipe, a
+// trim, a handle, bent or not) is a strip: never cut for its length (cut
+// across, its texture would jump). A band winding around its part (3holes'
+// rim, about pi times its diameter, closed into one strip by a merge) is
+// cut like any long chart: kept, it set the square's side and left the
+// layout 26% full.
+constexpr double kStripAspect = 3;
+constexpr double kStripPartDiameters = 2;
+// A chart's box's longer side is at most this many times the side of a
+// square of the whole surface's area: the square holding the layout is at
+// least as long, so a longer chart alone would keep it under
+// 1 / kMaxSideOverSurface^2 (44%) full.
+constexpr double kMaxSideOverSurface = 1.5;
 // Only charts of at least this many faces whose box covers at least this
 // share of the surface's area are tested (and split) for sparseness: the
 // packer puts small masks into the gaps of the large ones, so small boxes
