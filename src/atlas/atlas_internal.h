@@ -163,8 +163,9 @@ ChartBox planar_chart_box(const ChartMesh& chart);
 // kMaxSideOverSurface times the side of a square of the whole surface's
 // area (a longer one forces a larger square than the charts fill), unless
 // it is a strip not much longer than its part is across in 3D (`part_diameter`,
-// its connected component's bounding box diagonal: a pipe, a trim, a
-// handle), which packs lengthwise, never cut across (thresholds.h).
+// its connected component's bounding box diagonal: a pipe, a handle) and a
+// good share of the surface, which packs lengthwise, never cut across
+// (thresholds.h).
 bool packs_well(const ChartBox& box, double surface_area, double part_diameter);
 
 // Scales all charts by one factor, turns them and packs their texel masks

@@ -56,13 +56,16 @@ ChartBox planar_chart_box(const ChartMesh& chart) {
 }
 
 bool packs_well(const ChartBox& box, double surface_area, double part_diameter) {
+  const double box_area = box.longer * box.shorter;
+  // Too long, whatever its area: the square holding the layout is at least
+  // as long (a hairline beam of no area set the side of regr01's square).
+  const bool strip = box.longer >= kStripAspect * box.shorter && box.longer <= kStripPartDiameters * part_diameter &&
+                     box.fill * box_area >= kStripMinShare * surface_area;
+  if (!strip && box.longer * box.longer > kMaxSideOverSurface * kMaxSideOverSurface * surface_area) return false;
   // A box this small wastes little whatever the chart's shape (and the
   // packer puts small masks into the gaps of large ones).
-  const double box_area = box.longer * box.shorter;
   if (box_area < kSparseMinShare * surface_area) return true;
-  const bool strip = box.longer >= kStripAspect * box.shorter && box.longer <= kStripPartDiameters * part_diameter;
-  return box.fill >= kMinBoxFill &&
-         (strip || box.longer * box.longer <= kMaxSideOverSurface * kMaxSideOverSurface * surface_area);
+  return box.fill >= kMinBoxFill;
 }
 
 double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping) {

@@ -21,8 +21,13 @@ constexpr double kMinBoxFill = 0.5;
 // rim, about pi times its diameter, closed into one strip by a merge) is
 // cut like any long chart: kept, it set the square's side and left the
 // layout 26% full.
+// Only a strip holding at least kStripMinShare of the surface is spared:
+// a thin beam of an architectural model (regr01: beams along a whole wall)
+// alone set the square's side and left the layout 31% full; a pipe that is
+// most of its asset cannot be laid out better without a cut across.
 constexpr double kStripAspect = 3;
 constexpr double kStripPartDiameters = 2;
+constexpr double kStripMinShare = 0.25;
 // A chart's box's longer side is at most this many times the side of a
 // square of the whole surface's area: the square holding the layout is at
 // least as long, so a longer chart alone would keep it under
