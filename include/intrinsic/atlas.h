@@ -76,7 +76,7 @@ struct ChartOptions {
   ChartMapOptions chart_map;  // how each chart is flattened (default: the natural conformal map)
   Segmentation segmentation = Segmentation::NormalCones;
   double max_normal_deviation_deg = 60;  // NormalCones: face normal vs the chart's mean normal
-  double sharp_angle_deg = 70;           // charts never join across a sharper edge (growing, merges; a sliver under min_chart_faces may)
+  double sharp_angle_deg = 70;           // no chart spans a sharper edge (growing, merges; slivers excepted)
   // Hard edges: where the faces' normals turn by more than this many
   // degrees the edge is always a seam, through every stage (merges and the
   // chart limit included), as lightmaps want. 0: none.
