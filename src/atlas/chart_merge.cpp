@@ -128,8 +128,9 @@ UnionResult solve_union(const MeshData& input, const CleanMesh& clean, const Cha
   }
   if (status != ChartStatus::Valid) return r;
   r.stretch = r.merged.summary.face_stretch_p95;
-  r.valid = within_stretch(r.merged.summary, task.limit, task.face_limit) && r.merged.box_fill >= task.min_fill &&
-            (static_cast<long>(task.faces.size()) < kSparseMinFaces || packs_well(chart_box(r.merged), clean.surface_area, clean.component_diameter[task.component]));
+  const bool packs = static_cast<long>(task.faces.size()) < kSparseMinFaces ||
+                     packs_well(chart_box(r.merged), clean.surface_area, clean.component_diameter[task.component]);
+  r.valid = within_stretch(r.merged.summary, task.limit, task.face_limit) && r.merged.box_fill >= task.min_fill && packs;
   return r;
 }
 
