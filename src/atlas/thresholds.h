@@ -21,17 +21,18 @@ constexpr double kMinBoxFill = 0.5;
 // rim, about pi times its diameter, closed into one strip by a merge) is
 // cut like any long chart: kept, it set the square's side and left the
 // layout 26% full.
-// Only a strip holding at least kStripMinShare of the surface is spared:
-// a thin beam of an architectural model (regr01: beams along a whole wall)
-// alone set the square's side and left the layout 31% full; a pipe that is
-// most of its asset cannot be laid out better without a cut across.
+// Only a strip holding at least kStripMinShare of the surface is spared
+// (a pipe that is most of its asset cannot be laid out better without a
+// cut across); a thin beam among many parts is cut like any long chart.
 constexpr double kStripAspect = 3;
 constexpr double kStripPartDiameters = 2;
 constexpr double kStripMinShare = 0.25;
 // A chart's box's longer side is at most this many times the side of a
-// square of the whole surface's area: the square holding the layout is at
-// least as long, so a longer chart alone would keep it under
-// 1 / kMaxSideOverSurface^2 (44%) full.
+// square of the whole surface's area, whatever the chart's own area: the
+// square holding the layout is at least as long, so a longer chart alone
+// would keep it under 1 / kMaxSideOverSurface^2 (44%) full (regr01's
+// hairline beams, tested only when their boxes were large, left it 31%
+// full; tested always, 49%).
 constexpr double kMaxSideOverSurface = 1.5;
 // Only charts of at least this many faces whose box covers at least this
 // share of the surface's area are tested (and split) for sparseness: the
