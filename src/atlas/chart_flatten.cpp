@@ -277,6 +277,13 @@ ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double d
   if (folds(mesh, chart.UV, degenerate_ratio, s.flipped)) return ChartStatus::Flipped;
   if (boundary_crosses(t.boundary_loops, chart.UV)) return ChartStatus::BoundaryCrossing;
   if (nf > 1 && map.boundary == BoundaryShape::Natural && map.isometric_iterations > 0) refine(mesh, map, degenerate_ratio, chart);
+  // With holes, the exact test of every pair of triangles as well: a messy
+  // export's flat face can fold over itself in 3D (2CylinderEngine), and
+  // the map of a flat chart reproduces that fold.
+  if (t.boundary_loops.size() > 1) {
+    const std::vector<char> overlapping = overlapping_uv_triangles(mesh.F, chart.UV);
+    if (std::find(overlapping.begin(), overlapping.end(), 1) != overlapping.end()) return ChartStatus::BoundaryCrossing;
+  }
   summarize_stretch(mesh, chart);
   chart.box_fill = chart_box(chart).fill;
   return ChartStatus::Valid;
