@@ -5,7 +5,10 @@
 // paper section 4.2 rarely folds). Seeds are taken on the frontier of the
 // charts grown so far, so charts grow outward like a front. Charts that turn
 // out not to be disks, or whose map is invalid, are split in two by
-// split_in_two (atlas.cpp).
+// split_in_two (atlas.cpp). Then one Lloyd step regrows every chart at once
+// from its most interior face, flat regions taken whole, for compact charts
+// (docs/maths.md §9.6b). Ties are broken by the faces' rank by position
+// (CleanMesh::rank), so the charts do not depend on the listing order.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -255,9 +258,8 @@ std::vector<std::vector<int>> segment(const MeshData& input, const CleanMesh& cl
     for (int f : clean.ranked)
       if (clean.good[f] && g.label[f] < 0) g.grow(f, count++);
   }
-  charts.resize(count);
   straighten(clean, g.cos_sharp, g.label);
-  std::vector<std::vector<int>> straight(charts.size());
+  std::vector<std::vector<int>> straight(count);
   for (int f = 0; f < nf; ++f)
     if (g.label[f] >= 0) straight[g.label[f]].push_back(f);
   straight.erase(std::remove_if(straight.begin(), straight.end(), [](const std::vector<int>& c) { return c.empty(); }),
