@@ -10,8 +10,19 @@ The atlas triangles are Blender's loop triangles, grouped by polygon
 (the library's face groups), so every polygon lies in one chart: a loop
 stores one UV per polygon corner, and a quad cut along its diagonal would
 have its shared corners in one chart and stretch across the atlas. All
-objects are solved before any UV is written.
+objects are solved before any UV or face is changed.
+
+Winding: the library is called with reorient=False, so faces listed
+against their neighbours' orientation are cut from them (a seam) and every
+chart is laid out counter-clockwise in the faces' own winding; with
+reorient=True it would lay such faces out reversed, and as the loops keep
+Blender's winding they would be mirrored against their chart. Fix Winding
+instead reverses in Blender the polygons the library would reverse (found by
+a first call with reorient=True) and makes the atlas of the reversed mesh.
 """
+from collections import namedtuple
+
+import bmesh
 import bpy
 import numpy as np
 from bpy.props import BoolProperty, FloatProperty, IntProperty, StringProperty
@@ -22,12 +33,21 @@ from . import library, texture_bake
 # The last run's UVs per loop in double precision, per object name (Blender
 # stores single precision; the add-on's test compares these to 1e-9).
 LAST_UVS = {}
+# The last run's winding per object name: {"reversed_faces": polygons
+# reversed by Fix Winding, "orientation_cuts": edges cut because their two
+# faces disagree}, and its info message (the test reads both).
+LAST_WINDING = {}
+LAST_MESSAGE = ""
+
+# One object's solved atlas, ready to write: flip lists the polygons to
+# reverse first (Fix Winding); T and P are the loop triangles after that.
+Work = namedtuple("Work", "obj uv charts T P flip cuts")
 
 
-def mesh_arrays(obj):
+def mesh_arrays(obj, me=None):
     """V (world-scaled, n x 3), F (loop triangles' vertices), T (their loops),
-    P (each loop triangle's polygon)."""
-    me = obj.data
+    P (each loop triangle's polygon) of obj's mesh, or of `me` placed as obj."""
+    me = obj.data if me is None else me
     me.calc_loop_triangles()
     V = np.empty(len(me.vertices) * 3, dtype=np.float64)
     me.vertices.foreach_get("co", V)
@@ -52,6 +72,52 @@ def loop_uvs(result, F, T, num_loops):
             hit = AF[:, j] == F[:, i]
             out[T[hit, i]] = result.uv[AI[hit, j]]
     return out
+
+
+def reversed_polygons(result, F, P):
+    """The polygons whose triangles an atlas made with reorient=True
+    reverses: it lists a reversed triangle 0, 2, 1, so its row differs
+    from F. The triangles of one polygon agree, so any one decides."""
+    changed = (np.asarray(result.F) != F).any(axis=1)
+    return np.unique(P[changed])
+
+
+def flip_polygons(me, polys):
+    """Reverses the winding of the given polygons; each loop keeps its data
+    (UVs, colours), so only the order of the polygon's corners changes."""
+    bm = bmesh.new()
+    try:
+        bm.from_mesh(me)
+        bm.faces.ensure_lookup_table()
+        bmesh.ops.reverse_faces(bm, faces=[bm.faces[i] for i in polys.tolist()])
+        bm.to_mesh(me)
+    finally:
+        bm.free()
+    me.update()
+
+
+def flipped_arrays(obj, polys):
+    """mesh_arrays of obj's mesh as it will be once `polys` are reversed,
+    read from a reversed copy: the object is changed only after every
+    object is solved. The reversal is deterministic, so the copy's loop
+    order is the one the mesh gets."""
+    me = obj.data.copy()
+    try:
+        flip_polygons(me, polys)
+        return mesh_arrays(obj, me)
+    finally:
+        bpy.data.meshes.remove(me)
+
+
+def winding_note(work):
+    """The info message's words on winding for one object ('' when nothing
+    was reversed or cut)."""
+    notes = []
+    if len(work.flip):
+        notes.append(f"{len(work.flip)} faces reversed")
+    if work.cuts:
+        notes.append(f"{work.cuts} edges cut where faces are wound against their neighbours")
+    return "".join(", " + n for n in notes)
 
 
 def target_layer(me, name, new):
@@ -85,6 +151,9 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
                                 "layout, so the object looks the same", default=False)
     texture_size: IntProperty(name="Texture Size", description="Width and height of the baked images",
                               default=2048, min=16, max=16384)
+    fix_winding: BoolProperty(name="Fix Winding", description="Reverse the faces wound against the rest of "
+                              "their piece of surface before the atlas is made (off: such faces are cut from "
+                              "their neighbours, their winding kept)", default=False)
 
     @classmethod
     def poll(cls, context):
@@ -102,6 +171,33 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
                 out.append(o)
         return out
 
+    def call_atlas(self, lib, obj, V, F, P, reorient):
+        try:
+            return lib.atlas(V, F, max_stretch=self.max_stretch, hard_angle=self.hard_angle, padding=self.padding,
+                             resolution=self.resolution, face_groups=P, reorient=reorient)
+        except lib.Error as e:
+            raise ValueError(f"{obj.name}: {e}") from None
+
+    def solve_object(self, lib, obj):
+        """One object's Work. Fix Winding: a first atlas with reorient=True
+        names the polygons to reverse; when there are any, the atlas is made
+        again on the reversed mesh (its loop triangles may differ)."""
+        V, F, T, P = mesh_arrays(obj)
+        flip = np.empty(0, dtype=np.int64)
+        r = None
+        if self.fix_winding:
+            r = self.call_atlas(lib, obj, V, F, P, reorient=True)
+            flip = reversed_polygons(r, F, P)
+            if len(flip):
+                V, F, T, P = flipped_arrays(obj, flip)
+                r = None
+        if r is None:
+            r = self.call_atlas(lib, obj, V, F, P, reorient=False)
+        charts = r.report.get("charts")
+        charts = len(charts) if isinstance(charts, list) else charts
+        return Work(obj, loop_uvs(r, F, T, len(obj.data.loops)), charts, T, P, flip,
+                    int(r.report["cleaning"]["orientation_cuts"]))
+
     def solve(self, lib, objs, wm):
         work = []
         for k, obj in enumerate(objs):
@@ -110,14 +206,7 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
             if (self.new_uv_map or (self.uv_map and self.uv_map not in obj.data.uv_layers)) and \
                     len(obj.data.uv_layers) >= 8:
                 raise ValueError(f"{obj.name}: the mesh has 8 UV maps already, Blender's limit")
-            V, F, T, P = mesh_arrays(obj)
-            try:
-                r = lib.atlas(V, F, max_stretch=self.max_stretch, hard_angle=self.hard_angle,
-                              padding=self.padding, resolution=self.resolution, face_groups=P)
-            except lib.Error as e:
-                raise ValueError(f"{obj.name}: {e}") from None
-            work.append((obj, loop_uvs(r, F, T, len(obj.data.loops)), len(r.report["charts"])
-                         if isinstance(r.report.get("charts"), list) else r.report.get("charts"), T, P))
+            work.append(self.solve_object(lib, obj))
             wm.progress_update(k + 1)
         return work
 
@@ -152,9 +241,13 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
         try:
             work = self.solve(lib, objs, wm)
             LAST_UVS.clear()
+            LAST_WINDING.clear()
             baked = []
-            for obj, uv, _, T, P in work:
+            for obj, uv, _, T, P, flip, cuts in work:
                 LAST_UVS[obj.name] = uv
+                LAST_WINDING[obj.name] = {"reversed_faces": len(flip), "orientation_cuts": cuts}
+                if len(flip):
+                    flip_polygons(obj.data, flip)  # before the old UVs are read: they follow their loops
                 source, old_uv = self.texture_source(obj.data) if self.bake_textures else (None, None)
                 layer = target_layer(obj.data, self.uv_map, self.new_uv_map)
                 layer.data.foreach_set("uv", uv.ravel())
@@ -172,6 +265,14 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
             wm.progress_end()
             if edit:
                 bpy.ops.object.mode_set(mode="EDIT")
-        self.report({"INFO"}, "Intrinsic Atlas: " + ", ".join(f"{o.name} {c} charts" for o, _, c, _, _ in work) +
-                    (f"; baked {len(baked)} images" if self.bake_textures else ""))
+        self.report_done(work, baked)
         return {"FINISHED"}
+
+    def report_done(self, work, baked):
+        global LAST_MESSAGE
+        LAST_MESSAGE = ("Intrinsic Atlas: " + "; ".join(f"{w.obj.name} {w.charts} charts" + winding_note(w)
+                                                        for w in work) +
+                        (f"; baked {len(baked)} images" if self.bake_textures else ""))
+        if not self.fix_winding and any(w.cuts for w in work):
+            LAST_MESSAGE += " (Fix Winding reverses such faces instead)"
+        self.report({"INFO"}, LAST_MESSAGE)

@@ -22,7 +22,12 @@ run_blender.py with the zip installed into a temporary user scripts folder):
   seam cuts exactly and every face keeps its orientation in UV;
 - `uv.intrinsic_atlas` on a scaled, rotated triangulated torus equals
   `intrinsic.atlas` on the world-scaled mesh read here; "new UV map" leaves
-  the other map unchanged.
+  the other map unchanged;
+- winding: on a UV sphere with a third of its polygons reversed, and on
+  assimp's spider where installed, no triangle of the atlas is mirrored
+  against its UV island (measured here from the UV layer) and no face's
+  winding changes; Fix Winding reverses exactly the reversed polygons back
+  (every edge then used once each way) and mirrors nothing either.
 Any failure raises (Blender exits 1).
 """
 import math
@@ -581,6 +586,209 @@ def test_atlas_bake(lib):
     bpy.data.objects.remove(obj)
 
 
+# ---------------------------------------------------------------- winding
+# The measures below read Blender's own data (loops, UV layer) and share no
+# code with the add-on.
+
+def uv_triangles(me, uv):
+    """Per loop triangle: its vertices and loops in Blender's winding and its
+    signed UV area (uv: per loop, n x 2)."""
+    me.calc_loop_triangles()
+    loops = np.array([list(t.loops) for t in me.loop_triangles], dtype=np.int64)
+    verts = np.array([list(t.vertices) for t in me.loop_triangles], dtype=np.int64)
+    a, b, c = uv[loops[:, 0]], uv[loops[:, 1]], uv[loops[:, 2]]
+    area = 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (c[:, 0] - a[:, 0]) * (b[:, 1] - a[:, 1]))
+    return verts, loops, area
+
+
+def uv_islands(verts, loops, uv):
+    """Per triangle its UV island: triangles joined across every edge whose
+    two ends have the same UVs in both (Blender's notion of a UV island)."""
+    parent = list(range(len(verts)))
+
+    def root(t):
+        while parent[t] != t:
+            parent[t] = parent[parent[t]]
+            t = parent[t]
+        return t
+
+    first = {}
+    for t in range(len(verts)):
+        for i in range(3):
+            ends = sorted(((int(verts[t, k]), tuple(uv[loops[t, k]])) for k in (i, (i + 1) % 3)))
+            key = tuple(ends)
+            if key in first:
+                parent[root(t)] = root(first[key])
+            else:
+                first[key] = t
+    return np.array([root(t) for t in range(len(verts))])
+
+
+def local_flips(me, uv, min_area=1e-10):
+    """(local flips, mirrored triangles, skipped): triangles whose UV area
+    has the sign opposite to the majority of their island's; triangles
+    with negative UV area in Blender's winding; triangles with |area|
+    below min_area (degenerate: no sign to compare) left out."""
+    verts, loops, area = uv_triangles(me, uv)
+    island = uv_islands(verts, loops, uv)
+    signed = np.abs(area) > min_area
+    flips = 0
+    for k in np.unique(island[signed]):
+        mine = signed & (island == k)
+        pos, neg = int((area[mine] > 0).sum()), int((area[mine] < 0).sum())
+        flips += min(pos, neg)
+    return flips, int((area[signed] < 0).sum()), int((~signed).sum())
+
+
+def stored_layer_uvs(me):
+    return np.array([d.uv[:] for d in me.uv_layers.active.data], dtype=np.float64)
+
+
+def windings(me):
+    """Each polygon's vertices in loop order."""
+    return [tuple(p.vertices) for p in me.polygons]
+
+
+def same_cycle(a, b):
+    return len(a) == len(b) and any(a[k:] + a[:k] == b for k in range(len(a)))
+
+
+def inconsistent_edges(me):
+    """Edges with two faces that list them in the same direction (a
+    consistently wound surface has none)."""
+    seen = {}
+    for p in me.polygons:
+        vs = list(p.vertices)
+        for a, b in zip(vs, vs[1:] + vs[:1]):
+            seen.setdefault(frozenset((a, b)), []).append((a, b))
+    return sum(1 for uses in seen.values() if len(uses) == 2 and uses[0] == uses[1])
+
+
+def reverse_a_third(obj):
+    """Reverses a third of the polygons: every third in the order of their
+    centres (height, then angle), as Blender 3.4's sphere primitive lists
+    its faces in an order that changes from run to run; returns their
+    indices."""
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    bm.faces.ensure_lookup_table()
+    def place(f):
+        c = f.calc_center_median()
+        return round(c.z, 5), round(math.atan2(c.y, c.x), 5)
+    ordered = sorted(bm.faces, key=place)
+    chosen = {ordered[k].index for k in range(1, len(ordered), 3)}
+    bmesh.ops.reverse_faces(bm, faces=[bm.faces[k] for k in sorted(chosen)])
+    bm.to_mesh(obj.data)
+    bm.free()
+    obj.data.update()
+    return chosen
+
+
+def old_atlas_flips(lib, obj, **options):
+    """Local flips of the atlas as the add-on wrote it before reorient=False:
+    the library's default (faces reversed), written to the loops by vertex."""
+    from intrinsic_uv import op_atlas
+    V, F, T, P = op_atlas.mesh_arrays(obj)
+    r = lib.atlas(V, F, face_groups=P, **options)
+    return local_flips(obj.data, op_atlas.loop_uvs(r, F, T, len(obj.data.loops)))[0]
+
+
+def select_only(obj):
+    if bpy.context.mode != "OBJECT":
+        bpy.ops.object.mode_set(mode="OBJECT")
+    for o in bpy.context.scene.objects:
+        o.select_set(o is obj)
+    bpy.context.view_layer.objects.active = obj
+
+
+def test_atlas_winding(lib):
+    """A UV sphere (quads and pole triangles) with a third of its polygons
+    reversed: the default atlas mirrors no triangle against its island and
+    keeps every polygon's winding; Fix Winding reverses exactly those
+    polygons back (the winding the sphere was made with, consistent across
+    every edge) and mirrors nothing either. The old writing (the library's
+    reorient) must show local flips: the measure can tell."""
+    from intrinsic_uv import op_atlas
+    select_only(None)
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16)
+    obj = bpy.context.active_object
+    made = windings(obj.data)
+    reversed_set = reverse_a_third(obj)
+    before = windings(obj.data)
+    select_only(obj)
+    old = old_atlas_flips(lib, obj)
+    check(bpy.ops.uv.intrinsic_atlas() == {"FINISHED"}, "winding: default atlas finished")
+    flips, mirrored, skipped = local_flips(obj.data, stored_layer_uvs(obj.data))
+    cuts = op_atlas.LAST_WINDING[obj.name]["orientation_cuts"]
+    print(f"winding: sphere, {len(reversed_set)} of {len(made)} polygons reversed: local flips {old} with the "
+          f"library's reorient, {flips} by default ({mirrored} mirrored, {skipped} degenerate, {cuts} edges cut); "
+          f"{op_atlas.LAST_MESSAGE}", flush=True)
+    check(old > 0, f"winding: the measure sees the reoriented atlas's local flips ({old})")
+    check(flips == 0 and mirrored == 0, f"winding: default atlas has no local flip ({flips}, {mirrored} mirrored)")
+    check(windings(obj.data) == before, "winding: the default atlas keeps every polygon's winding")
+    check(cuts > 0 and f"{cuts} edges cut" in op_atlas.LAST_MESSAGE, "winding: the cut edges are reported")
+    enter_edit(obj)  # the reversal must reach the edit mesh the operator returns to
+    check(bpy.ops.uv.intrinsic_atlas(fix_winding=True) == {"FINISHED"}, "winding: Fix Winding finished")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    after = windings(obj.data)
+    flips, mirrored, skipped = local_flips(obj.data, stored_layer_uvs(obj.data))
+    changed = {k for k in range(len(after)) if after[k] != before[k]}
+    bad = inconsistent_edges(obj.data)
+    n = op_atlas.LAST_WINDING[obj.name]["reversed_faces"]
+    print(f"winding: Fix Winding: {n} polygons reversed, {bad} inconsistent edges left, local flips {flips} "
+          f"({mirrored} mirrored); {op_atlas.LAST_MESSAGE}", flush=True)
+    check(flips == 0 and mirrored == 0, f"winding: Fix Winding has no local flip ({flips}, {mirrored} mirrored)")
+    check(bad == 0, f"winding: Fix Winding leaves every edge used once each way ({bad} not)")
+    check(changed == reversed_set and all(same_cycle(after[k], made[k]) for k in range(len(made))),
+          "winding: Fix Winding reverses exactly the reversed polygons back")
+    check(n == len(reversed_set) and f"{n} faces reversed" in op_atlas.LAST_MESSAGE,
+          f"winding: the reversed count is reported ({n} of {len(reversed_set)})")
+    bpy.data.objects.remove(obj)
+
+
+SPIDER = "/usr/share/assimp/models/OBJ/spider.obj"
+
+
+def import_obj(path):
+    select_only(None)
+    if hasattr(bpy.ops.wm, "obj_import"):
+        bpy.ops.wm.obj_import(filepath=path)
+    else:
+        bpy.ops.import_scene.obj(filepath=path)
+    return [o for o in bpy.context.selected_objects if o.type == "MESH"]
+
+
+def test_atlas_spider(lib):
+    """assimp's spider (faces wound both ways, listed as written): no local
+    flip by default, nor with Fix Winding; the library's reorient written
+    by vertex (the add-on's former writing) had some."""
+    from intrinsic_uv import op_atlas
+    if not os.path.exists(SPIDER):
+        print(f"SKIPPED: spider: {SPIDER} is absent (Debian package assimp-testmodels)", flush=True)
+        return
+    objs = import_obj(SPIDER)
+    check(len(objs) == 1, f"spider: one object imported ({[o.name for o in objs]})")
+    obj = objs[0]
+    select_only(obj)
+    old = old_atlas_flips(lib, obj)
+    before = windings(obj.data)
+    check(bpy.ops.uv.intrinsic_atlas() == {"FINISHED"}, "spider: default atlas finished")
+    flips, mirrored, skipped = local_flips(obj.data, stored_layer_uvs(obj.data))
+    print(f"spider: {len(obj.data.polygons)} faces, {inconsistent_edges(obj.data)} inconsistent edges: local flips "
+          f"{old} with the library's reorient, {flips} by default ({mirrored} mirrored, {skipped} degenerate); "
+          f"{op_atlas.LAST_MESSAGE}", flush=True)
+    check(old > 0, f"spider: the measure sees the reoriented atlas's local flips ({old})")
+    check(flips == 0 and mirrored == 0, f"spider: default atlas has no local flip ({flips}, {mirrored} mirrored)")
+    check(windings(obj.data) == before, "spider: the default atlas keeps every face's winding")
+    check(bpy.ops.uv.intrinsic_atlas(fix_winding=True) == {"FINISHED"}, "spider: Fix Winding finished")
+    flips, mirrored, skipped = local_flips(obj.data, stored_layer_uvs(obj.data))
+    print(f"spider: Fix Winding: {op_atlas.LAST_WINDING[obj.name]['reversed_faces']} faces reversed, "
+          f"{inconsistent_edges(obj.data)} inconsistent edges left, local flips {flips} ({mirrored} mirrored); "
+          f"{op_atlas.LAST_MESSAGE}", flush=True)
+    check(flips == 0 and mirrored == 0, f"spider: Fix Winding has no local flip ({flips}, {mirrored} mirrored)")
+    bpy.data.objects.remove(obj)
+
+
 def main():
     lib = install()
     obj, verts, faces, cells = build_grid()
@@ -598,6 +806,8 @@ def main():
     test_atlas(lib)
     test_atlas_quads(lib)
     test_atlas_bake(lib)
+    test_atlas_winding(lib)
+    test_atlas_spider(lib)
     if FAILURES:
         raise AssertionError(f"{len(FAILURES)} check(s) failed:\n" + "\n".join(FAILURES))
     print("blender add-on test: all checks passed", flush=True)
