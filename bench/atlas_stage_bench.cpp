@@ -2,7 +2,7 @@
 // pack_charts (atlas.h) run `--runs` times each on every mesh given, with
 // the medians of their wall time per stage and of the process CPU time they
 // used (all threads: the figure a loaded machine disturbs least). For the
-// fixed costs of small assets (docs/performance/atlas-small.md); the whole
+// fixed costs of small assets (docs/performance.md#the-atlas); the whole
 // comparison with xatlas is bench/atlas_compare.py.
 #include <ctime>
 #include <iostream>

@@ -7,7 +7,7 @@
 // compensated (Knuth's two-sum; Ogita, Rump and Oishi's Dot2), one
 // thread, column order. A long-double sum is not enough: its 2^-64
 // rounding moves the 1M-vertex natural map by ~1e-11
-// (docs/performance/natural-accuracy.md).
+// (docs/performance.md#the-natural-map-a-complex-hermitian-factor).
 #pragma once
 
 #include <Eigen/Sparse>

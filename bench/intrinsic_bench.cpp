@@ -109,7 +109,8 @@ ParamOptions options_for(const std::string& method) {
 // the system as assembled here, rounded to doubles, whatever its
 // conditioning, and independent of the pipeline's complex factor and
 // residual. (A long-double residual, used before, left this reference itself
-// up to ~4e-13 from exact at 100k vertices: docs/performance/natural-accuracy.md.)
+// up to ~4e-13 from exact at 100k vertices:
+// docs/performance.md#the-natural-map-a-complex-hermitian-factor.)
 // With `perturb`, every matrix entry and right-hand side value is first
 // multiplied by (1 + u eps), u uniform in [-1, 1]: the distance between the
 // two references is how far the map moves under rounding of its own input,

@@ -1,5 +1,7 @@
 // natural_accuracy_bench: where the natural map's distance to its exact
-// solution comes from (docs/performance/natural-accuracy.md). On one mesh:
+// solution comes from
+// (docs/performance.md#the-natural-map-a-complex-hermitian-factor).
+// On one mesh:
 //  (a) the pipeline's eliminated system (EliminatedSystem, as the
 //      Parameterizer builds it) against the bench reference's (a triplet
 //      build from assemble_natural_system, as intrinsic_bench's

@@ -2,8 +2,8 @@
 // thread's input) at one size: what building the free block from the faces
 // (util/vertex_adjacency.h on the free vertices) costs against taking it
 // from K's pattern (solve/ordering_ahead.h), the choice the Parameterizer's
-// "pattern counted once" rests on (docs/performance/pattern-once.md). Each
-// piece on one thread and on all cores, alternately, medians of R runs of
+// "pattern counted once" rests on (docs/performance.md#symbolic-analysis).
+// Each piece on one thread and on all cores, alternately, medians of R runs of
 // wall time and of process CPU time; plus the counts they handle.
 //
 //   pattern_bench [N] [R]    N vertices (generated wavy patch, 1000000), R runs (5)

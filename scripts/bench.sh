@@ -1,14 +1,15 @@
 #!/bin/sh
 # Runs intrinsic_bench (and cgal_compare when built) and writes
-# docs/benchmarks-latest.md: the machine, the per-stage table, the scaling
-# exponents and the CGAL ratios. docs/benchmarks.md quotes a run of it with
-# the before/after history.
+# BUILD_DIR/benchmarks-latest.md (build/benchmarks-latest.md by default): the
+# machine, the per-stage table, the scaling exponents and the CGAL ratios.
+# docs/benchmarks.md quotes the figures of such a run, with its date and
+# machine.
 #   scripts/bench.sh [build-dir] [extra intrinsic_bench arguments...]
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 [ $# -gt 0 ] && shift
-out=$root/docs/benchmarks-latest.md
+out=$build/benchmarks-latest.md
 work=${BENCH_WORKDIR:-/tmp/intrinsic-bench}
 mkdir -p "$work"
 cmake --build "$build" -j2 --target intrinsic_bench >/dev/null

@@ -1,9 +1,10 @@
-// The natural map against its exact solution (docs/performance/
-// natural-accuracy.md): the map equals the exact solution of its system
-// rounded to doubles, on a mesh whose natural system is ill-conditioned
-// enough that an unrefined solve, or one refined with a long-double
-// residual, is not; the refinement's residual equals one written here in
-// quad precision; neither depends on the thread count.
+// The natural map against its exact solution
+// (docs/performance.md#the-natural-map-a-complex-hermitian-factor):
+// the map equals the exact solution of its system rounded to doubles, on a
+// mesh whose natural system is ill-conditioned enough that an unrefined
+// solve, or one refined with a long-double residual, is not; the
+// refinement's residual equals one written here in quad precision; neither
+// depends on the thread count.
 #include <algorithm>
 #include <atomic>
 #include <cmath>

@@ -5,7 +5,8 @@
 // Parameterizer assembles in blocked ordering, is A = [K -B; B K]. Factoring
 // M instead of A orders and analyses the n-vertex graph (the conformal map's)
 // rather than a 2n graph, and the complex supernodal kernels do the work in
-// half the real flops (see docs/benchmarks.md).
+// half the real flops (see
+// docs/performance.md#the-natural-map-a-complex-hermitian-factor).
 #pragma once
 
 #include <complex>

@@ -6,7 +6,8 @@
 // rounded once. A long-double sum (64-bit mantissa) was not enough: its
 // rounding acts like a relative perturbation of M of 2^-64, and the natural
 // system at 1M vertices moves by 1.6e-7 under a 2^-52 perturbation, so
-// refinement stalled near 4e-11 (docs/performance/natural-accuracy.md).
+// refinement stalled near 4e-11
+// (docs/performance.md#the-natural-map-a-complex-hermitian-factor).
 // Rows are split over threads; every row sums its terms in the order of
 // their column, whichever thread computes it, so the result does not depend
 // on the thread count.

@@ -452,8 +452,9 @@ Eigen::MatrixXd LinearSolver::Impl::cholesky_solve(const Eigen::MatrixXd& B) con
 // The complex factor's answer, refined with residuals exact to about twice
 // double precision (detail::hermitian_lower_residual; a long-double residual
 // left the 1M-vertex map up to 1.2e-11 from its exact solution, see
-// docs/performance/natural-accuracy.md). The complex form is only the
-// natural map's (two pins: ill-conditioned), so it always refines: one step
+// docs/performance.md#the-natural-map-a-complex-hermitian-factor).
+// The complex form is only the natural map's (two pins: ill-conditioned),
+// so it always refines: one step
 // always, at most 5. A step multiplies the error by about the relative error
 // rho of a solve, which the first correction measures (it is the first
 // solve's error; later, the ratio of the last two corrections), so the error

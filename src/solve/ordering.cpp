@@ -50,7 +50,8 @@ constexpr int kShareAbove = 5000;
 // Pieces at most this large (and at most a quarter of the graph) are copied
 // into a compact graph of their own (Dissection::dissect_compact), where
 // the piece and all its descendants are searched and refined in cache
-// (docs/performance/ordering-cache.md: a few percent of the ordering's CPU).
+// (docs/performance.md#fill-reducing-ordering: a few percent of the
+// ordering's CPU).
 constexpr int kCompactBelow = 1 << 16;
 
 // What the threads share: the graph, the per-vertex arrays (each piece

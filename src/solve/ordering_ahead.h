@@ -11,7 +11,7 @@
 // (LinearSolver::set_analysis_ahead). On 2 cores the gain is where one side
 // leaves a core idle: the top levels of the dissection and CHOLMOD's
 // analysis run on one thread, and so does most of the assembly's pattern
-// pass (docs/performance/ordering-overlap.md).
+// pass (docs/performance.md#symbolic-analysis).
 //
 // The result is the same bit for bit: the ordering and the analysis are
 // deterministic functions of the pattern, and the analysis ahead is used only

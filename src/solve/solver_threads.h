@@ -12,9 +12,10 @@
 // shrink CHOLMOD's teams to the idle cores) and OpenBLAS runs on one thread,
 // because between the many small BLAS calls of a supernodal factorization
 // its spinning workers cost more than they give (measured in
-// docs/benchmarks.md). The settings are process-wide in the libraries, so
-// the first live scope saves them and the last restores them: nested and
-// concurrent scopes (two Parameterizers in two threads) are safe. UMFPACK
+// docs/performance.md#threads). The settings are process-wide in the
+// libraries, so the first live scope saves them and the last restores
+// them: nested and concurrent scopes (two Parameterizers in two threads) are
+// safe. UMFPACK
 // (no OpenMP) runs in a scope too: on a loaded machine (load 5, 2 cores) its
 // 1M-vertex authalic factorization took 22 s with OpenBLAS's threads, 6.9 s
 // of it system time spent spinning, and 11 s with one.

@@ -28,7 +28,8 @@ namespace intrinsic::detail {
 
 // The complex factor's amalgamation, tighter than CHOLMOD's default: chosen
 // by nnz(L), flops and numeric time at 300k and 1M vertices
-// (docs/performance/natural-memory.md; complex_cholesky_bench --relax). Up
+// (docs/performance.md#the-natural-map-a-complex-hermitian-factor;
+// complex_cholesky_bench --relax). Up
 // to 4 columns always merge (as CHOLMOD's); beyond that only with under 5%
 // (up to 32 columns) or 1% explicit zeros. CHOLMOD's up to 16 columns with
 // 80% zeros made 13% of L's 83M entries at 1M vertices explicit zeros, for
@@ -44,7 +45,8 @@ class SupernodalCholeskyOf {
   explicit SupernodalCholeskyOf(int threads = 0);
   // The supernode amalgamation of the analysis (suitesparse.h). By default
   // CHOLMOD's for double; tighter for complex entries, which cost 16 bytes
-  // each (docs/performance/natural-memory.md): kComplexRelaxation.
+  // each (docs/performance.md#the-natural-map-a-complex-hermitian-factor):
+  // kComplexRelaxation.
   void set_relaxation(const SupernodeRelaxation& relax);
   ~SupernodalCholeskyOf();
   SupernodalCholeskyOf(const SupernodalCholeskyOf&) = delete;
