@@ -142,6 +142,17 @@ struct PackOptions {
   // Texture size the padding is measured in (texels of the [0,1]^2 square).
   int resolution = 1024;
   double padding = 2;  // texels between charts; half of it (rounded up to whole texels) around the border
+  // Texel density for lightmaps: > 0 gives every chart this many texels per
+  // unit of surface length (one density for every chart and object of the
+  // input, whatever else the input holds), charts on whole texels, on pages
+  // of `resolution` texels filled in turn: page k is the UDIM tile 1001 + k,
+  // u in [k, k + 1], v in [0, 1]. A chart larger than a page at that density
+  // is scaled down to fit one (AtlasResult::shrunk_charts), never dropped or
+  // split across pages. 0: one page, every chart scaled to fill it.
+  double texels_per_unit = 0;
+  // With texels_per_unit: more pages than this is refused with Error(Input)
+  // (nothing written). 0: as many as needed.
+  int max_pages = 0;
 };
 
 // What one atlas covers: the whole input (one texture for everything, e.g. a
@@ -164,6 +175,8 @@ struct AtlasOptions {
   int min_chart_faces = 20;
   int resolution = 1024;  // PackOptions
   double padding = 2;     // PackOptions
+  double texels_per_unit = 0;  // PackOptions
+  int max_pages = 0;           // PackOptions
   double degenerate_ratio = 1e-12;
   double weld = 1e-7;
   bool reorient = true;
@@ -241,7 +254,14 @@ struct AtlasResult {
   int splits = 0;          // charts split: not disks, flipped, boundary crossing, or too sparse for packing
   AtlasSplits split_reasons;
   int split_groups = 0;    // as AtlasCharts::split_groups
-  double utilization = 0;  // UV area of the charts / area of [0,1]^2
+  double utilization = 0;  // UV area of the charts / area of [0,1]^2 (with pages: their mean)
+  // Pages (PackOptions::texels_per_unit > 0; else one page): per chart its
+  // page (UDIM tile 1001 + page, u in [page, page + 1]), per page its
+  // utilization, and the charts scaled down to fit one page.
+  int pages = 1;
+  std::vector<int> chart_page;
+  std::vector<double> page_utilization;
+  std::vector<int> shrunk_charts;
   // Area-weighted mean of the per-chart L2 stretch (each chart's own
   // area-weighted mean of the per-triangle L2 of docs/maths.md §9.3, every
   // chart at UV area = 3D area before packing). Not Sander's L2, which is

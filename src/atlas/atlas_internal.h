@@ -172,7 +172,17 @@ bool packs_well(const ChartBox& box, double surface_area, double part_diameter);
 // with padding on a bitmap (atlas_packing.cpp, packing/), and fits the layout into
 // [0,1]^2 (UVs changed in place). Returns the utilization; `overlapping` is
 // 0: a mask is only placed where its dilated texels meet no taken texel.
-double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping);
+// With options.texels_per_unit > 0 the charts keep that density instead and
+// go onto pages of `resolution` texels (page k at u in [k, k + 1]; `pages`
+// gets each chart's page and each page's utilization); the return value is
+// then the mean utilization of the pages.
+struct PageLayout {
+  std::vector<int> chart_page;
+  std::vector<double> page_utilization;
+  std::vector<int> shrunk;  // charts scaled down to fit one page
+};
+double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping,
+                        PageLayout* pages = nullptr);
 
 // Per-corner UV rows for the faces no chart holds (face_chart -1: zero area
 // or a repeated vertex), each with zero UV area: laid along a UV edge of a

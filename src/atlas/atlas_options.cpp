@@ -30,6 +30,8 @@ PackOptions pack_options(const AtlasOptions& o) {
   PackOptions p;
   p.resolution = o.resolution;
   p.padding = o.padding;
+  p.texels_per_unit = o.texels_per_unit;
+  p.max_pages = o.max_pages;
   return p;
 }
 
@@ -64,6 +66,9 @@ void check_pack_options(const PackOptions& o) {
   if (o.resolution < 1 || o.resolution > 1 << 20) throw_usage("the resolution must be between 1 and 1048576 texels");
   if (!(o.padding >= 0 && o.padding < o.resolution / 4.0))
     throw_usage("the padding must be at least 0 and less than a quarter of the resolution");
+  if (!(o.texels_per_unit >= 0 && o.texels_per_unit <= 1e12))
+    throw_usage("texels_per_unit must be 0 (fill one page) or a positive density");
+  if (o.max_pages < 0) throw_usage("max_pages must be 0 (no limit) or positive");
 }
 
 }  // namespace detail

@@ -13,11 +13,14 @@
 // masks let small charts sit in the concave parts of large ones.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 
 #include "atlas/atlas_internal.h"
 #include "atlas/packing/chart_pose.h"
 #include "atlas/packing/scale_search.h"
 #include "atlas/thresholds.h"
+#include "intrinsic/error.h"
 
 namespace intrinsic::detail {
 namespace {
@@ -68,10 +71,11 @@ bool packs_well(const ChartBox& box, double surface_area, double part_diameter) 
   return box.fill >= kMinBoxFill;
 }
 
-double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping) {
-  overlapping = 0;
-  if (charts.empty()) return 0;
-  double area = 0;
+namespace {
+
+// The charts turned to their poses (steps 1 and 2's input); `area` their total.
+std::vector<packing::PackChart> posed(std::vector<FlatChart>& charts, double& area) {
+  area = 0;
   for (FlatChart& chart : charts) {
     packing::orient_chart(chart);
     area += chart.summary.area_3d;
@@ -82,6 +86,78 @@ double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& optio
     pack[c].F = &charts[c].mesh.data.F;
     for (double angle : angles[c]) pack[c].poses.push_back(packing::turned_to(charts[c].UV, angle));
   }
+  return pack;
+}
+
+// Chart c's four quarter-turn masks at `scale` cells per unit, the scale
+// lowered until one fits an empty page of `side` cells (a chart larger than
+// a page at the asked density is shrunk, never dropped).
+std::vector<packing::Mask> fitting_masks(const packing::PackChart& c, double& scale, int side, int pad, bool& shrunk) {
+  shrunk = false;
+  for (int tries = 0;; ++tries) {
+    std::vector<packing::Mask> m = packing::quarter_turn_masks(*c.F, c.poses[0], scale, pad);
+    int smallest = INT32_MAX;
+    for (const packing::Mask& k : m) smallest = std::min(smallest, std::max(k.w, k.h));
+    if (smallest <= side || tries > 60) return m;
+    shrunk = true;
+    scale *= std::max(0.5, 0.98 * (side - 2 * pad - 2) / std::max(1.0, smallest - 2.0 * pad));
+  }
+}
+
+// Lightmap pages (texels_per_unit > 0): every chart at one density, pages
+// of `resolution` texels filled in turn, page k at u in [k, k + 1] (UDIM).
+double pack_on_pages(std::vector<FlatChart>& charts, const PackOptions& o, PageLayout& out) {
+  double area = 0;
+  const std::vector<packing::PackChart> pack = posed(charts, area);
+  // Pages over kMaxPackBitmap texels are packed on cells of `zoom` texels.
+  const int zoom = (o.resolution + kMaxPackBitmap - 1) / kMaxPackBitmap;
+  const int side = o.resolution / zoom;
+  const int pad = static_cast<int>(std::ceil(o.padding / zoom - 1e-9));
+  const int edge = pad - (pad + 1) / 2;  // half the padding at the page's border, as pack_flat_charts
+  std::vector<double> scale(charts.size(), o.texels_per_unit / zoom);
+  std::vector<std::vector<packing::Mask>> masks(charts.size());
+  for (size_t c = 0; c < charts.size(); ++c) {
+    bool shrunk = false;
+    masks[c] = fitting_masks(pack[c], scale[c], side + 2 * edge, pad, shrunk);
+    if (shrunk) out.shrunk.push_back(static_cast<int>(c));
+  }
+  std::vector<packing::Placement> at;
+  const int pages = packing::place_on_pages(masks, side + 2 * edge, 4, at, out.chart_page, o.max_pages);
+  if (pages < 0)
+    throw_input("the charts need more than " + std::to_string(o.max_pages) + " pages of " +
+                std::to_string(o.resolution) + " texels at " + std::to_string(o.texels_per_unit) +
+                " texels per unit (max_pages)");
+  out.page_utilization.assign(static_cast<size_t>(pages), 0.0);
+  const double texels = static_cast<double>(o.resolution) * o.resolution;
+  for (size_t c = 0; c < charts.size(); ++c) {
+    const packing::Placement& p = at[c];
+    charts[c].UV = packing::texel_coordinates(pack[c].poses[0], scale[c], p.pose % 4);
+    charts[c].summary.rotated = p.pose != 0;
+    charts[c].UV.col(0).array() += p.x + pad - edge;
+    charts[c].UV.col(1).array() += p.y + pad - edge;
+    charts[c].UV *= static_cast<double>(zoom) / o.resolution;
+    charts[c].UV = charts[c].UV.cwiseMax(0.0).cwiseMin(1.0);  // rounding only
+    charts[c].UV.col(0).array() += out.chart_page[c];
+    const double s = scale[c] * zoom;
+    out.page_utilization[static_cast<size_t>(out.chart_page[c])] += charts[c].summary.area_3d * s * s / texels;
+  }
+  double sum = 0;
+  for (double u : out.page_utilization) sum += u;
+  return sum / pages;
+}
+
+}  // namespace
+
+double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping,
+                        PageLayout* pages) {
+  overlapping = 0;
+  if (charts.empty()) return 0;
+  if (options.texels_per_unit > 0) {
+    PageLayout unused;
+    return pack_on_pages(charts, options, pages ? *pages : unused);
+  }
+  double area = 0;
+  const std::vector<packing::PackChart> pack = posed(charts, area);
   // Larger textures pack on a coarser grid (thresholds.h).
   const int side = std::min(options.resolution, kMaxPackBitmap);
   const int pad = static_cast<int>(std::ceil(options.padding * side / options.resolution - 1e-9));

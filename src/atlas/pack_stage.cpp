@@ -97,7 +97,17 @@ AtlasResult pack_charts(const AtlasCharts& c, const PackOptions& options) {
   const auto t = std::chrono::steady_clock::now();
   std::vector<detail::FlatChart> charts = unstore(c);
   AtlasResult r;
-  r.utilization = detail::pack_flat_charts(charts, options, r.overlapping);
+  detail::PageLayout pages;
+  r.utilization = detail::pack_flat_charts(charts, options, r.overlapping, &pages);
+  if (options.texels_per_unit > 0) {
+    r.pages = static_cast<int>(pages.page_utilization.size());
+    r.chart_page = std::move(pages.chart_page);
+    r.page_utilization = std::move(pages.page_utilization);
+    r.shrunk_charts = std::move(pages.shrunk);
+  } else {
+    r.chart_page.assign(charts.size(), 0);
+    r.page_utilization = {r.utilization};
+  }
   // The packed charts' rows in the same blocks, one more (zero) row for
   // degenerate faces none of whose vertices is in a chart.
   const int rows = static_cast<int>(c.UV.rows());

@@ -151,4 +151,33 @@ bool place_all(const std::vector<std::vector<Mask>>& masks, int side, int poses,
   return true;
 }
 
+int place_on_pages(const std::vector<std::vector<Mask>>& masks, int side, int poses, std::vector<Placement>& at,
+                   std::vector<int>& page, int max_pages) {
+  struct Page {
+    Bitmap bm;
+    BoxCursors cursors;
+    explicit Page(int side) : bm(side) { bm.set_extent(side); }
+  };
+  std::vector<Page> pages;
+  at.assign(masks.size(), {});
+  page.assign(masks.size(), -1);
+  for (int c : placement_order(masks)) {
+    const size_t n = std::min<size_t>(poses, masks[c].size());
+    for (size_t k = 0; page[c] < 0; ++k) {
+      const bool fresh = k == pages.size();
+      if (fresh) {
+        if (max_pages > 0 && static_cast<int>(pages.size()) == max_pages) return -1;
+        pages.emplace_back(side);
+      }
+      const Placement p = first_inside_all(pages[k].bm, masks[c], n, side, pages[k].cursors);
+      if (p.x < 0 && fresh) return -1;  // fits no empty page: the caller's promise broken
+      if (p.x < 0) continue;
+      pages[k].bm.take(masks[c][p.pose], p.x, p.y);
+      at[c] = p;
+      page[c] = static_cast<int>(k);
+    }
+  }
+  return static_cast<int>(pages.size());
+}
+
 }  // namespace intrinsic::detail::packing

@@ -28,4 +28,13 @@ std::vector<int> placement_order(const std::vector<std::vector<Mask>>& masks);
 bool place_all(const std::vector<std::vector<Mask>>& masks, int side, int poses, std::vector<Placement>& at,
                int& extent);
 
+// Fixed-size pages filled in turn (a lightmap at one texel density): each
+// chart, in placement order, goes to the first page where one of its first
+// `poses` masks fits, at its first position there; a new page is opened
+// when none has room. Every mask must fit an empty `side` page. page[c]:
+// chart c's page. Returns the number of pages, or -1 when more than
+// `max_pages` (> 0) would be needed.
+int place_on_pages(const std::vector<std::vector<Mask>>& masks, int side, int poses, std::vector<Placement>& at,
+                   std::vector<int>& page, int max_pages);
+
 }  // namespace intrinsic::detail::packing
