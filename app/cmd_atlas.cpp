@@ -25,6 +25,7 @@ struct AtlasArgs {
   AtlasOptions options;
   GltfWriteOptions gltf;
   std::string scope = choice_name(AtlasScope::Whole);
+  std::string instances = choice_name(InstanceMode::Shared);
   TextureTransferOptions textures;
   bool quiet = false;
   std::int64_t max_vertices = ReadOptions().max_vertices;
@@ -74,6 +75,7 @@ int run_atlas(const AtlasArgs& a) {
   check_atlas_output(a.output);
   request.read.max_vertices = a.max_vertices;
   request.read.max_faces = faces_for_vertices(a.max_vertices);
+  request.read.instances = parse_choice<InstanceMode>(a.instances, "--instances");
   request.seams_file = a.seams;
   request.textures = a.textures;
   if (a.textures.enabled && a.gltf.texcoord_set < 0 && mesh_extension(a.output) != ".obj")
@@ -83,15 +85,23 @@ int run_atlas(const AtlasArgs& a) {
   const TextureTransferReport baked = write_with_textures(a, o);
   nlohmann::json j = atlas_report_json(o, a.output);
   if (a.textures.enabled) j["textures"] = texture_transfer_json(baked);
+  // What writing added beside the output, or could not find (only when
+  // there is any: the report is otherwise the library's, as Python gives it).
+  if (!baked.files.empty()) j["files_beside"] = baked.files;
+  if (!baked.missing_images.empty()) j["missing_images"] = baked.missing_images;
   j["timings_ms"]["write"] = elapsed_ms(t1);
   j["timings_ms"]["total"] = elapsed_ms(t0);
   std::vector<std::string> written = baked.files;
   written.push_back(a.output);
   if (!a.report.empty()) write_all({{a.report, j.dump(2) + "\n"}}, written);
   const AtlasResult& r = o.result;
+  for (const std::string& m : baked.missing_images)
+    std::cerr << "intrinsic: warning: " << a.output << " names '" << m << "', which was not found (--allow-missing-images)\n";
   if (!a.quiet)
     std::cout << a.output << ": " << o.data.V.rows() << " vertices, " << r.components << " components, "
-              << r.charts.size() << " charts, utilization " << static_cast<int>(100 * r.utilization + 0.5) << "%, "
+              << r.charts.size() << " charts, "
+              << (r.pages > 1 ? std::to_string(r.pages) + " pages, " : std::string())
+              << "utilization " << static_cast<int>(100 * r.utilization + 0.5) << "%, "
               << r.flipped << " flipped, " << r.overlapping << " overlapping, " << static_cast<long>(elapsed_ms(t0))
               << " ms\n";
   return 0;
@@ -116,6 +126,14 @@ void register_atlas(CLI::App& app, Runner& run) {
                   "or OBJ object `o` gets its own atlas filling [0,1]^2")
       ->check(choice_check<AtlasScope>())
       ->capture_default_str();
+  cmd->add_option("--instances", a->instances,
+                  "A mesh several nodes draw (glTF, FBX, Collada...): shared (default: one chart layout, every node "
+                  "keeps pointing at it) or unique (each instance its own charts, the mesh copied per node)")
+      ->check(choice_check<InstanceMode>())
+      ->capture_default_str();
+  cmd->add_flag("--allow-missing-images", a->gltf.allow_missing_images,
+                "Write the output even when an image or material file the input names cannot be found (its "
+                "reference is kept as it was and listed in the report's missing_images)");
   cmd->add_option("--uv-set", a->gltf.texcoord_set,
                   "glTF input: the TEXCOORD_n set the atlas goes to (default: the next free set of each primitive)")
       ->check(CLI::Range(0, 31));
@@ -146,7 +164,17 @@ void register_atlas(CLI::App& app, Runner& run) {
   cmd->add_option("--optimize-boundary", a->optimize_boundary,
                   "Per chart, optimize the fixed boundary for this energy (edge | area | dirichlet)");
   cmd->add_option("--padding", a->options.padding, "Texels between charts")->capture_default_str();
-  cmd->add_option("--resolution", a->options.resolution, "Texture width the padding is measured in")
+  cmd->add_option("--texels-per-unit", a->options.texels_per_unit,
+                  "Lightmaps: every chart at this many texels per unit of surface length, on pages of "
+                  "--resolution texels (UDIM tiles 1001, 1002, ...: page k at u in [k, k+1]; 0: one page, "
+                  "charts scaled to fill it)")
+      ->check(CLI::Range(0.0, 1e12))
+      ->capture_default_str();
+  cmd->add_option("--max-pages", a->options.max_pages,
+                  "--texels-per-unit: refuse (exit 2, nothing written) when more pages are needed (0: no limit)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--resolution", a->options.resolution, "Texture (page) width the padding is measured in")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   cmd->add_option("--max-normal-deviation", a->options.max_normal_deviation_deg,

@@ -33,6 +33,10 @@ if [ "${INTRINSIC_SKIP_SANITIZERS:-0}" != 1 ]; then
     -DINTRINSIC_SANITIZE=ON -DINTRINSIC_BUILD_BENCH=OFF
   cmake --build build-asan -j"$JOBS"
   # The large shared mesh is exercised by the Release run; under the
-  # sanitizers it would take most of the CI budget.
-  (cd build-asan && INTRINSIC_SANITIZER_RUN=1 ctest --output-on-failure -j"$JOBS" -E 'Large')
+  # sanitizers it would take most of the CI budget. So are the browser
+  # editor's tests (JavaScript in Chromium; the server's C++ has its own
+  # tests here) and the comparison with xatlasjs (a measurement against a
+  # peer; AtlasCorpus runs the same meshes through our code here).
+  (cd build-asan && INTRINSIC_SANITIZER_RUN=1 ctest --output-on-failure -j"$JOBS" \
+    -E 'Large|browser_editor|atlas_vs_xatlasjs')
 fi

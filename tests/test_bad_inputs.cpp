@@ -239,7 +239,7 @@ std::vector<BadCase> bad_cases() {
       {"boundary coincident positions", "in.obj", grid, with_b, 2, "give vertices 20 and 24 the same position (0, 1)",
        bnd.substr(0, bnd.rfind("24 ")) + "24 0 1\n"},
       // Options
-      {"unknown input format", "in.xyz", kSquareObj, "", 1, "unknown input format '.xyz'"},
+      {"unknown input format", "in.xyz", "hello\n", "", 1, "unknown input format '.xyz'"},
       {"input is a directory", "", "", "!param {dir} -o {dir}/out.obj", 2, "is a directory"},
       {"missing input", "", "", "!param {dir}/nothing.obj -o {dir}/out.obj", 2, "cannot open"},
       {"--max-vertices zero", "in.obj", kSquareObj, "--max-vertices 0", 1, "--max-vertices"},

@@ -32,6 +32,16 @@ MeshData read_gltf(const std::string& path, const ReadOptions& options = {});
 // no folder to read them from). `name` is used for messages.
 MeshData read_gltf_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options = {});
 
+// What a document-backed input holds (MeshData::gltf; all 0 otherwise): for
+// reports, which say what was charted and what was carried along untouched.
+struct SceneSummary {
+  int meshes = 0;        // glTF meshes (after InstanceMode::Unique's copies)
+  int instances = 0;     // nodes drawing a mesh
+  int materials = 0, images = 0, cameras = 0, lights = 0;
+  int skipped_primitives = 0;  // points and lines: kept in the document, not charted
+};
+SceneSummary scene_summary(const MeshData& data);
+
 // Where each merged vertex and face came from (MeshData::gltf must be set).
 struct GltfProvenance {
   std::vector<int> vertex_mesh, vertex_primitive, vertex_index;  // per merged vertex: its source vertex
@@ -51,6 +61,10 @@ struct GltfWriteOptions {
   // references after the rewrite (the primitives' old data), so that a
   // document does not grow with every atlas written into it.
   bool prune = true;
+  // An image the input names but that cannot be found (from the input's
+  // folder, or by its file name there) is Error(Input) unless this is true;
+  // then its URI is written as it was and listed in missing_images.
+  bool allow_missing_images = false;
 };
 
 // What write_gltf_atlas did besides the atlas.
@@ -62,6 +76,15 @@ struct GltfWriteResult {
   // extension this writer does not know, which could reference accessors
   // or buffer views, so everything was kept.
   std::string note;
+  // Images written beside a .gltf output (copies of the input's files that
+  // would not resolve from the output's folder), and the URIs written
+  // although no file was found (allow_missing_images).
+  std::vector<std::string> files;
+  std::vector<std::string> missing_images;
+  // When images the output no longer uses (replaced by a texture transfer)
+  // were dropped: per image index before the drop, its index after (-1:
+  // dropped). Empty when none was.
+  std::vector<int> image_index;
 };
 
 // Writes `data`'s glTF document back with the atlas `result` (computed on
@@ -75,8 +98,10 @@ GltfWriteResult write_gltf_atlas(const std::string& path, const MeshData& data, 
                                  const GltfWriteOptions& options = {});
 
 // write_atlas_file (io.h) with the choice of UV set for a glTF input
-// (ignored for other inputs and for .obj output).
-void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r,
-                      const GltfWriteOptions& gltf_options);
+// (ignored for other inputs and for .obj output) and allow_missing_images
+// (every output). Returns the files written beside the output (images, .mtl)
+// and the images left missing.
+GltfWriteResult write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r,
+                                 const GltfWriteOptions& gltf_options);
 
 }  // namespace intrinsic

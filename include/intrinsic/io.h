@@ -22,11 +22,19 @@
 
 namespace intrinsic {
 
+// A mesh drawn by several nodes of a scene (glTF, and the formats read
+// through assimp): Shared reads it once, placed by its first instance, and the
+// nodes of a written document keep pointing at it (one chart layout for all:
+// what a texture atlas wants); Unique gives each node a copy of the mesh, so
+// each instance has charts of its own (what a lightmap wants).
+enum class InstanceMode { Shared, Unique };
+
 struct ReadOptions {
   // Refuse files announcing or containing more than this many vertices or
   // faces, before allocating for them.
   std::int64_t max_vertices = 50'000'000;
   std::int64_t max_faces = 100'000'000;
+  InstanceMode instances = InstanceMode::Shared;
 };
 
 // Throws Error(Input) naming file and line (or byte offset / element index in
@@ -125,8 +133,12 @@ std::vector<SeamEdge> read_seams_file(const std::string& path, const MeshData& m
 // Atlases (src/io/atlas_writer.cpp). The OBJ: the input's vertices in input
 // order, one `vt` per atlas UV, the result's faces (the input's, reoriented
 // ones reversed) `f v/vt` (seams only through the per-corner texture
-// coordinates); atomically.
+// coordinates); atomically, with the material files its mtllib needs beside
+// it (docs/formats.md "OBJ materials travel with the output").
 void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r);
+// The same OBJ naming exactly `mtllib`, files the caller writes itself.
+void write_atlas_obj_naming(const std::string& path, const MeshData& m, const AtlasResult& r,
+                            const std::vector<std::string>& mtllib);
 // The atlas in the format the extension names: .obj (write_atlas_obj), or
 // .glb/.gltf: the input's own glTF document with the atlas added when `m` was
 // read from glTF (write_gltf_atlas, intrinsic/gltf.h), else write_glb's
@@ -144,6 +156,12 @@ void write_file_atomically(const std::string& path, const std::string& contents)
 // exception from `produce` or the sink leaves no file behind.
 using ByteSink = std::function<void(const char* data, std::size_t size)>;
 void write_file_atomically(const std::string& path, const std::function<void(const ByteSink&)>& produce);
+
+// Writes each (path, bytes) atomically in order. If one fails, the files of
+// this call written before it and every path in `written_before` are removed,
+// then the error propagates: a failed run leaves no partial set of outputs.
+void write_all(const std::vector<std::pair<std::string, std::string>>& files,
+               const std::vector<std::string>& written_before = {});
 
 // For programs (the CLI calls it first thing; library code never installs
 // handlers by itself): SIGINT, SIGTERM, SIGHUP and SIGQUIT delete the temporary

@@ -14,6 +14,7 @@
 #include "intrinsic/boundary_editor.h"
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/error.h"
+#include "intrinsic/io.h"
 #include "intrinsic/linear_solver.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
@@ -88,6 +89,8 @@ template <>
 ChoiceTable<TextureWrap> choice_table<TextureWrap>();
 template <>
 ChoiceTable<AtlasScope> choice_table<AtlasScope>();
+template <>
+ChoiceTable<InstanceMode> choice_table<InstanceMode>();
 
 // The names a user may give, in table order.
 template <class E>

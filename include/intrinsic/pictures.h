@@ -70,10 +70,5 @@ struct Picture {
 Picture make_picture(PictureMode mode, const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV,
                      const PictureSettings& settings, const Distortion* distortion);
 
-// Writes each (path, bytes) atomically in order. If one fails, the files of
-// this call written before it and every path in `written_before` are removed,
-// then the error propagates: a failed run leaves no partial set of outputs.
-void write_all(const std::vector<std::pair<std::string, std::string>>& files,
-               const std::vector<std::string>& written_before = {});
 
 }  // namespace intrinsic

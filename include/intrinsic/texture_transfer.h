@@ -41,7 +41,8 @@ struct BakedTexture {
 struct TextureTransferReport {
   std::vector<BakedTexture> baked;
   std::vector<std::string> notes;  // e.g. a material with no texture on the replaced set
-  std::vector<std::string> files;  // written beside the output (an OBJ's PNGs and .mtl)
+  std::vector<std::string> files;  // written beside the output (images, .mtl)
+  std::vector<std::string> missing_images;  // named by the input, not found (allow_missing_images)
 };
 
 // Error(Usage) for options out of range (before any work).

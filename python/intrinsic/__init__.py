@@ -38,6 +38,7 @@ from . import _intrinsic
 from ._intrinsic import (  # noqa: F401  (re-exported)
     Atlas,
     AtlasScope,
+    InstanceMode,
     BasisMode,
     BoundaryEditor,
     BoundaryEnergy,
@@ -87,7 +88,7 @@ _ERRORS = (
 )
 _ENUMS = (
     "Method", "BoundaryShape", "Spacing", "ScaleMode", "HoleRule", "SolverKind", "LambdaEnergy", "BoundaryEnergy",
-    "GradientRoute", "Descent", "Segmentation", "BasisMode", "AtlasScope",
+    "GradientRoute", "Descent", "Segmentation", "BasisMode", "AtlasScope", "InstanceMode",
 )
 __all__ = [
     *_ERRORS, *_ENUMS, "Atlas", "BoundaryEditor", "Parameterizer", "Result", "metrics", "optimal_lambda",
@@ -229,6 +230,10 @@ def atlas(
     transfer_textures: Optional[bool] = None,
     texture_size: Optional[int] = None,
     texture_padding: Optional[int] = None,
+    instances: Union[None, str, InstanceMode] = None,
+    texels_per_unit: Optional[float] = None,
+    max_pages: Optional[int] = None,
+    allow_missing_images: Optional[bool] = None,
 ) -> Atlas:
     """`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or a mesh file (atlas(path)).
 
@@ -257,7 +262,13 @@ def atlas(
     How write_atlas writes it: `uv_set` (glTF input: the TEXCOORD_n the atlas goes to, `--uv-set`),
     `replace_used_set`, and `transfer_textures=True` (`--transfer-textures`, docs/textures.md): the
     textures reading the replaced set are baked into the new layout, `texture_size` texels a side
-    (0: each source's density), `texture_padding` texels of dilation.
+    (0: each source's density), `texture_padding` texels of dilation; `allow_missing_images=True`
+    writes even when an image or material file the input names is missing (`--allow-missing-images`).
+    `texels_per_unit` (`--texels-per-unit`, lightmaps): every chart at that many texels per unit of
+    surface length on pages of `resolution` texels (UDIM: page k at u in [k, k+1]), at most
+    `max_pages` (0: no limit); the report lists "pages", "page_utilization" and "chart_page".
+    `instances` (`--instances`): "shared" (default) charts a mesh several nodes draw once, "unique"
+    gives each instance its own charts (docs/formats.md "Instances").
     Raises UsageError for bad options and InputError for unreadable or invalid input.
     """
     given = dict(padding=padding, resolution=resolution, max_normal_deviation=max_normal_deviation,
@@ -268,6 +279,8 @@ def atlas(
                  boundary=boundary, method=method, optimize_lambda=optimize_lambda,
                  optimize_boundary=optimize_boundary, max_vertices=max_vertices, mu=mu, uv_set=uv_set,
                  replace_used_set=replace_used_set, transfer_textures=transfer_textures,
-                 texture_size=texture_size, texture_padding=texture_padding)
+                 texture_size=texture_size, texture_padding=texture_padding, instances=instances,
+                 allow_missing_images=allow_missing_images, texels_per_unit=texels_per_unit,
+                 max_pages=max_pages)
     given["lambda"] = lambda_
     return _intrinsic.atlas(V, F, **{k: v for k, v in given.items() if v is not None})

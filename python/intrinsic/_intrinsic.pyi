@@ -127,6 +127,11 @@ class AtlasScope(_Enum):
     PER_MESH: ClassVar[AtlasScope]
     __members__: ClassVar[Dict[str, AtlasScope]]
 
+class InstanceMode(_Enum):
+    SHARED: ClassVar[InstanceMode]
+    UNIQUE: ClassVar[InstanceMode]
+    __members__: ClassVar[Dict[str, InstanceMode]]
+
 def read_mesh(path: _Path, max_vertices: int = ...) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int32]]: ...
 def write_mesh(path: _Path, V: npt.ArrayLike, F: npt.ArrayLike, uv: Optional[npt.ArrayLike] = None,
                binary: bool = False) -> None: ...

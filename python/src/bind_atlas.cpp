@@ -66,8 +66,7 @@ std::vector<int> to_face_groups(const py::handle& obj) {
 }
 
 // Range checks are atlas()'s own (Error(Usage)), as for the command line.
-AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices, SeamsArg& seams,
-                           AtlasOutput& out) {
+AtlasOptions atlas_options(const py::kwargs& kwargs, ReadOptions& read, SeamsArg& seams, AtlasOutput& out) {
   AtlasOptions o;
   // The chart map first, spelled as parameterize()'s options.
   py::dict rest = py::dict(kwargs).attr("copy")();
@@ -76,6 +75,8 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices,
     const std::string k = py::str(key);
     if (k == "padding") o.padding = value.cast<double>();
     else if (k == "resolution") o.resolution = value.cast<int>();
+    else if (k == "texels_per_unit") o.texels_per_unit = value.cast<double>();
+    else if (k == "max_pages") o.max_pages = value.cast<int>();
     else if (k == "max_normal_deviation") o.max_normal_deviation_deg = value.cast<double>();
     else if (k == "min_chart_faces") o.min_chart_faces = value.cast<int>();
     else if (k == "max_stretch") o.max_stretch = value.cast<double>();
@@ -89,7 +90,9 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, std::int64_t& max_vertices,
     else if (k == "seams") seams.value = py::reinterpret_borrow<py::object>(value);
     else if (k == "face_groups") o.face_group = to_face_groups(value);
     else if (k == "scope") o.scope = to_choice<AtlasScope>(value, "scope");
-    else if (k == "max_vertices") max_vertices = value.cast<std::int64_t>();
+    else if (k == "max_vertices") read.max_vertices = value.cast<std::int64_t>();
+    else if (k == "instances") read.instances = to_choice<InstanceMode>(value, "instances");
+    else if (k == "allow_missing_images") out.gltf.allow_missing_images = value.cast<bool>();
     else if (k == "uv_set") out.gltf.texcoord_set = value.is_none() ? -1 : value.cast<int>();
     else if (k == "replace_used_set") out.gltf.replace_used_set = value.cast<bool>();
     else if (k == "transfer_textures") out.textures.enabled = value.cast<bool>();
@@ -112,7 +115,7 @@ AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs
   AtlasRequest request;
   SeamsArg seams;
   AtlasOutput out;
-  request.options = atlas_options(kwargs, request.read.max_vertices, seams, out);
+  request.options = atlas_options(kwargs, request.read, seams, out);
   request.textures = out.textures;
   if (out.textures.enabled && out.gltf.texcoord_set < 0 && from_gltf_path(V, F))
     throw_usage("transfer_textures replaces the set the textures read: give uv_set (usually 0)");
@@ -168,7 +171,8 @@ void register_atlas(py::module_& m) {
         "      max_stretch=1.08, max_face_stretch=2, hard_angle=0, isometric_iterations=10, max_charts=0, weld=1e-7, reorient=True, atlas_stretch_budget=True, seams=None, face_groups=None, scope=\"whole\",\n"
         "      boundary='natural', method='conformal', lambda_=None, mu=None, optimize_lambda=None,\n"
         "      optimize_boundary=None, max_vertices=50000000, uv_set=None, replace_used_set=False,\n"
-        "      transfer_textures=False, texture_size=2048, texture_padding=4) -> Atlas\n\n"
+        "      transfer_textures=False, texture_size=2048, texture_padding=4, instances='shared',\n"
+        "      allow_missing_images=False) -> Atlas\n\n"
         "`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or on a mesh file (atlas(path)):\n"
         "any triangle mesh (closed, higher genus, several components, non-manifold bits) cut into disk\n"
         "charts, each flattened by the natural conformal map, packed into [0,1]^2 without flips or\n"

@@ -85,6 +85,10 @@ void register_enums(py::module_& m) {
                           {{"NORMAL_CONES", Segmentation::NormalCones}, {"COMPONENTS", Segmentation::Components}});
   bind_enum<AtlasScope>(m, "AtlasScope", "One atlas for the whole file or one per mesh (scope=, --atlas).",
                         {{"WHOLE", AtlasScope::Whole}, {"PER_MESH", AtlasScope::PerMesh}});
+  bind_enum<InstanceMode>(m, "InstanceMode",
+                          "A mesh several nodes draw: one chart layout shared, or charts per instance (instances=, "
+                          "--instances).",
+                          {{"SHARED", InstanceMode::Shared}, {"UNIQUE", InstanceMode::Unique}});
   bind_enum<BasisMode>(m, "BasisMode", "The boundary editor's response basis (basis=, intrinsic edit --basis).",
                        {{"FULL", BasisMode::Full}, {"LAZY", BasisMode::Lazy}});
 }

@@ -1,14 +1,17 @@
 // Writing an atlas (io.h "Atlases"): the OBJ with one texture coordinate per
-// corner and what the input OBJ carried besides (normals, materials, groups,
-// objects, smoothing groups; docs/formats.md "OBJ"), or the .glb/.gltf
+// corner and what the input carried besides (normals, materials, groups,
+// objects, smoothing groups; docs/formats.md "OBJ"), its material files
+// beside it (obj_materials.cpp), or the .glb/.gltf
 // through write_glb, chosen by the output's extension; a mesh read from glTF
 // goes back into its document (gltf.h).
 #include <charconv>
+#include <filesystem>
 
 #include "intrinsic/atlas.h"
 #include "intrinsic/error.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"
+#include "io/obj_materials.h"
 
 namespace intrinsic {
 namespace {
@@ -74,12 +77,11 @@ int input_corner(const MeshData& m, const AtlasResult& r, int f, int c) {
   return 3 - c;
 }
 
-}  // namespace
-
 // The OBJ, streamed in blocks of lines: mtllib lines, v, vt (the atlas), vn
 // (the input's), then the faces in input order with the input's state
 // statements where they change and `f v/vt/vn` where the corner had a normal.
-void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r) {
+void write_obj_lines(const std::string& path, const MeshData& m, const AtlasResult& r,
+                     const std::vector<std::string>& mtllib) {
   check_obj_extras(path, m, r);
   const bool normals = m.FN.rows() > 0;
   write_file_atomically(path, [&](const ByteSink& sink) {
@@ -87,7 +89,7 @@ void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResu
     auto flush = [&](bool force) {
       if (force || s.size() > (1 << 20)) sink(s.data(), s.size()), s.clear();
     };
-    for (const std::string& lib : m.material_libraries) s += "mtllib " + lib + '\n';
+    for (const std::string& lib : mtllib) s += "mtllib " + lib + '\n';
     auto put_rows = [&](const char* keyword, const auto& X) {
       for (Eigen::Index i = 0; i < X.rows(); ++i) {
         s += keyword;
@@ -117,6 +119,40 @@ void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResu
   });
 }
 
+// The OBJ and the material files it names, all or none.
+GltfWriteResult write_obj_with_materials(const std::string& path, const MeshData& m, const AtlasResult& r,
+                                         bool allow_missing) {
+  io::ObjSideFiles side = io::obj_side_files(m, path, allow_missing);
+  GltfWriteResult out;
+  out.missing_images = side.missing;
+  for (const auto& [file, bytes] : side.files) out.files.push_back(file);
+  for (const std::string& folder : side.folders) {
+    std::error_code ec;
+    std::filesystem::create_directories(folder, ec);
+    if (ec) throw_output_file("cannot create " + folder + ": " + ec.message(), ec.value());
+  }
+  write_all(side.files);
+  try {
+    write_obj_lines(path, m, r, side.mtllib);
+  } catch (...) {
+    std::error_code ec;
+    for (const std::string& f : out.files) std::filesystem::remove(f, ec);
+    throw;
+  }
+  return out;
+}
+
+}  // namespace
+
+void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r) {
+  write_obj_with_materials(path, m, r, false);
+}
+
+void write_atlas_obj_naming(const std::string& path, const MeshData& m, const AtlasResult& r,
+                            const std::vector<std::string>& mtllib) {
+  write_obj_lines(path, m, r, mtllib);
+}
+
 void check_atlas_output(const std::string& path) {
   const std::string ext = mesh_extension(path);
   if (ext != ".obj" && ext != ".glb" && ext != ".gltf")
@@ -129,14 +165,15 @@ void write_atlas_file(const std::string& path, const MeshData& m, const AtlasRes
   write_atlas_file(path, m, r, GltfWriteOptions{});
 }
 
-void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r,
-                      const GltfWriteOptions& gltf_options) {
+GltfWriteResult write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r,
+                                 const GltfWriteOptions& gltf_options) {
   check_atlas_output(path);
   const std::string ext = mesh_extension(path);
   // A glTF input is written back as the same document with the atlas added.
-  if (ext != ".obj" && m.gltf) write_gltf_atlas(path, m, r, gltf_options);
-  else if (ext != ".obj") write_glb(path, m.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
-  else write_atlas_obj(path, m, r);
+  if (ext != ".obj" && m.gltf) return write_gltf_atlas(path, m, r, gltf_options);
+  if (ext == ".obj") return write_obj_with_materials(path, m, r, gltf_options.allow_missing_images);
+  write_glb(path, m.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
+  return {};
 }
 
 }  // namespace intrinsic

@@ -12,6 +12,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <vector>
 
 #include "intrinsic/io.h"
@@ -164,6 +165,21 @@ void write_file_atomically(const std::string& path, const std::function<void(con
     const int err = errno;
     ::unlink(tmp.c_str());
     throw_output_file("cannot write " + path + ": " + std::strerror(err), err);
+  }
+}
+
+void write_all(const std::vector<std::pair<std::string, std::string>>& files,
+               const std::vector<std::string>& written_before) {
+  std::vector<std::string> written = written_before;
+  try {
+    for (const auto& [path, bytes] : files) {
+      write_file_atomically(path, bytes);
+      written.push_back(path);
+    }
+  } catch (...) {
+    std::error_code ec;
+    for (const std::string& path : written) std::filesystem::remove(path, ec);
+    throw;
   }
 }
 

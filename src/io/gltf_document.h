@@ -19,6 +19,9 @@ namespace intrinsic {
 
 struct GltfDocument {
   std::string name;  // the source file, for messages
+  // Where the document's relative URIs (images) resolve: the source file's
+  // folder ("." for the working directory); empty for bytes given in memory.
+  std::string folder;
   nlohmann::json json;
   std::vector<std::string> buffers;  // each exactly its declared byteLength
   // A triangle primitive of the merged mesh: its vertices are
@@ -100,11 +103,22 @@ struct PruneOutcome {
 };
 PruneOutcome prune_unreferenced(nlohmann::json& j, std::string& bin);
 
+// Drops the textures, images and samplers that `before` (the input
+// document) references and `after` (the output) no longer does, e.g. the
+// images a texture transfer replaced, renumbering the references. Returns
+// per image of `after` its new index (-1: dropped); empty when nothing went.
+// What the input carried unreferenced is kept.
+std::vector<int> prune_replaced_textures(const nlohmann::json& before, nlohmann::json& after);
+
 }  // namespace gltf
 
 namespace io {
 // read_mesh's glTF branch (gltf_reader.cpp): `bytes` of the file `name`;
 // external buffer files are read beside it only when `files_allowed`.
 MeshData read_gltf(const std::string& bytes, const std::string& name, const ReadOptions& options, bool files_allowed);
+// A loaded document as one mesh: every triangle primitive at world scale,
+// with per-face material, mesh and node names and per-corner world normals
+// (what an OBJ output gives back); the document rides along in MeshData::gltf.
+MeshData read_gltf_document(GltfDocument doc, const ReadOptions& options);
 }  // namespace io
 }  // namespace intrinsic

@@ -243,6 +243,7 @@ GltfDocument load_document(const std::string& bytes, const std::string& name, co
                            bool files_allowed) {
   GltfDocument doc;
   doc.name = name;
+  if (files_allowed) doc.folder = folder.empty() ? "." : folder;
   std::string text, bin;
   bool has_bin = false;
   if (bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0) split_glb(bytes, name, text, bin, has_bin);

@@ -8,6 +8,7 @@
 // extension not known here is left whole: such an extension could name an
 // accessor or a view that this walk would not see.
 #include <functional>
+#include <set>
 
 #include "io/gltf_document.h"
 
@@ -187,6 +188,120 @@ PruneOutcome prune_unreferenced(json& j, std::string& bin) {
   out.pruned = true;
   bin = std::move(packed);
   return out;
+}
+
+}  // namespace intrinsic::gltf
+
+namespace intrinsic::gltf {
+
+namespace {
+
+// Texture indices named by texture infos ({"index": t, ...} under a key
+// ending in "Texture", the spec's and the KHR_materials_* extensions'
+// spelling) anywhere outside the "textures" array.
+void texture_refs(const json& j, std::set<int>& out, bool top = true) {
+  if (j.is_array()) {
+    for (const json& e : j) texture_refs(e, out, false);
+    return;
+  }
+  if (!j.is_object()) return;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (top && it.key() == "textures") continue;
+    const std::string& k = it.key();
+    if (k.size() > 7 && k.compare(k.size() - 7, 7, "Texture") == 0 && it->is_object() && it->contains("index") &&
+        (*it)["index"].is_number_integer())
+      out.insert((*it)["index"].get<int>());
+    texture_refs(*it, out, false);
+  }
+}
+
+// The images and samplers the listed textures use ("source" in a texture or
+// in one of its extensions, "sampler").
+void image_refs(const json& j, const std::set<int>& textures, std::set<int>& images, std::set<int>& samplers) {
+  if (!j.contains("textures") || !j["textures"].is_array()) return;
+  for (const int t : textures) {
+    if (t < 0 || static_cast<std::size_t>(t) >= j["textures"].size()) continue;
+    const json& tex = j["textures"][static_cast<std::size_t>(t)];
+    if (!tex.is_object()) continue;
+    if (tex.contains("source") && tex["source"].is_number_integer()) images.insert(tex["source"].get<int>());
+    if (tex.contains("sampler") && tex["sampler"].is_number_integer()) samplers.insert(tex["sampler"].get<int>());
+    if (tex.contains("extensions") && tex["extensions"].is_object())
+      for (const json& e : tex["extensions"])
+        if (e.is_object() && e.contains("source") && e["source"].is_number_integer()) images.insert(e["source"].get<int>());
+  }
+}
+
+struct Refs {
+  std::set<int> textures, images, samplers;
+  explicit Refs(const json& j) {
+    texture_refs(j, textures);
+    image_refs(j, textures, images, samplers);
+  }
+};
+
+// Drops entries of j[key] in `gone`; returns the new index of each old one (-1: dropped).
+std::vector<int> drop(json& j, const char* key, const std::set<int>& gone) {
+  std::vector<int> to;
+  if (!j.contains(key) || !j[key].is_array()) return to;
+  json kept = json::array();
+  for (std::size_t i = 0; i < j[key].size(); ++i) {
+    const bool out = gone.count(static_cast<int>(i)) > 0;
+    to.push_back(out ? -1 : static_cast<int>(kept.size()));
+    if (!out) kept.push_back(j[key][i]);
+  }
+  if (kept.empty()) j.erase(key);
+  else j[key] = kept;
+  return to;
+}
+
+void renumber_texture_infos(json& j, const std::vector<int>& to, bool top = true) {
+  if (j.is_array()) {
+    for (json& e : j) renumber_texture_infos(e, to, false);
+    return;
+  }
+  if (!j.is_object()) return;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (top && it.key() == "textures") continue;
+    const std::string& k = it.key();
+    if (k.size() > 7 && k.compare(k.size() - 7, 7, "Texture") == 0 && it->is_object() && it->contains("index") &&
+        (*it)["index"].is_number_integer()) {
+      const int t = (*it)["index"].get<int>();
+      if (t >= 0 && static_cast<std::size_t>(t) < to.size()) (*it)["index"] = to[static_cast<std::size_t>(t)];
+    }
+    renumber_texture_infos(*it, to, false);
+  }
+}
+
+}  // namespace
+
+std::vector<int> prune_replaced_textures(const json& before, json& after) {
+  const Refs was(before), is(after);
+  std::set<int> textures, images, samplers;
+  for (const int t : was.textures)
+    if (!is.textures.count(t)) textures.insert(t);
+  for (const int i : was.images)
+    if (!is.images.count(i)) images.insert(i);
+  for (const int s : was.samplers)
+    if (!is.samplers.count(s)) samplers.insert(s);
+  if (textures.empty() && images.empty() && samplers.empty()) return {};
+  const std::vector<int> t_to = drop(after, "textures", textures);
+  const std::vector<int> i_to = drop(after, "images", images);
+  const std::vector<int> s_to = drop(after, "samplers", samplers);
+  renumber_texture_infos(after, t_to);
+  auto renumber = [](json& o, const char* key, const std::vector<int>& to) {
+    if (o.is_object() && o.contains(key) && o[key].is_number_integer()) {
+      const int v = o[key].get<int>();
+      if (v >= 0 && static_cast<std::size_t>(v) < to.size()) o[key] = to[static_cast<std::size_t>(v)];
+    }
+  };
+  if (after.contains("textures"))
+    for (json& tex : after["textures"]) {
+      renumber(tex, "source", i_to);
+      renumber(tex, "sampler", s_to);
+      if (tex.is_object() && tex.contains("extensions") && tex["extensions"].is_object())
+        for (json& e : tex["extensions"]) renumber(e, "source", i_to);
+    }
+  return i_to;
 }
 
 }  // namespace intrinsic::gltf

@@ -6,6 +6,7 @@
 // atlas welds coincident ones itself); the document and the origin of every
 // vertex and face stay with the MeshData for write_gltf_atlas.
 #include <array>
+#include <map>
 #include <cmath>
 
 #include "intrinsic/gltf.h"
@@ -139,11 +140,92 @@ void add_primitive(GltfDocument& doc, Merged& out, int mesh, int p, const Eigen:
   doc.primitives.push_back(rec);
 }
 
-MeshData read_document(GltfDocument doc_in, const ReadOptions& options) {
+// Per-face labels built primitive by primitive: the distinct names in order
+// of first use.
+class LabelTable {
+ public:
+  void add(const std::string* name, std::size_t faces) {
+    int id = -1;
+    if (name) {
+      const auto [it, fresh] = index_.emplace(*name, static_cast<int>(labels_.names.size()));
+      if (fresh) labels_.names.push_back(*name);
+      id = it->second;
+    }
+    labels_.of_face.insert(labels_.of_face.end(), faces, id);
+    any_ = any_ || id >= 0;
+  }
+  FaceLabels take() { return any_ ? std::move(labels_) : FaceLabels{}; }
+
+ private:
+  FaceLabels labels_;
+  std::map<std::string, int> index_;
+  bool any_ = false;
+};
+
+std::string name_of(const json& array, int i, const char* fallback) {
+  if (i < 0 || !array.is_array() || static_cast<std::size_t>(i) >= array.size()) return "";
+  const json& o = array[static_cast<std::size_t>(i)];
+  if (o.is_object() && o.contains("name") && o["name"].is_string() && !o["name"].get<std::string>().empty()) {
+    std::string n = o["name"].get<std::string>();
+    for (char& c : n)
+      if (c == '\n' || c == '\r' || c == '\0') c = ' ';  // one OBJ statement per line
+    return n;
+  }
+  return fallback ? std::string(fallback) + std::to_string(i) : "";
+}
+
+// What an OBJ output gives back of the document: per face its material's
+// name (usemtl), its mesh's name (g) and the node drawing it (o); per corner
+// the NORMAL attribute in world space (vn).
+void add_obj_extras(MeshData& data, const GltfDocument& doc, const std::vector<gltf::Placement>& placed) {
+  LabelTable materials, groups, objects;
+  const json empty = json::array();
+  const json& mats = doc.json.contains("materials") ? doc.json["materials"] : empty;
+  const json& nodes = doc.json.contains("nodes") ? doc.json["nodes"] : empty;
+  data.N.resize(data.V.rows(), 3);
+  data.FN.resize(data.F.rows(), 3);
+  bool any_normal = false;
+  for (const GltfDocument::Primitive& p : doc.primitives) {
+    const json& mesh = doc.json["meshes"][static_cast<std::size_t>(p.mesh)];
+    const json& prim = mesh["primitives"][static_cast<std::size_t>(p.primitive)];
+    const int material = prim.contains("material") && prim["material"].is_number_integer() ? prim["material"].get<int>() : -1;
+    const std::string mname = name_of(mats, material, "material_");
+    materials.add(mname.empty() ? nullptr : &mname, static_cast<std::size_t>(p.face_count));
+    const std::string group = mesh.is_object() && mesh.contains("name") && mesh["name"].is_string() ? mesh["name"].get<std::string>() : "";
+    groups.add(group.empty() ? nullptr : &group, static_cast<std::size_t>(p.face_count));
+    const std::string object = name_of(nodes, placed[static_cast<std::size_t>(p.mesh)].node, nullptr);
+    objects.add(object.empty() ? nullptr : &object, static_cast<std::size_t>(p.face_count));
+    const bool has = prim["attributes"].contains("NORMAL");
+    any_normal = any_normal || has;
+    for (int f = p.first_face; f < p.first_face + p.face_count; ++f)
+      for (int c = 0; c < 3; ++c) data.FN(f, c) = has ? data.F(f, c) : -1;
+    if (!has) continue;
+    const gltf::Accessor n = gltf::read_accessor(doc, prim["attributes"]["NORMAL"].get<int>(), std::int64_t{1} << 40);
+    const Eigen::Matrix3d to_world = placed[static_cast<std::size_t>(p.mesh)].world.topLeftCorner<3, 3>().inverse().transpose();
+    for (int v = 0; v < p.vertex_count; ++v) {
+      const std::int64_t src = doc.vertex_source[static_cast<std::size_t>(p.first_vertex + v)];
+      Eigen::Vector3d w = to_world * Eigen::Vector3d(n.value(src, 0), n.value(src, 1), n.value(src, 2));
+      if (w.norm() > 0 && w.allFinite()) w.normalize();
+      else w.setZero();
+      data.N.row(p.first_vertex + v) = w.transpose();
+    }
+  }
+  if (!any_normal) data.N.resize(0, 3), data.FN.resize(0, 3);
+  data.materials = materials.take();
+  data.groups = groups.take();
+  data.objects = objects.take();
+}
+
+}  // namespace
+
+namespace io {
+
+MeshData read_gltf_document(GltfDocument doc_in, const ReadOptions& options) {
   auto doc = std::make_shared<GltfDocument>(std::move(doc_in));
   const std::string& name = doc->name;
+  if (options.instances == InstanceMode::Unique) gltf::give_each_instance_its_mesh(doc->json);
   const json& meshes = gltf::array_at(doc->json, "meshes", name, "");
-  const std::vector<Eigen::Matrix4d> world = gltf::first_instances(doc->json, name, meshes.size());
+  const std::vector<gltf::Placement> placed = gltf::first_instances(doc->json, name, meshes.size());
   Merged out;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     const std::string path = "/meshes/" + std::to_string(m);
@@ -153,7 +235,7 @@ MeshData read_document(GltfDocument doc_in, const ReadOptions& options) {
       if (!prims[p].is_object()) fail(name, at, "expected an object");
       const std::int64_t mode = prims[p].contains("mode") ? gltf::integer(prims[p]["mode"], name, at + "/mode") : 4;
       if (mode < 0 || mode > 6) fail(name, at + "/mode", std::to_string(mode) + " is not a glTF primitive mode");
-      if (mode >= 4) add_primitive(*doc, out, static_cast<int>(m), static_cast<int>(p), world[m], options);
+      if (mode >= 4) add_primitive(*doc, out, static_cast<int>(m), static_cast<int>(p), placed[m].world, options);
     }
   }
   if (out.F.empty()) throw_input(name + ": no triangles (no mesh primitive with mode TRIANGLES, STRIP or FAN)");
@@ -163,9 +245,14 @@ MeshData read_document(GltfDocument doc_in, const ReadOptions& options) {
   data.F.resize(static_cast<Eigen::Index>(out.F.size()), 3);
   for (std::size_t f = 0; f < out.F.size(); ++f) data.F.row(static_cast<Eigen::Index>(f)) = out.F[f];
   data.path = name;
+  add_obj_extras(data, *doc, placed);
   data.gltf = doc;
   return data;
 }
+
+}  // namespace io
+
+namespace {
 
 std::string folder_of(const std::string& path) {
   const std::size_t slash = path.find_last_of('/');
@@ -182,7 +269,7 @@ MeshData read_gltf(const std::string& bytes, const std::string& name, const Read
   // Every JSON access checks its type first; should one have been missed,
   // the file is refused, not the program ended.
   try {
-    return read_document(gltf::load_document(bytes, name, folder_of(name), files_allowed), options);
+    return read_gltf_document(gltf::load_document(bytes, name, folder_of(name), files_allowed), options);
   } catch (const nlohmann::json::exception& e) {
     throw_input(name + ": unexpected JSON: " + e.what());
   }
@@ -198,6 +285,28 @@ MeshData read_gltf(const std::string& path, const ReadOptions& options) {
 
 MeshData read_gltf_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
   return io::read_gltf(bytes, name, options, false);
+}
+
+SceneSummary scene_summary(const MeshData& data) {
+  SceneSummary s;
+  if (!data.gltf) return s;
+  const json& j = data.gltf->json;
+  auto count = [&j](const char* key) { return j.contains(key) && j[key].is_array() ? static_cast<int>(j[key].size()) : 0; };
+  s.meshes = count("meshes");
+  s.materials = count("materials");
+  s.images = count("images");
+  s.cameras = count("cameras");
+  if (j.contains("extensions") && j["extensions"].is_object() && j["extensions"].contains("KHR_lights_punctual")) {
+    const json& l = j["extensions"]["KHR_lights_punctual"];
+    if (l.is_object() && l.contains("lights") && l["lights"].is_array()) s.lights = static_cast<int>(l["lights"].size());
+  }
+  if (j.contains("nodes") && j["nodes"].is_array())
+    for (const json& n : j["nodes"]) s.instances += n.is_object() && n.contains("mesh");
+  if (j.contains("meshes") && j["meshes"].is_array())
+    for (const json& m : j["meshes"])
+      if (m.is_object() && m.contains("primitives") && m["primitives"].is_array())
+        for (const json& p : m["primitives"]) s.skipped_primitives += p.is_object() && p.value("mode", 4) < 4;
+  return s;
 }
 
 GltfProvenance gltf_provenance(const MeshData& data) {

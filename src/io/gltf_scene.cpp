@@ -80,7 +80,7 @@ std::vector<int> root_order(const json& doc, const std::vector<int>& parent, con
 
 }  // namespace
 
-std::vector<Eigen::Matrix4d> first_instances(const json& doc, const std::string& name, std::size_t mesh_count) {
+std::vector<Placement> first_instances(const json& doc, const std::string& name, std::size_t mesh_count) {
   const json& nodes = array_at(doc, "nodes", name, "");
   const std::size_t n = nodes.size();
   std::vector<int> parent(n, -1);
@@ -99,7 +99,7 @@ std::vector<Eigen::Matrix4d> first_instances(const json& doc, const std::string&
       parent[static_cast<std::size_t>(c)] = static_cast<int>(i);
     }
   }
-  std::vector<Eigen::Matrix4d> world(mesh_count, Eigen::Matrix4d::Identity());
+  std::vector<Placement> world(mesh_count);
   std::vector<bool> mesh_seen(mesh_count, false), visited(n, false);
   std::vector<std::pair<int, Eigen::Matrix4d>> stack;
   for (const int root : root_order(doc, parent, name)) {
@@ -116,7 +116,7 @@ std::vector<Eigen::Matrix4d> first_instances(const json& doc, const std::string&
       const int mesh = index_at(node, "mesh", mesh_count, name, path, true);
       if (mesh >= 0 && !mesh_seen[static_cast<std::size_t>(mesh)]) {
         mesh_seen[static_cast<std::size_t>(mesh)] = true;
-        world[static_cast<std::size_t>(mesh)] = m;
+        world[static_cast<std::size_t>(mesh)] = Placement{m, i};
       }
       const json& children = array_at(node, "children", name, path);
       for (std::size_t k = children.size(); k-- > 0;) stack.emplace_back(children[k].get<int>(), m);
@@ -127,6 +127,27 @@ std::vector<Eigen::Matrix4d> first_instances(const json& doc, const std::string&
   for (std::size_t i = 0; i < n; ++i)
     if (!visited[i]) fail(name, "/nodes/" + std::to_string(i), "node loop (node " + std::to_string(i) + " is its own ancestor)");
   return world;
+}
+
+int give_each_instance_its_mesh(json& doc) {
+  if (!doc.contains("nodes") || !doc["nodes"].is_array() || !doc.contains("meshes") || !doc["meshes"].is_array())
+    return 0;
+  json& meshes = doc["meshes"];
+  std::vector<bool> drawn(meshes.size(), false);
+  int copies = 0;
+  for (json& node : doc["nodes"]) {
+    if (!node.is_object() || !node.contains("mesh") || !node["mesh"].is_number_integer()) continue;
+    const std::int64_t m = node["mesh"].get<std::int64_t>();
+    if (m < 0 || static_cast<std::size_t>(m) >= drawn.size()) continue;  // refused by the reader with its path
+    if (!drawn[static_cast<std::size_t>(m)]) {
+      drawn[static_cast<std::size_t>(m)] = true;
+      continue;
+    }
+    meshes.push_back(meshes[static_cast<std::size_t>(m)]);
+    node["mesh"] = meshes.size() - 1;
+    ++copies;
+  }
+  return copies;
 }
 
 }  // namespace intrinsic::gltf

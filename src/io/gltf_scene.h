@@ -8,11 +8,23 @@
 
 namespace intrinsic::gltf {
 
-// Per mesh: the world transform of its first instance (walking the default
-// scene's roots, the other scenes', then the remaining parentless nodes, depth
-// first, children in order); identity for a mesh no node draws. Refuses node
-// loops, a node with two parents and indices out of range.
-std::vector<Eigen::Matrix4d> first_instances(const nlohmann::json& doc, const std::string& name,
-                                             std::size_t mesh_count);
+// Where a mesh is drawn first: the world transform of that instance and its
+// node (-1 and identity for a mesh no node draws).
+struct Placement {
+  Eigen::Matrix4d world = Eigen::Matrix4d::Identity();
+  int node = -1;
+};
+
+// Per mesh its first instance (walking the default scene's roots, the other
+// scenes', then the remaining parentless nodes, depth first, children in
+// order). Refuses node loops, a node with two parents and indices out of
+// range.
+std::vector<Placement> first_instances(const nlohmann::json& doc, const std::string& name, std::size_t mesh_count);
+
+// Every node drawing a mesh that an earlier node (in index order) draws
+// gets a copy of that mesh's JSON (same accessors, same material) appended
+// to "meshes": each instance then has charts of its own. Returns how many
+// copies were made.
+int give_each_instance_its_mesh(nlohmann::json& doc);
 
 }  // namespace intrinsic::gltf

@@ -20,6 +20,7 @@
 
 #include "intrinsic/gltf.h"
 #include "io/gltf_document.h"
+#include "io/gltf_images.h"
 #include "io/gltf_write_hook.h"
 
 namespace intrinsic {
@@ -307,17 +308,25 @@ GltfWriteResult write_document(const std::string& path, const MeshData& data, co
     if (!p.pruned)
       result.note = doc.name + ": extension " + p.kept_because +
                     " could reference accessors or buffer views: unused data kept, not pruned";
+    // Images a texture transfer replaced go with their views (pruned again).
+    if (p.pruned) result.image_index = gltf::prune_replaced_textures(doc.json, out.j);
+    if (!result.image_index.empty()) {
+      const gltf::PruneOutcome again = gltf::prune_unreferenced(out.j, out.bin);
+      result.views_dropped += again.views_dropped;
+      result.bytes_dropped += again.bytes_dropped;
+    }
   }
+  gltf::PortableImages images = gltf::make_images_portable(out.j, out.bin, doc, path, o.allow_missing_images);
+  result.missing_images = images.missing;
   if (out.bin.size() > 0xFFFFFFF0u) throw_output(path + ": more than 4 GiB of buffer data (GLB's limit)");
   json buffer = {{"byteLength", out.bin.size()}};
-  if (ext == ".gltf") {
-    buffer["uri"] = "data:application/octet-stream;base64," + gltf::base64_encode(out.bin);
-    out.j["buffers"] = json::array({buffer});
-    write_file_atomically(path, out.j.dump(1, '\t'));
-  } else {
-    out.j["buffers"] = json::array({buffer});
-    write_file_atomically(path, glb_bytes(out.j, out.bin));
-  }
+  if (ext == ".gltf") buffer["uri"] = "data:application/octet-stream;base64," + gltf::base64_encode(out.bin);
+  out.j["buffers"] = json::array({buffer});
+  // The images beside a .gltf first, the document last: a failure on the way
+  // removes what this call wrote.
+  for (const auto& [file, bytes] : images.beside) result.files.push_back(file);
+  images.beside.emplace_back(path, ext == ".gltf" ? out.j.dump(1, '\t') : glb_bytes(out.j, out.bin));
+  write_all(images.beside);
   return result;
 }
 

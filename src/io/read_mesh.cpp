@@ -1,7 +1,7 @@
 // Entry points for reading: load the file in one read, undo gzip if the bytes
 // say so, and hand the buffer to the reader chosen by the file extension:
 // ours for OBJ, OFF, PLY, STL and glTF, assimp for any other extension it
-// imports.
+// imports; a name whose extension says nothing gets the format its bytes show.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -59,23 +59,60 @@ std::string unknown_format(const std::string& ext, const std::string& name) {
          "; `intrinsic formats` lists them)";
 }
 
+bool is_ours(const std::string& ext) {
+  return ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
+}
+
+// The format of a file whose name says nothing, from its first bytes: glb's
+// magic, glTF's JSON, PLY's and OFF's headers, ASCII STL's "solid ... facet",
+// a binary STL's size (84 bytes + 50 per announced triangle), OBJ's v and f
+// lines. "" when none fits.
+std::string sniff_format(const std::string& b) {
+  const std::string head = b.substr(0, 4096);
+  auto starts = [&head](const char* s) { return head.rfind(s, 0) == 0; };
+  if (starts("glTF")) return ".glb";
+  const std::size_t first = head.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
+  if (first != std::string::npos && head[first] == '{' && head.find("\"asset\"") != std::string::npos) return ".gltf";
+  if (starts("ply\n") || starts("ply\r\n")) return ".ply";
+  const std::string word = head.substr(0, head.find_first_of(" \t\r\n"));
+  if (word.size() >= 3 && word.size() <= 6 && word.compare(word.size() - 3, 3, "OFF") == 0) return ".off";
+  if (starts("solid") && head.find("facet") != std::string::npos) return ".stl";
+  if (b.size() >= 84) {
+    std::uint32_t n = 0;
+    std::memcpy(&n, b.data() + 80, 4);
+    if (b.size() == 84 + 50 * static_cast<std::uint64_t>(n)) return ".stl";
+  }
+  if ((head.find("\nv ") != std::string::npos || starts("v ")) && b.find("\nf ") != std::string::npos) return ".obj";
+  return "";
+}
+
 // `files_allowed`: a glTF document may read buffer files beside `name`
 // (only when `name` is a file that was read, not bytes handed over).
 MeshData read_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options,
                     bool files_allowed) {
-  const std::string ext = format_of(name);
-  const bool ours = ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl" || ext == ".gltf" || ext == ".glb";
-  if (!ours && !io::assimp_reads(ext)) throw_usage(unknown_format(ext, name));
+  std::string ext = format_of(name);
+  const bool known = is_ours(ext) || io::assimp_reads(ext);
   std::string inflated;
   const std::string* data = &bytes;
   if (io::is_gzip(bytes)) {
     inflated = io::gunzip(bytes, name, inflate_cap(options, ext));
     data = &inflated;
   }
+  if (!known) {
+    const std::string sniffed = sniff_format(*data);
+    if (sniffed.empty() && ext.empty())
+      throw_usage("cannot tell the format of " + name +
+                  ": it has no extension and its bytes look like none of OBJ, OFF, PLY, STL, glTF, glb "
+                  "(name it with the format's extension)");
+    if (sniffed.empty()) throw_usage(unknown_format(ext, name) + "; nor do its bytes look like one of ours");
+    ext = sniffed;
+  }
+  const bool ours = is_ours(ext);
   // assimp opens a file itself when it can (some formats name companion
   // files beside it); decompressed or in-memory bytes are handed over.
   if (!ours) return io::read_assimp(*data, name, ext, options, files_allowed && data == &bytes);
   if (ext == ".gltf" || ext == ".glb") return io::read_gltf(*data, name, options, files_allowed);
+  // (Each reader below checks the bytes itself; a sniffed format is no looser.)
   const char* begin = data->data();
   std::size_t size = data->size();
   // Editors on Windows may prepend a UTF-8 byte order mark; left in place it

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "intrinsic/names.h"
+#include "intrinsic/gltf.h"
 #include "intrinsic/pipeline.h"
 #include "intrinsic/report.h"
 
@@ -98,6 +99,14 @@ nlohmann::json atlas_report_json(const AtlasOutcome& o, const std::string& outpu
   j["overlapping"] = r.overlapping;
   j["resolution"] = opt.resolution;
   j["padding"] = opt.padding;
+  if (opt.texels_per_unit > 0) {
+    // Lightmap pages: the density asked, and per page its fill.
+    j["texels_per_unit"] = opt.texels_per_unit;
+    j["pages"] = r.pages;
+    j["page_utilization"] = r.page_utilization;
+    j["chart_page"] = r.chart_page;
+    j["shrunk_charts"] = r.shrunk_charts;
+  }
   j["max_stretch"] = opt.max_stretch;
   j["max_face_stretch"] = opt.max_face_stretch;
   j["atlas_stretch_budget"] = opt.atlas_stretch_budget;
@@ -106,6 +115,12 @@ nlohmann::json atlas_report_json(const AtlasOutcome& o, const std::string& outpu
   // The input's own texture coordinates, if it had any, are not in the
   // output: the atlas takes their place.
   j["replaced_texcoords"] = o.data.had_texcoords;
+  if (o.data.gltf) {
+    const SceneSummary sc = scene_summary(o.data);
+    j["scene"] = {{"meshes", sc.meshes},     {"instances", sc.instances}, {"materials", sc.materials},
+                  {"images", sc.images},     {"cameras", sc.cameras},     {"lights", sc.lights},
+                  {"skipped_primitives", sc.skipped_primitives}};
+  }
   j["cleaning"] = cleaning_json(r.cleaning);
   j["hard_angle"] = opt.hard_angle_deg;
   j["weld"] = opt.weld;

@@ -130,19 +130,4 @@ Picture make_picture(PictureMode mode, const MatrixX3d& V, const MatrixX3i& F, c
   return p;
 }
 
-void write_all(const std::vector<std::pair<std::string, std::string>>& files,
-               const std::vector<std::string>& written_before) {
-  std::vector<std::string> written = written_before;
-  try {
-    for (const auto& [path, bytes] : files) {
-      write_file_atomically(path, bytes);
-      written.push_back(path);
-    }
-  } catch (...) {
-    std::error_code ec;
-    for (const std::string& path : written) std::filesystem::remove(path, ec);
-    throw;
-  }
-}
-
 }  // namespace intrinsic

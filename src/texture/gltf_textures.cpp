@@ -18,6 +18,8 @@
 
 #include "intrinsic/error.h"
 #include "texture/gltf_textures.h"
+
+#include "io/gltf_images.h"
 #include "texture/texture_internal.h"
 
 namespace intrinsic::gltf_textures {
@@ -153,8 +155,9 @@ Texture decode_image(const GltfDocument& doc, int image, const std::string& wher
       if (comma == std::string::npos) gltf::fail(doc.name, path + "/uri", "data URI that is not base64");
       return decode_texture(gltf::base64_decode(uri, comma + 8, doc.name, path + "/uri"), label);
     }
-    const std::filesystem::path file = std::filesystem::path(doc.name).parent_path() / gltf::percent_decode(uri);
-    return decode_texture(read_image_file(file.string()), label);
+    const std::string file = gltf::image_file(doc, uri);
+    if (file.empty()) throw_input("'" + uri + "' not found beside the document");
+    return decode_texture(read_image_file(file), label);
   } catch (const Error& e) {
     throw Error(ErrorKind::Input, label + ": cannot use the image: " + e.what(), e.os_error());
   }

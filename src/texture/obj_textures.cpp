@@ -163,8 +163,6 @@ TextureTransferReport write_obj_with_textures(const std::string& path, const Mes
   const std::string mtl_path = (out.parent_path() / mtl_name).string();
   files.emplace_back(mtl_path, text);
   report.files.push_back(mtl_path);
-  MeshData with_library = m;
-  with_library.material_libraries = {mtl_name};
   // All files or none: each is atomic, and a failure removes those before it.
   std::vector<std::string> written;
   try {
@@ -172,7 +170,7 @@ TextureTransferReport write_obj_with_textures(const std::string& path, const Mes
       write_file_atomically(file, bytes);
       written.push_back(file);
     }
-    write_atlas_obj(path, with_library, r);
+    write_atlas_obj_naming(path, m, r, {mtl_name});
   } catch (...) {
     std::error_code ec;
     for (const std::string& f : written) fs::remove(f, ec);

@@ -19,8 +19,18 @@ void check_texture_transfer(const TextureTransferOptions& o) {
 TextureTransferReport write_atlas_with_textures(const std::string& path, const MeshData& m, const AtlasResult& r,
                                                 const GltfWriteOptions& gltf, const TextureTransferOptions& textures) {
   TextureTransferReport report;
+  auto keep = [&report](const GltfWriteResult& w) {
+    report.files.insert(report.files.end(), w.files.begin(), w.files.end());
+    report.missing_images = w.missing_images;
+    // The baked images' numbers as written (replaced ones before them were dropped).
+    for (BakedTexture& b : report.baked)
+      if (b.output.rfind("image ", 0) == 0) {
+        const std::size_t i = std::stoul(b.output.substr(6));
+        if (i < w.image_index.size()) b.output = "image " + std::to_string(w.image_index[i]);
+      }
+  };
   if (!textures.enabled) {
-    write_atlas_file(path, m, r, gltf);
+    keep(write_atlas_file(path, m, r, gltf));
     return report;
   }
   check_texture_transfer(textures);
@@ -32,7 +42,7 @@ TextureTransferReport write_atlas_with_textures(const std::string& path, const M
       throw_usage("transfer_textures replaces the set the textures read: give the uv set (usually 0)");
     GltfWriteOptions o = gltf;
     o.replace_used_set = true;
-    write_gltf_atlas_hooked(path, m, r, o, gltf_textures::texture_hook(*m.gltf, r, textures, report));
+    keep(write_gltf_atlas_hooked(path, m, r, o, gltf_textures::texture_hook(*m.gltf, r, textures, report)));
     return report;
   }
   if (ext != ".obj" || m.material_libraries.empty())

@@ -172,6 +172,12 @@ ChoiceTable<AtlasScope> choice_table<AtlasScope>() {
   return table(rows);
 }
 
+template <>
+ChoiceTable<InstanceMode> choice_table<InstanceMode>() {
+  static const Choice<InstanceMode> rows[] = {{InstanceMode::Shared, "shared"}, {InstanceMode::Unique, "unique"}};
+  return table(rows);
+}
+
 }  // namespace intrinsic
 
 namespace intrinsic {
