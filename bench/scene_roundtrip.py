@@ -10,7 +10,8 @@ assimp-testmodels:
 - Other formats (FBX, Collada, 3DS, LWO, X, ...): each file assimp reads is
   atlased into a .glb, validated, and compared with assimp's own glTF export
   of the same file (`assimp_export_counts`, a small C++ helper built here
-  against libassimp): triangles drawn (instances included), meshes, materials.
+  against libassimp): triangles drawn (instances included), meshes (one
+  primitive each), materials.
 
 Usage: bench/scene_roundtrip.py [--cli build/intrinsic] [--models DIR] [--out DIR]
 Prints one line per file and a summary; exit 0 always (a measurement).
@@ -111,12 +112,15 @@ def run_other(cli, models, out, counts):
                 continue
             errors, msgs = validator_errors(dst)
             j = glb_json(dst)
-            got = (drawn_triangles(j), len(j.get("meshes", [])), len(j.get("materials", [])))
+            # assimp's exporter puts the meshes one node draws into one glTF mesh,
+            # one primitive each: primitives stand for the source's meshes.
+            prims = sum(len(m.get("primitives", [])) for m in j.get("meshes", []))
+            got = (drawn_triangles(j), prims, len(j.get("materials", [])))
             good = errors == 0 and got[0] >= tri and got[1] == meshes and got[2] == materials
             ok += good
             bad += not good
             print(f"{'ok  ' if good else 'BAD '}     {os.path.relpath(src, models)}: triangles {got[0]}/{tri}, "
-                  f"meshes {got[1]}/{meshes}, materials {got[2]}/{materials}, {errors} validator errors"
+                  f"meshes (primitives) {got[1]}/{meshes}, materials {got[2]}/{materials}, {errors} validator errors"
                   + ("" if errors == 0 else " " + "; ".join(msgs[:2])))
     print(f"other formats: {ok} ok, {bad} not, {refused} refused")
 
@@ -157,6 +161,7 @@ def main():
     ap.add_argument("--out", default=None)
     a = ap.parse_args()
     out = a.out or tempfile.mkdtemp(prefix="scene-roundtrip-")
+    os.makedirs(out, exist_ok=True)
     counts = os.path.join(out, "assimp_export_counts")
     with open(counts + ".cpp", "w") as f:
         f.write(COUNTS_CPP)

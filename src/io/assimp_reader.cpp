@@ -19,6 +19,10 @@
 #include <assimp/scene.h>
 
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include "io/gltf_document.h"
 #include "io/mesh_builder.h"
 
@@ -58,6 +62,49 @@ const aiScene* import(Assimp::Importer& importer, const std::string& bytes, cons
   return scene;
 }
 
+// What glTF does not allow but importers give (and assimp's glTF exporter
+// passes on, so the written file would not be valid glTF): three texture
+// coordinate components (glTF has two; the third is dropped), vertex colours
+// outside [0, 1] or not finite (clamped), bone weights that do not sum to 1
+// per vertex (normalized), animation keys that are not finite (a 3DS
+// camera's roll: set to zero, or the identity rotation).
+void make_exportable(aiScene& scene) {
+  auto finite = [](float x) { return std::isfinite(x); };
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    aiMesh& mesh = *scene.mMeshes[m];
+    for (unsigned k = 0; k < AI_MAX_NUMBER_OF_TEXTURECOORDS; ++k)
+      if (mesh.mTextureCoords[k] && mesh.mNumUVComponents[k] > 2) mesh.mNumUVComponents[k] = 2;
+    for (unsigned k = 0; k < AI_MAX_NUMBER_OF_COLOR_SETS; ++k)
+      for (unsigned v = 0; mesh.mColors[k] && v < mesh.mNumVertices; ++v)
+        for (float* c : {&mesh.mColors[k][v].r, &mesh.mColors[k][v].g, &mesh.mColors[k][v].b, &mesh.mColors[k][v].a})
+          *c = finite(*c) ? std::clamp(*c, 0.0f, 1.0f) : 0.0f;
+    std::vector<float> sum(mesh.mNumVertices, 0.0f);
+    for (unsigned b = 0; b < mesh.mNumBones; ++b)
+      for (unsigned w = 0; w < mesh.mBones[b]->mNumWeights; ++w) {
+        const aiVertexWeight& vw = mesh.mBones[b]->mWeights[w];
+        if (vw.mVertexId < sum.size()) sum[vw.mVertexId] += vw.mWeight;
+      }
+    for (unsigned b = 0; b < mesh.mNumBones; ++b)
+      for (unsigned w = 0; w < mesh.mBones[b]->mNumWeights; ++w) {
+        aiVertexWeight& vw = mesh.mBones[b]->mWeights[w];
+        if (vw.mVertexId < sum.size() && sum[vw.mVertexId] > 0) vw.mWeight /= sum[vw.mVertexId];
+      }
+  }
+  for (unsigned a = 0; a < scene.mNumAnimations; ++a)
+    for (unsigned c = 0; c < scene.mAnimations[a]->mNumChannels; ++c) {
+      aiNodeAnim& ch = *scene.mAnimations[a]->mChannels[c];
+      for (aiVectorKey* keys : {ch.mPositionKeys, ch.mScalingKeys})
+        for (unsigned k = 0; keys && k < (keys == ch.mPositionKeys ? ch.mNumPositionKeys : ch.mNumScalingKeys); ++k) {
+          aiVector3D& v = keys[k].mValue;
+          if (!finite(v.x) || !finite(v.y) || !finite(v.z)) v = keys == ch.mScalingKeys ? aiVector3D(1, 1, 1) : aiVector3D();
+        }
+      for (unsigned k = 0; k < ch.mNumRotationKeys; ++k) {
+        aiQuaternion& q = ch.mRotationKeys[k].mValue;
+        if (!finite(q.x) || !finite(q.y) || !finite(q.z) || !finite(q.w)) q = aiQuaternion();
+      }
+    }
+}
+
 std::string folder_of(const std::string& path) {
   const std::size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? "." : path.substr(0, slash);
@@ -84,6 +131,8 @@ MeshData read_assimp(const std::string& bytes, const std::string& name, const st
   if (triangles > face_limit(options))
     throw_input(name + ": " + std::to_string(triangles) + " triangles, more than the limit of " +
                 std::to_string(face_limit(options)));
+  // The importer's scene is ours to change: nothing reads it after the export.
+  make_exportable(const_cast<aiScene&>(scene));
   Assimp::Exporter exporter;
   const aiExportDataBlob* blob = exporter.ExportToBlob(&scene, "glb2");
   if (!blob || !blob->data)

@@ -44,6 +44,22 @@ bool is_file(const fs::path& p) {
   return fs::is_regular_file(p, ec);
 }
 
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// `p`, or the file in its folder whose name differs only in case (assets
+// made on Windows name "TEST.PNG" for test.png); "" when neither exists.
+fs::path existing(const fs::path& p) {
+  if (is_file(p)) return p;
+  std::error_code ec;
+  const std::string want = lower(p.filename().string());
+  for (fs::directory_iterator it(p.parent_path(), ec), end; !ec && it != end; it.increment(ec))
+    if (lower(it->path().filename().string()) == want && is_file(it->path())) return it->path();
+  return {};
+}
+
 std::string read_bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
@@ -125,12 +141,33 @@ struct Placer {
     img.erase("mimeType");
   }
 
+  // An image in a buffer view that is neither PNG nor JPEG (an FBX's
+  // embedded TGA, which assimp's exporter passes on) becomes a PNG in a new view.
+  void convert_embedded(json& img, const std::string& path) {
+    const json& views = j["bufferViews"];
+    if (!img["bufferView"].is_number_integer()) return;
+    const auto v = img["bufferView"].get<std::size_t>();
+    if (v >= views.size()) return;
+    const auto offset = views[v].value("byteOffset", std::size_t{0}), length = views[v].value("byteLength", std::size_t{0});
+    if (offset + length > bin.size()) return;
+    const std::string bytes = bin.substr(offset, length);
+    if (!mime_of(bytes).empty()) return;
+    const std::string png = to_png(bytes);
+    if (png.empty()) throw_input(doc.name + ": " + path + ": embedded image is neither PNG nor JPEG and cannot be converted");
+    result.converted.push_back(path);
+    embed(img, png);
+  }
+
   void run(bool allow_missing) {
     if (!j.contains("images") || !j["images"].is_array()) return;
     for (std::size_t i = 0; i < j["images"].size(); ++i) {
       json& img = j["images"][i];
       const std::string path = "/images/" + std::to_string(i);
-      if (!img.is_object() || !img.contains("uri") || !img["uri"].is_string()) continue;  // in a buffer view
+      if (img.is_object() && img.contains("bufferView")) {
+        convert_embedded(img, path);
+        continue;
+      }
+      if (!img.is_object() || !img.contains("uri") || !img["uri"].is_string()) continue;
       const std::string uri = img["uri"].get<std::string>();
       if (uri.rfind("data:", 0) == 0) continue;
       const fs::path found = image_file(doc, uri);
@@ -180,7 +217,7 @@ std::string image_file(const GltfDocument& doc, const std::string& uri) {
     fs::path tail;
     for (std::size_t k = start; k < parts.size(); ++k) tail /= parts[k];
     for (const fs::path& base : {folder, folder / ".."})
-      if (is_file(base / tail)) return (base / tail).lexically_normal().string();
+      if (const fs::path f = existing(base / tail); !f.empty()) return f.lexically_normal().string();
   }
   return "";
 }
