@@ -78,6 +78,7 @@ int run_atlas(const AtlasArgs& a) {
   request.read.instances = parse_choice<InstanceMode>(a.instances, "--instances");
   request.seams_file = a.seams;
   request.textures = a.textures;
+  request.texcoord_set = a.gltf.texcoord_set;
   if (a.textures.enabled && a.gltf.texcoord_set < 0 && mesh_extension(a.output) != ".obj")
     throw_usage("--transfer-textures replaces the set the textures read: add --uv-set N (usually 0)");
   const AtlasOutcome o = atlas_file(a.input, request);
@@ -170,6 +171,13 @@ void register_atlas(CLI::App& app, Runner& run) {
                   "charts scaled to fill it)")
       ->check(CLI::Range(0.0, 1e12))
       ->capture_default_str();
+  cmd->add_flag("--pack-only", a->options.pack_only,
+                "Re-pack the input's own UVs (OBJ vt, PLY u v, glTF TEXCOORD_<--uv-set, default 0>): its charts "
+                "keep their shape, turned only by quarter turns, one common scale, moved into a layout without "
+                "overlaps");
+  cmd->add_flag("--keep-overlaps", a->options.keep_overlaps,
+                "--pack-only: input charts that overlap each other (mirrored halves sharing texels) stay on each "
+                "other (default: separated)");
   cmd->add_option("--max-pages", a->options.max_pages,
                   "--texels-per-unit: refuse (exit 2, nothing written) when more pages are needed (0: no limit)")
       ->check(CLI::NonNegativeNumber)

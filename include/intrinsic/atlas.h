@@ -153,6 +153,10 @@ struct PackOptions {
   // With texels_per_unit: more pages than this is refused with Error(Input)
   // (nothing written). 0: as many as needed.
   int max_pages = 0;
+  // Charts keep the orientation they come with, turned only by quarter
+  // turns (repacking an asset's own UVs); else each is first turned to its
+  // smallest bounding box.
+  bool keep_orientation = false;
 };
 
 // What one atlas covers: the whole input (one texture for everything, e.g. a
@@ -177,6 +181,15 @@ struct AtlasOptions {
   double padding = 2;     // PackOptions
   double texels_per_unit = 0;  // PackOptions
   int max_pages = 0;           // PackOptions
+  // Re-pack the input's own texture coordinates (MeshData::TC/FTC) instead
+  // of cutting charts: its charts (faces connected through shared UV rows)
+  // keep their shape, turned only by quarter turns, all scaled by one factor
+  // and moved into a layout without overlaps (repack_uvs.cpp). Input charts
+  // that overlap each other (mirrored halves sharing texels) are separated,
+  // or with keep_overlaps packed together as they lie. Refused with
+  // Error(Input) for an input without texture coordinates on every face.
+  bool pack_only = false;
+  bool keep_overlaps = false;
   double degenerate_ratio = 1e-12;
   double weld = 1e-7;
   bool reorient = true;

@@ -42,6 +42,12 @@ struct SceneSummary {
 };
 SceneSummary scene_summary(const MeshData& data);
 
+// The document's TEXCOORD_<set> as the mesh's own texture coordinates
+// (TC one row per merged vertex, in our convention v up: (u, 1 - v); FTC =
+// F), e.g. to re-pack them (AtlasOptions::pack_only). Error(Input) naming
+// the primitive when one lacks the set; Error(Usage) without a document.
+void read_gltf_texcoords(MeshData& data, int set);
+
 // Where each merged vertex and face came from (MeshData::gltf must be set).
 struct GltfProvenance {
   std::vector<int> vertex_mesh, vertex_primitive, vertex_index;  // per merged vertex: its source vertex

@@ -124,6 +124,8 @@ struct AtlasRequest {
   // when the atlas is written (write_atlas_with_textures, texture_transfer.h);
   // checked with the request, before any work.
   TextureTransferOptions textures;
+  // options.pack_only on a glTF input: the TEXCOORD_n set re-packed (-1: 0).
+  int texcoord_set = -1;
 };
 
 struct AtlasOutcome {

@@ -234,6 +234,8 @@ def atlas(
     texels_per_unit: Optional[float] = None,
     max_pages: Optional[int] = None,
     allow_missing_images: Optional[bool] = None,
+    pack_only: Optional[bool] = None,
+    keep_overlaps: Optional[bool] = None,
 ) -> Atlas:
     """`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or a mesh file (atlas(path)).
 
@@ -267,6 +269,8 @@ def atlas(
     `texels_per_unit` (`--texels-per-unit`, lightmaps): every chart at that many texels per unit of
     surface length on pages of `resolution` texels (UDIM: page k at u in [k, k+1]), at most
     `max_pages` (0: no limit); the report lists "pages", "page_utilization" and "chart_page".
+    `pack_only=True` (`--pack-only`) re-packs the input's own UVs (charts kept, quarter turns, one
+    scale); `keep_overlaps=True` leaves input charts that overlap each other on each other.
     `instances` (`--instances`): "shared" (default) charts a mesh several nodes draw once, "unique"
     gives each instance its own charts (docs/formats.md "Instances").
     Raises UsageError for bad options and InputError for unreadable or invalid input.
@@ -281,6 +285,6 @@ def atlas(
                  replace_used_set=replace_used_set, transfer_textures=transfer_textures,
                  texture_size=texture_size, texture_padding=texture_padding, instances=instances,
                  allow_missing_images=allow_missing_images, texels_per_unit=texels_per_unit,
-                 max_pages=max_pages)
+                 max_pages=max_pages, pack_only=pack_only, keep_overlaps=keep_overlaps)
     given["lambda"] = lambda_
     return _intrinsic.atlas(V, F, **{k: v for k, v in given.items() if v is not None})

@@ -77,6 +77,8 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, ReadOptions& read, SeamsArg
     else if (k == "resolution") o.resolution = value.cast<int>();
     else if (k == "texels_per_unit") o.texels_per_unit = value.cast<double>();
     else if (k == "max_pages") o.max_pages = value.cast<int>();
+    else if (k == "pack_only") o.pack_only = value.cast<bool>();
+    else if (k == "keep_overlaps") o.keep_overlaps = value.cast<bool>();
     else if (k == "max_normal_deviation") o.max_normal_deviation_deg = value.cast<double>();
     else if (k == "min_chart_faces") o.min_chart_faces = value.cast<int>();
     else if (k == "max_stretch") o.max_stretch = value.cast<double>();
@@ -117,6 +119,7 @@ AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs
   AtlasOutput out;
   request.options = atlas_options(kwargs, request.read, seams, out);
   request.textures = out.textures;
+  request.texcoord_set = out.gltf.texcoord_set;
   if (out.textures.enabled && out.gltf.texcoord_set < 0 && from_gltf_path(V, F))
     throw_usage("transfer_textures replaces the set the textures read: give uv_set (usually 0)");
   request.read.max_faces = faces_for_vertices(request.read.max_vertices);

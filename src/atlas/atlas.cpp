@@ -12,6 +12,7 @@ AtlasResult atlas(const MeshData& input, const AtlasOptions& options) {
   const PackOptions pack = pack_options(options);
   detail::check_chart_options(chart);
   detail::check_pack_options(pack);
+  if (options.pack_only) return pack_charts(detail::charts_of_uvs(input, options.keep_overlaps), pack);
   return pack_charts(compute_charts(input, chart), pack);
 }
 

@@ -184,6 +184,13 @@ struct PageLayout {
 double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping,
                         PageLayout* pages = nullptr);
 
+// The input's own texture coordinates as charts for pack_charts
+// (repack_uvs.cpp): faces connected through shared UV rows (MeshData::FTC)
+// form a chart, its UVs as they are (UV area counted as area_3d, so the
+// utilization is of the UV layout); with `keep_overlaps`, charts whose UV
+// triangles overlap each other become one. Error(Input) without UVs.
+AtlasCharts charts_of_uvs(const MeshData& input, bool keep_overlaps);
+
 // Per-corner UV rows for the faces no chart holds (face_chart -1: zero area
 // or a repeated vertex), each with zero UV area: laid along a UV edge of a
 // chart (or of such a face placed before) where that keeps every UV edge

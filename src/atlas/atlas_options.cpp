@@ -32,6 +32,7 @@ PackOptions pack_options(const AtlasOptions& o) {
   p.padding = o.padding;
   p.texels_per_unit = o.texels_per_unit;
   p.max_pages = o.max_pages;
+  p.keep_orientation = o.pack_only;
   return p;
 }
 

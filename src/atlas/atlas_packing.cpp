@@ -74,13 +74,21 @@ bool packs_well(const ChartBox& box, double surface_area, double part_diameter) 
 namespace {
 
 // The charts turned to their poses (steps 1 and 2's input); `area` their total.
-std::vector<packing::PackChart> posed(std::vector<FlatChart>& charts, double& area) {
+// `keep`: each chart only in the orientation it came with.
+std::vector<packing::PackChart> posed(std::vector<FlatChart>& charts, double& area, bool keep) {
   area = 0;
   for (FlatChart& chart : charts) {
-    packing::orient_chart(chart);
+    if (!keep) packing::orient_chart(chart);
     area += chart.summary.area_3d;
   }
   std::vector<packing::PackChart> pack(charts.size());
+  if (keep) {
+    for (size_t c = 0; c < charts.size(); ++c) {
+      pack[c].F = &charts[c].mesh.data.F;
+      pack[c].poses.push_back(packing::turned_to(charts[c].UV, 0.0));
+    }
+    return pack;
+  }
   const std::vector<std::vector<double>> angles = packing::all_pose_angles(charts, area, packing::PoseOptions{});
   for (size_t c = 0; c < charts.size(); ++c) {
     pack[c].F = &charts[c].mesh.data.F;
@@ -108,7 +116,7 @@ std::vector<packing::Mask> fitting_masks(const packing::PackChart& c, double& sc
 // of `resolution` texels filled in turn, page k at u in [k, k + 1] (UDIM).
 double pack_on_pages(std::vector<FlatChart>& charts, const PackOptions& o, PageLayout& out) {
   double area = 0;
-  const std::vector<packing::PackChart> pack = posed(charts, area);
+  const std::vector<packing::PackChart> pack = posed(charts, area, o.keep_orientation);
   // Pages over kMaxPackBitmap texels are packed on cells of `zoom` texels.
   const int zoom = (o.resolution + kMaxPackBitmap - 1) / kMaxPackBitmap;
   const int side = o.resolution / zoom;
@@ -157,7 +165,7 @@ double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& optio
     return pack_on_pages(charts, options, pages ? *pages : unused);
   }
   double area = 0;
-  const std::vector<packing::PackChart> pack = posed(charts, area);
+  const std::vector<packing::PackChart> pack = posed(charts, area, options.keep_orientation);
   // Larger textures pack on a coarser grid (thresholds.h).
   const int side = std::min(options.resolution, kMaxPackBitmap);
   const int pad = static_cast<int>(std::ceil(options.padding * side / options.resolution - 1e-9));

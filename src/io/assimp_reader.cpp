@@ -34,7 +34,9 @@ namespace {
 // indices out of range and other inconsistencies a damaged file may give
 // are refused by assimp before we read them (it only checks in debug builds
 // otherwise).
-constexpr unsigned kSteps = aiProcess_Triangulate | aiProcess_ValidateDataStructure;
+// LimitBoneWeights: at most four bones per vertex, renormalized, as glTF's
+// one JOINTS_0/WEIGHTS_0 pair holds.
+constexpr unsigned kSteps = aiProcess_Triangulate | aiProcess_ValidateDataStructure | aiProcess_LimitBoneWeights;
 
 const aiScene* import(Assimp::Importer& importer, const std::string& bytes, const std::string& name,
                       const std::string& ext, bool from_file) {
@@ -67,7 +69,8 @@ const aiScene* import(Assimp::Importer& importer, const std::string& bytes, cons
 // coordinate components (glTF has two; the third is dropped), vertex colours
 // outside [0, 1] or not finite (clamped), bone weights that do not sum to 1
 // per vertex (normalized), animation keys that are not finite (a 3DS
-// camera's roll: set to zero, or the identity rotation).
+// camera's roll: set to zero, or the identity rotation), key times in ticks
+// at a rate of 0 (taken as 25 per second).
 void make_exportable(aiScene& scene) {
   auto finite = [](float x) { return std::isfinite(x); };
   for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
@@ -90,7 +93,11 @@ void make_exportable(aiScene& scene) {
         if (vw.mVertexId < sum.size() && sum[vw.mVertexId] > 0) vw.mWeight /= sum[vw.mVertexId];
       }
   }
-  for (unsigned a = 0; a < scene.mNumAnimations; ++a)
+  for (unsigned a = 0; a < scene.mNumAnimations; ++a) {
+    // Key times are in ticks; the exporter divides by the rate, which some
+    // importers leave at 0 (assimp's own convention then is 25 per second).
+    aiAnimation& anim = *scene.mAnimations[a];
+    if (!(anim.mTicksPerSecond > 0) || !std::isfinite(anim.mTicksPerSecond)) anim.mTicksPerSecond = 25;
     for (unsigned c = 0; c < scene.mAnimations[a]->mNumChannels; ++c) {
       aiNodeAnim& ch = *scene.mAnimations[a]->mChannels[c];
       for (aiVectorKey* keys : {ch.mPositionKeys, ch.mScalingKeys})
@@ -103,6 +110,7 @@ void make_exportable(aiScene& scene) {
         if (!finite(q.x) || !finite(q.y) || !finite(q.z) || !finite(q.w)) q = aiQuaternion();
       }
     }
+  }
 }
 
 std::string folder_of(const std::string& path) {

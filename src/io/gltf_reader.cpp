@@ -309,6 +309,27 @@ SceneSummary scene_summary(const MeshData& data) {
   return s;
 }
 
+void read_gltf_texcoords(MeshData& data, int set) {
+  if (!data.gltf) throw_usage("read_gltf_texcoords: " + data.path + " was not read from a glTF document");
+  const GltfDocument& doc = *data.gltf;
+  const std::string key = "TEXCOORD_" + std::to_string(set);
+  MatrixX2d TC(data.V.rows(), 2);
+  for (const GltfDocument::Primitive& p : doc.primitives) {
+    const json& prim = doc.json["meshes"][static_cast<std::size_t>(p.mesh)]["primitives"][static_cast<std::size_t>(p.primitive)];
+    const std::string at = "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive);
+    if (!prim["attributes"].contains(key)) fail(doc.name, at + "/attributes", "no " + key + " to re-pack");
+    const gltf::Accessor a = gltf::read_accessor(doc, prim["attributes"][key].get<int>(), std::int64_t{1} << 40);
+    if (a.components != 2) fail(doc.name, at + "/attributes/" + key, "not a VEC2");
+    for (int v = 0; v < p.vertex_count; ++v) {
+      const std::int64_t src = doc.vertex_source[static_cast<std::size_t>(p.first_vertex + v)];
+      TC.row(p.first_vertex + v) << a.value(src, 0), 1 - a.value(src, 1);
+    }
+  }
+  data.TC = std::move(TC);
+  data.FTC = data.F;
+  data.had_texcoords = true;
+}
+
 GltfProvenance gltf_provenance(const MeshData& data) {
   if (!data.gltf) throw_usage("gltf_provenance: " + data.path + " was not read from a glTF document");
   const GltfDocument& doc = *data.gltf;

@@ -3,6 +3,7 @@
 // (atlas.h).
 #include <chrono>
 
+#include "intrinsic/gltf.h"
 #include "intrinsic/pipeline.h"
 
 namespace intrinsic {
@@ -15,6 +16,8 @@ AtlasOutcome run(MeshData data, const AtlasRequest& request, Clock::time_point t
   out.data = std::move(data);
   out.options = request.options;
   if (!request.seams_file.empty()) out.options.seams = read_seams_file(request.seams_file, out.data);
+  if (out.options.pack_only && out.data.gltf)
+    read_gltf_texcoords(out.data, request.texcoord_set < 0 ? 0 : request.texcoord_set);
   out.read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   out.result = atlas(out.data, out.options);
   return out;
