@@ -108,14 +108,8 @@ int run_atlas(const AtlasArgs& a) {
   return 0;
 }
 
-}  // namespace
-
-void register_atlas(CLI::App& app, Runner& run) {
-  auto a = std::make_shared<AtlasArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "atlas", "UV atlas of any mesh (closed, higher genus, several components, non-manifold): disk charts, "
-               "each flattened by the natural conformal map refined toward an isometry, within a stretch bound, packed into "
-               "[0,1]^2 without flips or overlaps");
+// What goes in and comes out: files, scene instances, the glTF set, texture transfer.
+void add_file_options(CLI::App* cmd, const std::shared_ptr<AtlasArgs>& a) {
   cmd->add_option("input", a->input, "Input mesh (.obj, .off, .ply, .stl, optionally .gz; .gltf, .glb)")->required();
   cmd->add_option("-o,--output", a->output,
                   "Output mesh (.obj: input vertices, one vt per atlas UV, f v/vt; "
@@ -153,6 +147,10 @@ void register_atlas(CLI::App& app, Runner& run) {
                   "--transfer-textures: texels of dilation around every chart (-1: fill the whole image)")
       ->check(CLI::Range(-1, 1024))
       ->capture_default_str();
+}
+
+// The report and each chart's map, as `param` spells it.
+void add_map_options(CLI::App* cmd, const std::shared_ptr<AtlasArgs>& a) {
   cmd->add_option("--report", a->report, "Write the JSON report to this file");
   cmd->add_option("--boundary", a->boundary,
                   "Each chart's map: natural (the natural conformal map, default) or a fixed circle or square "
@@ -164,6 +162,10 @@ void register_atlas(CLI::App& app, Runner& run) {
                   "Per chart, the mixed map at the optimal lambda for this energy (edge | area); fixed boundaries");
   cmd->add_option("--optimize-boundary", a->optimize_boundary,
                   "Per chart, optimize the fixed boundary for this energy (edge | area | dirichlet)");
+}
+
+// Packing: padding, page size, lightmap density and pages, re-packing existing UVs.
+void add_pack_options(CLI::App* cmd, const std::shared_ptr<AtlasArgs>& a) {
   cmd->add_option("--padding", a->options.padding, "Texels between charts")->capture_default_str();
   cmd->add_option("--texels-per-unit", a->options.texels_per_unit,
                   "Lightmaps: every chart at this many texels per unit of surface length, on pages of "
@@ -185,6 +187,10 @@ void register_atlas(CLI::App& app, Runner& run) {
   cmd->add_option("--resolution", a->options.resolution, "Texture (page) width the padding is measured in")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
+}
+
+// Where charts are cut and how far they may stretch.
+void add_chart_options(CLI::App* cmd, const std::shared_ptr<AtlasArgs>& a) {
   cmd->add_option("--max-normal-deviation", a->options.max_normal_deviation_deg,
                   "Degrees between a face normal and its chart's mean normal")
       ->check(CLI::Range(1.0, 180.0))
@@ -229,6 +235,19 @@ void register_atlas(CLI::App& app, Runner& run) {
   cmd->add_flag("!--keep-winding", a->options.reorient,
                 "Keep the winding of faces listed against their piece's orientation and cut there (default: "
                 "write them reversed, so charts may span them)");
+}
+}  // namespace
+
+void register_atlas(CLI::App& app, Runner& run) {
+  auto a = std::make_shared<AtlasArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "atlas", "UV atlas of any mesh (closed, higher genus, several components, non-manifold): disk charts, "
+               "each flattened by the natural conformal map refined toward an isometry, within a stretch bound, packed into "
+               "[0,1]^2 without flips or overlaps");
+  add_file_options(cmd, a);
+  add_map_options(cmd, a);
+  add_pack_options(cmd, a);
+  add_chart_options(cmd, a);
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -138,7 +138,6 @@ void SeparatorRefiner::refine(std::vector<int>& separator, signed char* side, co
 bool SeparatorRefiner::pass(std::vector<int>& separator, signed char* side, const int* owner, int tag,
                             long weight[3], double max_fraction) {
   Heap heap[2] = {Heap(pos0_, key_), Heap(pos1_, key_)};
-  std::vector<int>* in[2] = {&in0_, &in1_};
   for (int v : separator) {
     in0_[v] = in1_[v] = 0;
     for (int k = begin_[v], e = end_of(v); k < e; ++k) {
@@ -156,60 +155,9 @@ bool SeparatorRefiner::pass(std::vector<int>& separator, signed char* side, cons
   const long patience = std::min<long>(std::max<long>(weight[2], 5), 300);
   long bad = 0;
   while (bad <= patience) {
-    int to = -1;
-    for (int t = 0; t < 2; ++t) {
-      if (heap[t].empty()) continue;
-      const int v = heap[t].top();
-      long after[2] = {weight[0], weight[1]};
-      after[t] += 1;
-      after[1 - t] -= (*in[1 - t])[v];
-      const bool ok = balanced(after[0], after[1], max_fraction) ||
-                      std::labs(after[0] - after[1]) <= std::labs(weight[0] - weight[1]);
-      if (!ok) continue;
-      if (to < 0 || heap[t].top_gain() > heap[to].top_gain() ||
-          (heap[t].top_gain() == heap[to].top_gain() && weight[t] < weight[to]))
-        to = t;
-    }
+    const int to = pick_side(heap, weight, max_fraction);
     if (to < 0) break;
-    const int other = 1 - to;
-    const int v = heap[to].top();
-    heap[0].remove(v);
-    heap[1].remove(v);
-    moved_[v] = 1;
-    side[v] = static_cast<signed char>(to);
-    ++weight[to];
-    --weight[2];
-    for (int k = begin_[v], e = end_of(v); k < e; ++k) {
-      const int u = index_[k];
-      if (owner[u] != tag) continue;
-      if (side[u] == 2) {
-        // u gained a neighbour in half `to`: moving u to `other` now pulls one more.
-        ++(*in[to])[u];
-        if (heap[other].contains(u)) heap[other].update(u, 1 - (*in[to])[u]);
-      } else if (side[u] == other) {
-        side[u] = 2;
-        --weight[other];
-        ++weight[2];
-        pulled_.push_back(u);
-        in0_[u] = in1_[u] = 0;
-        for (int j = begin_[u], f = end_of(u); j < f; ++j) {
-          const int w = index_[j];
-          if (owner[w] != tag) continue;
-          if (side[w] < 2) {
-            ++(side[w] == 0 ? in0_ : in1_)[u];
-          } else if (w != u) {
-            // w lost a neighbour in `other`: moving w to `to` pulls one fewer.
-            --(*in[other])[w];
-            if (heap[to].contains(w)) heap[to].update(w, 1 - (*in[other])[w]);
-          }
-        }
-        if (!moved_[u]) {
-          heap[0].push(u, 1 - in1_[u]);
-          heap[1].push(u, 1 - in0_[u]);
-        }
-      }
-    }
-    moves_.push_back({v, static_cast<signed char>(to), static_cast<int>(pulled_.size())});
+    move(heap[to].top(), to, heap, side, owner, tag, weight);
     // Only a smaller separator (or reaching balance) renews the patience:
     // moves that just even out the halves could walk the separator across
     // the whole piece one vertex at a time.
@@ -223,6 +171,74 @@ bool SeparatorRefiner::pass(std::vector<int>& separator, signed char* side, cons
   }
   heap[0].clear();
   heap[1].clear();
+  finish(separator, side, weight, best, best_moves);
+  return best_moves > 0;
+}
+
+int SeparatorRefiner::pick_side(Heap heap[2], const long weight[3], double max_fraction) const {
+  const std::vector<int>* in[2] = {&in0_, &in1_};
+  int to = -1;
+  for (int t = 0; t < 2; ++t) {
+    if (heap[t].empty()) continue;
+    const int v = heap[t].top();
+    long after[2] = {weight[0], weight[1]};
+    after[t] += 1;
+    after[1 - t] -= (*in[1 - t])[v];
+    const bool ok = balanced(after[0], after[1], max_fraction) ||
+                    std::labs(after[0] - after[1]) <= std::labs(weight[0] - weight[1]);
+    if (!ok) continue;
+    if (to < 0 || heap[t].top_gain() > heap[to].top_gain() ||
+        (heap[t].top_gain() == heap[to].top_gain() && weight[t] < weight[to]))
+      to = t;
+  }
+  return to;
+}
+
+void SeparatorRefiner::move(int v, int to, Heap heap[2], signed char* side, const int* owner, int tag,
+                            long weight[3]) {
+  std::vector<int>* in[2] = {&in0_, &in1_};
+  const int other = 1 - to;
+  heap[0].remove(v);
+  heap[1].remove(v);
+  moved_[v] = 1;
+  side[v] = static_cast<signed char>(to);
+  ++weight[to];
+  --weight[2];
+  for (int k = begin_[v], e = end_of(v); k < e; ++k) {
+    const int u = index_[k];
+    if (owner[u] != tag) continue;
+    if (side[u] == 2) {
+      // u gained a neighbour in half `to`: moving u to `other` now pulls one more.
+      ++(*in[to])[u];
+      if (heap[other].contains(u)) heap[other].update(u, 1 - (*in[to])[u]);
+    } else if (side[u] == other) {
+      side[u] = 2;
+      --weight[other];
+      ++weight[2];
+      pulled_.push_back(u);
+      in0_[u] = in1_[u] = 0;
+      for (int j = begin_[u], f = end_of(u); j < f; ++j) {
+        const int w = index_[j];
+        if (owner[w] != tag) continue;
+        if (side[w] < 2) {
+          ++(side[w] == 0 ? in0_ : in1_)[u];
+        } else if (w != u) {
+          // w lost a neighbour in `other`: moving w to `to` pulls one fewer.
+          --(*in[other])[w];
+          if (heap[to].contains(w)) heap[to].update(w, 1 - (*in[other])[w]);
+        }
+      }
+      if (!moved_[u]) {
+        heap[0].push(u, 1 - in1_[u]);
+        heap[1].push(u, 1 - in0_[u]);
+      }
+    }
+  }
+  moves_.push_back({v, static_cast<signed char>(to), static_cast<int>(pulled_.size())});
+}
+
+void SeparatorRefiner::finish(std::vector<int>& separator, signed char* side, long weight[3], const long best[3],
+                              size_t best_moves) {
   // Undo the moves after the best state, newest first.
   for (size_t m = moves_.size(); m-- > best_moves;) {
     const int from = m == 0 ? 0 : moves_[m - 1].pulled_end;
@@ -245,7 +261,6 @@ bool SeparatorRefiner::pass(std::vector<int>& separator, signed char* side, cons
   for (int i = 0; i < kept_pulled; ++i) keep(pulled_[i]);
   for (int v : next) moved_[v] = 0;
   separator.swap(next);
-  return best_moves > 0;
 }
 
 }  // namespace intrinsic::detail

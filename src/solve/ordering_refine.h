@@ -9,6 +9,7 @@
 // size^3/3 flops), so each vertex taken off the top separators matters.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 namespace intrinsic::detail {
@@ -45,6 +46,12 @@ class SeparatorRefiner {
 
   bool pass(std::vector<int>& separator, signed char* side, const int* owner, int tag, long weight[3],
             double max_fraction);
+  // pass()'s steps: the side the next move goes to (-1: none keeps the
+  // balance), one move with its neighbours' gains updated, and the undo of
+  // the moves after the best state with the new separator collected.
+  int pick_side(Heap heap[2], const long weight[3], double max_fraction) const;
+  void move(int v, int to, Heap heap[2], signed char* side, const int* owner, int tag, long weight[3]);
+  void finish(std::vector<int>& separator, signed char* side, long weight[3], const long best[3], std::size_t best_moves);
   int end_of(int v) const { return end_ ? begin_[v] + end_[v] : begin_[v + 1]; }
 
   const int* begin_;
