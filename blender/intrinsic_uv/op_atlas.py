@@ -6,6 +6,11 @@ conformal map and packed into [0,1]^2 without flips or overlaps.
 Each object is one atlas of its own (its own [0,1]^2), read from its
 evaluated-free mesh data (no modifiers) in the object's world scale and
 rotation, so charts are cut and sized as the surface appears in the scene.
+With a Texel Density (lightmaps) the selected objects are one atlas
+instead: their meshes are put side by side in one library call
+(`texels_per_unit`), so every chart of the selection has the same density
+and the charts share one set of pages of Page Size texels, page k at u in
+[k, k+1] (UDIM tile 1001 + k); the result is split back per object.
 The atlas triangles are Blender's loop triangles, grouped by polygon
 (the library's face groups), so every polygon lies in one chart: a loop
 stores one UV per polygon corner, and a quad cut along its diagonal would
@@ -39,9 +44,16 @@ LAST_UVS = {}
 LAST_WINDING = {}
 LAST_MESSAGE = ""
 
+# The last Texel Density run's pages: {"pages", "page_utilization",
+# "shrunk_charts", "texels_per_unit", "page_size"} (None after a run without).
+LAST_PAGES = None
+
 # One object's solved atlas, ready to write: flip lists the polygons to
 # reverse first (Fix Winding); T and P are the loop triangles after that.
 Work = namedtuple("Work", "obj uv charts T P flip cuts")
+# The pages of a Texel Density atlas of the selection (its library report's
+# "pages", "page_utilization", "shrunk_charts") and its orientation cuts.
+Pages = namedtuple("Pages", "count utilization shrunk cuts")
 
 
 def mesh_arrays(obj, me=None):
@@ -61,12 +73,14 @@ def mesh_arrays(obj, me=None):
     return np.ascontiguousarray(V), F.reshape(-1, 3), T.reshape(-1, 3), P
 
 
-def loop_uvs(result, F, T, num_loops):
+def loop_uvs(result, F, T, num_loops, rows=slice(None)):
     """Per loop, the atlas UV of its corner. The atlas may list a face
-    reversed (reorient), so each corner is found by its vertex."""
+    reversed (reorient), so each corner is found by its vertex. rows: the
+    atlas faces that are F (one object's part of a joint atlas; F then in
+    the joint vertex numbering)."""
     out = np.zeros((num_loops, 2), dtype=np.float64)
-    AF = np.asarray(result.F)
-    AI = np.asarray(result.uv_index)
+    AF = np.asarray(result.F)[rows]
+    AI = np.asarray(result.uv_index)[rows]
     for i in range(3):
         for j in range(3):
             hit = AF[:, j] == F[:, i]
@@ -74,11 +88,12 @@ def loop_uvs(result, F, T, num_loops):
     return out
 
 
-def reversed_polygons(result, F, P):
+def reversed_polygons(result, F, P, rows=slice(None)):
     """The polygons whose triangles an atlas made with reorient=True
     reverses: it lists a reversed triangle 0, 2, 1, so its row differs
-    from F. The triangles of one polygon agree, so any one decides."""
-    changed = (np.asarray(result.F) != F).any(axis=1)
+    from F. The triangles of one polygon agree, so any one decides.
+    rows as for loop_uvs."""
+    changed = (np.asarray(result.F)[rows] != F).any(axis=1)
     return np.unique(P[changed])
 
 
@@ -120,6 +135,37 @@ def winding_note(work):
     return "".join(", " + n for n in notes)
 
 
+def joined_arrays(parts):
+    """One mesh of several objects' mesh_arrays (V, F, T, P): the objects
+    side by side along x, each moved clear of the previous one's bounding
+    box, so no vertex of one is welded to another's (the library welds
+    vertices closer than a fraction of the whole box's diagonal). Moving
+    an object changes neither its charts nor their sizes. Returns V, F
+    (joint vertex numbering), P (polygon groups numbered apart per object),
+    per object its rows of F and its F in the joint numbering, and the
+    `weld` that keeps the largest object's own weld distance."""
+    diag = [float(np.linalg.norm(V.max(axis=0) - V.min(axis=0))) for V, _, _, _ in parts]
+    gap = max(max(diag), 1e-6)
+    Vs, Fs, Ps, rows = [], [], [], []
+    x = v0 = f0 = p0 = 0
+    for (V, F, _, P), d in zip(parts, diag):
+        shift = np.array([x - V[:, 0].min(), 0.0, 0.0])
+        Vs.append(V + shift)
+        Fs.append(F + v0)
+        Ps.append(P + p0)
+        rows.append(slice(f0, f0 + len(F)))
+        x += float(V[:, 0].max() - V[:, 0].min()) + gap
+        v0, f0, p0 = v0 + len(V), f0 + len(F), p0 + (int(P.max()) + 1 if len(P) else 0)
+    V = np.ascontiguousarray(np.vstack(Vs))
+    whole = float(np.linalg.norm(V.max(axis=0) - V.min(axis=0)))
+    weld = 1e-7 * max(diag) / whole if whole > 0 else 1e-7
+    return V, np.ascontiguousarray(np.vstack(Fs)), np.concatenate(Ps).astype(np.int32), rows, Fs, weld
+
+
+def percent(x):
+    return f"{100 * x:.0f}%"
+
+
 def target_layer(me, name, new):
     """The UV map to write: a new one, the named one, or the active one."""
     if new or (name and name not in me.uv_layers):
@@ -141,8 +187,16 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
     hard_angle: FloatProperty(name="Hard Angle", description="Edges whose faces turn by more than this are "
                               "seams (degrees, 0: none; 80 for lightmaps)", default=0.0, min=0.0, max=180.0)
     padding: FloatProperty(name="Padding", description="Texels between charts", default=2.0, min=0.0)
-    resolution: IntProperty(name="Resolution", description="Texture width the padding is measured in",
-                            default=1024, min=16)
+    resolution: IntProperty(name="Resolution", description="Texture width the padding is measured in "
+                            "(with a Texel Density: Page Size instead)", default=1024, min=16)
+    texel_density: FloatProperty(name="Texel Density", description="Lightmaps: texels per unit of surface "
+                                 "length for every chart of the selected objects, which share pages of Page Size "
+                                 "texels, page k at U from k to k+1 (UDIM tile 1001+k); 0: off, each object fills "
+                                 "[0,1]^2", default=0.0, min=0.0, soft_max=1024.0)
+    page_size: IntProperty(name="Page Size", description="With a Texel Density: the side of a page in texels "
+                           "(the padding is counted in them)", default=1024, min=16)
+    max_pages: IntProperty(name="Max Pages", description="With a Texel Density: refuse when the charts need more "
+                           "pages than this (0: no limit)", default=0, min=0)
     uv_map: StringProperty(name="UV Map", description="UV map to write (empty: the active one)", default="")
     new_uv_map: BoolProperty(name="New UV Map", description="Write a new UV map (e.g. a lightmap), keeping "
                              "the others", default=False)
@@ -171,12 +225,35 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
                 out.append(o)
         return out
 
-    def call_atlas(self, lib, obj, V, F, P, reorient):
+    def draw(self, context):
+        layout = self.layout
+        paged = self.texel_density > 0
+        for name in ("max_stretch", "hard_angle", "padding"):
+            layout.prop(self, name)
+        row = layout.row()
+        row.active = not paged
+        row.prop(self, "resolution")
+        layout.prop(self, "texel_density")
+        for name in ("page_size", "max_pages"):
+            row = layout.row()
+            row.active = paged
+            row.prop(self, name)
+        for name in ("uv_map", "new_uv_map", "bake_textures", "texture_size", "fix_winding"):
+            layout.prop(self, name)
+
+    def texture_width(self):
+        """The texture width the padding is counted in: a page's with a Texel Density."""
+        return self.page_size if self.texel_density > 0 else self.resolution
+
+    def call_atlas(self, lib, label, V, F, P, reorient, **extra):
+        options = dict(max_stretch=self.max_stretch, hard_angle=self.hard_angle, padding=self.padding,
+                       resolution=self.texture_width(), face_groups=P, reorient=reorient)
+        if self.texel_density > 0:
+            options.update(texels_per_unit=self.texel_density, max_pages=self.max_pages)
         try:
-            return lib.atlas(V, F, max_stretch=self.max_stretch, hard_angle=self.hard_angle, padding=self.padding,
-                             resolution=self.resolution, face_groups=P, reorient=reorient)
+            return lib.atlas(V, F, **options, **extra)
         except lib.Error as e:
-            raise ValueError(f"{obj.name}: {e}") from None
+            raise ValueError(f"{label}: {e}") from None
 
     def solve_object(self, lib, obj):
         """One object's Work. Fix Winding: a first atlas with reorient=True
@@ -186,29 +263,71 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
         flip = np.empty(0, dtype=np.int64)
         r = None
         if self.fix_winding:
-            r = self.call_atlas(lib, obj, V, F, P, reorient=True)
+            r = self.call_atlas(lib, obj.name, V, F, P, reorient=True)
             flip = reversed_polygons(r, F, P)
             if len(flip):
                 V, F, T, P = flipped_arrays(obj, flip)
                 r = None
         if r is None:
-            r = self.call_atlas(lib, obj, V, F, P, reorient=False)
+            r = self.call_atlas(lib, obj.name, V, F, P, reorient=False)
         charts = r.report.get("charts")
         charts = len(charts) if isinstance(charts, list) else charts
         return Work(obj, loop_uvs(r, F, T, len(obj.data.loops)), charts, T, P, flip,
                     int(r.report["cleaning"]["orientation_cuts"]))
 
-    def solve(self, lib, objs, wm):
+    def solve_together(self, lib, objs):
+        """The Texel Density atlas: every object's Work from one library call
+        on the objects' meshes side by side (joined_arrays), and the Pages.
+        Fix Winding as solve_object, on the joint mesh."""
+        parts = [mesh_arrays(obj) for obj in objs]
+        label = objs[0].name if len(objs) == 1 else f"{len(objs)} objects"
+        flips = [np.empty(0, dtype=np.int64) for _ in objs]
+        V, F, P, rows, Fs, weld = joined_arrays(parts)
+        extra = {"weld": weld} if len(objs) > 1 else {}
+        r = None
+        if self.fix_winding:
+            r = self.call_atlas(lib, label, V, F, P, reorient=True, **extra)
+            flips = [reversed_polygons(r, Fk, part[3], rk) for Fk, part, rk in zip(Fs, parts, rows)]
+            if any(len(f) for f in flips):
+                parts = [flipped_arrays(obj, f) if len(f) else part for obj, f, part in zip(objs, flips, parts)]
+                V, F, P, rows, Fs, weld = joined_arrays(parts)
+                r = None
+        if r is None:
+            r = self.call_atlas(lib, label, V, F, P, reorient=False, **extra)
+        chart = np.asarray(r.face_chart)
+        rep = r.report
+        cuts = int(rep["cleaning"]["orientation_cuts"])
         work = []
-        for k, obj in enumerate(objs):
+        for obj, (_, _, T, P_k), flip, Fk, rk in zip(objs, parts, flips, Fs, rows):
+            charts = len(np.unique(chart[rk][chart[rk] >= 0]))
+            work.append(Work(obj, loop_uvs(r, Fk, T, len(obj.data.loops), rk), charts, T, P_k, flip, 0))
+        pages = Pages(int(rep["pages"]), [float(u) for u in rep["page_utilization"]],
+                      len(rep.get("shrunk_charts") or []), cuts)
+        return work, pages
+
+    def check_objects(self, objs):
+        for obj in objs:
             if len(obj.data.polygons) == 0:
                 raise ValueError(f"{obj.name}: the mesh has no faces")
             if (self.new_uv_map or (self.uv_map and self.uv_map not in obj.data.uv_layers)) and \
                     len(obj.data.uv_layers) >= 8:
                 raise ValueError(f"{obj.name}: the mesh has 8 UV maps already, Blender's limit")
+
+    def solve(self, lib, objs, wm):
+        """(work, pages): per object its Work; pages None without a Texel Density."""
+        self.check_objects(objs)
+        if self.texel_density > 0:
+            work, pages = self.solve_together(lib, objs)
+            if self.bake_textures and pages.count > 1:
+                raise ValueError(f"Bake Textures writes one image per material: the charts take {pages.count} "
+                                 "pages (raise Page Size, lower Texel Density or set Max Pages to 1)")
+            wm.progress_update(len(objs))
+            return work, pages
+        work = []
+        for k, obj in enumerate(objs):
             work.append(self.solve_object(lib, obj))
             wm.progress_update(k + 1)
-        return work
+        return work, None
 
     def texture_source(self, me):
         """The UV map the textures read before the atlas is written (the one
@@ -239,20 +358,22 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
         wm = context.window_manager
         wm.progress_begin(0, len(objs))
         try:
-            work = self.solve(lib, objs, wm)
+            work, pages = self.solve(lib, objs, wm)
             LAST_UVS.clear()
             LAST_WINDING.clear()
             baked = []
             for obj, uv, _, T, P, flip, cuts in work:
                 LAST_UVS[obj.name] = uv
-                LAST_WINDING[obj.name] = {"reversed_faces": len(flip), "orientation_cuts": cuts}
+                # With a Texel Density the cuts are counted for the selection (one library call).
+                LAST_WINDING[obj.name] = {"reversed_faces": len(flip),
+                                          "orientation_cuts": cuts if pages is None else pages.cuts}
                 if len(flip):
                     flip_polygons(obj.data, flip)  # before the old UVs are read: they follow their loops
                 source, old_uv = self.texture_source(obj.data) if self.bake_textures else (None, None)
                 layer = target_layer(obj.data, self.uv_map, self.new_uv_map)
                 layer.data.foreach_set("uv", uv.ravel())
                 if source is not None:
-                    padding = max(2, int(round(self.padding * self.texture_size / self.resolution)))
+                    padding = max(2, int(round(self.padding * self.texture_size / self.texture_width())))
                     images, notes = texture_bake.bake_object(lib, obj, source, layer.name, old_uv, uv, T, P,
                                                              self.texture_size, padding)
                     baked += images
@@ -265,14 +386,29 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
             wm.progress_end()
             if edit:
                 bpy.ops.object.mode_set(mode="EDIT")
-        self.report_done(work, baked)
+        self.report_done(work, baked, pages)
         return {"FINISHED"}
 
-    def report_done(self, work, baked):
-        global LAST_MESSAGE
+    def pages_note(self, pages):
+        """The info message's words on a Texel Density atlas's pages."""
+        note = (f"; {pages.count} page{'s' if pages.count != 1 else ''} of {self.page_size} texels at "
+                f"{self.texel_density:g} texels per unit, utilization " +
+                ", ".join(percent(u) for u in pages.utilization))
+        if pages.shrunk:
+            note += f"; {pages.shrunk} charts larger than a page shrunk to fit one"
+        if pages.cuts:
+            note += f"; {pages.cuts} edges cut where faces are wound against their neighbours"
+        return note
+
+    def report_done(self, work, baked, pages=None):
+        global LAST_MESSAGE, LAST_PAGES
         LAST_MESSAGE = ("Intrinsic Atlas: " + "; ".join(f"{w.obj.name} {w.charts} charts" + winding_note(w)
                                                         for w in work) +
+                        (self.pages_note(pages) if pages else "") +
                         (f"; baked {len(baked)} images" if self.bake_textures else ""))
-        if not self.fix_winding and any(w.cuts for w in work):
+        if not self.fix_winding and (any(w.cuts for w in work) or (pages and pages.cuts)):
             LAST_MESSAGE += " (Fix Winding reverses such faces instead)"
+        LAST_PAGES = None if pages is None else {
+            "pages": pages.count, "page_utilization": pages.utilization, "shrunk_charts": pages.shrunk,
+            "texels_per_unit": self.texel_density, "page_size": self.page_size}
         self.report({"INFO"}, LAST_MESSAGE)

@@ -27,7 +27,13 @@ run_blender.py with the zip installed into a temporary user scripts folder):
   assimp's spider where installed, no triangle of the atlas is mirrored
   against its UV island (measured here from the UV layer) and no face's
   winding changes; Fix Winding reverses exactly the reversed polygons back
-  (every edge then used once each way) and mirrors nothing either.
+  (every edge then used once each way) and mirrors nothing either;
+- Texel Density: two UV spheres of world radius 1 and 4 atlased together
+  on pages: each object's area-weighted median texel density (from the UV
+  layer and world-space face areas, measured here) within 5% of the asked
+  one, every face inside one UDIM tile, more than one page when their area
+  needs it (one when it does not), no texel of one object's charts on the
+  other's; Max Pages too small is an error report that leaves the UVs.
 Any failure raises (Blender exits 1).
 """
 import math
@@ -746,6 +752,148 @@ def test_atlas_winding(lib):
     bpy.data.objects.remove(obj)
 
 
+def world_polygon_areas(obj):
+    """Each polygon's area in world space (object transform applied),
+    computed here from the vertex positions."""
+    M = np.array(obj.matrix_world, dtype=np.float64)
+    me = obj.data
+    co = np.array([v.co[:] for v in me.vertices], dtype=np.float64) @ M[:3, :3].T + M[:3, 3]
+    areas = []
+    for poly in me.polygons:
+        p = co[list(poly.vertices)]
+        areas.append(0.5 * np.linalg.norm(np.cross(p, np.roll(p, -1, axis=0)).sum(axis=0)))
+    return np.array(areas)
+
+
+def polygon_uv_areas(me, uv):
+    out = []
+    for poly in me.polygons:
+        p = uv[list(poly.loop_indices)]
+        q = np.roll(p, -1, axis=0)
+        out.append(0.5 * np.sum(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]))
+    return np.array(out)
+
+
+def weighted_median(values, weights):
+    order = np.argsort(values)
+    c = np.cumsum(weights[order])
+    return values[order][np.searchsorted(c, 0.5 * c[-1])]
+
+
+def polygon_tiles(me, uv, eps=1e-6):
+    """Per polygon the UDIM tile k (u in [k, k+1]) holding all its UVs, or
+    None when its UVs are not inside one tile [k, k+1] x [0, 1]."""
+    tiles = []
+    for poly in me.polygons:
+        p = uv[list(poly.loop_indices)]
+        k = int(np.floor(p[:, 0].min() + eps))
+        inside = p[:, 0].max() <= k + 1 + eps and p[:, 1].min() >= -eps and p[:, 1].max() <= 1 + eps
+        tiles.append(k if inside else None)
+    return tiles
+
+
+def texel_owners(objs, size):
+    """Texel centres (size per unit of UV) covered by UV triangles of more
+    than one of objs (rasterized here from the UV layers): charts of
+    different objects on one another."""
+    owner = {}
+    shared = 0
+    for n, obj in enumerate(objs):
+        me = obj.data
+        uv = stored_layer_uvs(me)
+        me.calc_loop_triangles()
+        for tri in me.loop_triangles:
+            t = uv[list(tri.loops)] * size
+            lo = np.floor(t.min(axis=0)).astype(int)
+            hi = np.ceil(t.max(axis=0)).astype(int)
+            xs, ys = np.meshgrid(np.arange(lo[0], hi[0]) + 0.5, np.arange(lo[1], hi[1]) + 0.5)
+            pts = np.stack([xs.ravel(), ys.ravel()], axis=1)
+            a, b, c = t
+            d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])
+            if abs(d) < 1e-12:
+                continue
+            l1 = ((b[0] - pts[:, 0]) * (c[1] - pts[:, 1]) - (c[0] - pts[:, 0]) * (b[1] - pts[:, 1])) / d
+            l2 = ((c[0] - pts[:, 0]) * (a[1] - pts[:, 1]) - (a[0] - pts[:, 0]) * (c[1] - pts[:, 1])) / d
+            inside = (l1 >= 0) & (l2 >= 0) & (l1 + l2 <= 1)
+            for x, y in pts[inside].astype(int).tolist():
+                if owner.setdefault((x, y), n) != n:
+                    shared += 1
+    return shared
+
+
+def test_atlas_pages(lib):
+    """Texel Density on two UV spheres of world radius 1 and 4 (the second
+    one a unit sphere scaled by 4, so the world scale counts), selected
+    together: one set of pages for both."""
+    from intrinsic_uv import op_atlas
+    select_only(None)
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=1.0, location=(0.0, 0.0, 0.0))
+    small = bpy.context.active_object
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=1.0, location=(3.0, 1.0, 0.0))
+    large = bpy.context.active_object
+    large.scale = (4.0, 4.0, 4.0)
+    bpy.context.view_layer.update()
+    objs = [small, large]
+    for o in objs:
+        o.select_set(True)
+    density, page = 40.0, 512
+    area = sum(world_polygon_areas(o).sum() for o in objs)
+    need = area * density ** 2 / page ** 2  # pages of surface at that density, before any packing loss
+    check(bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=page, max_stretch=1.05) == {"FINISHED"},
+          "pages: finished")
+    info = op_atlas.LAST_PAGES or {}
+    used = set()
+    for o in objs:
+        me = o.data
+        uv = stored_layer_uvs(me)
+        a3 = world_polygon_areas(o)
+        a2 = polygon_uv_areas(me, uv)
+        got = weighted_median(np.sqrt(np.maximum(a2, 0.0) * page ** 2 / a3), a3)
+        tiles = polygon_tiles(me, uv)
+        outside = sum(1 for k in tiles if k is None)
+        used |= {k for k in tiles if k is not None}
+        print(f"pages: {o.name} (world radius {o.scale[0]:g}): area-weighted median density {got:.2f} texels per "
+              f"unit (asked {density:g}), {len(me.polygons)} faces, {outside} outside one tile, tiles "
+              f"{sorted({k for k in tiles if k is not None})}", flush=True)
+        check(abs(got / density - 1) <= 0.05, f"pages: {o.name} density {got:.2f} within 5% of {density:g}")
+        check(outside == 0, f"pages: {o.name}: every face inside one tile ({outside} not)")
+        check(a2.min() > 0, f"pages: {o.name}: no flipped or collapsed face")
+    shared = texel_owners(objs, page)
+    print(f"pages: surface {area:.1f} square units = {need:.2f} pages at {density:g} texels per unit; tiles used "
+          f"{sorted(used)}; {shared} texels covered by both objects; {op_atlas.LAST_MESSAGE}", flush=True)
+    check(need > 1 and len(used) > 1, f"pages: more than one page used ({sorted(used)}) for {need:.2f} pages of area")
+    check(used == set(range(info.get("pages", -1))), f"pages: the tiles are 0..pages-1 ({sorted(used)}, {info})")
+    check(shared == 0, f"pages: no texel of one object's charts on the other's ({shared})")
+    check(f"{info.get('pages')} pages" in op_atlas.LAST_MESSAGE and "utilization" in op_atlas.LAST_MESSAGE and
+          all(f"{100 * u:.0f}%" in op_atlas.LAST_MESSAGE for u in info.get("page_utilization", [None])),
+          f"pages: the message gives pages and per-page utilization ({op_atlas.LAST_MESSAGE})")
+    # A page large enough for all: one page, same density.
+    check(bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=4096, max_stretch=1.05) == {"FINISHED"},
+          "pages: large page finished")
+    one = set()
+    for o in objs:
+        uv = stored_layer_uvs(o.data)
+        one |= set(polygon_tiles(o.data, uv))
+        got = weighted_median(np.sqrt(np.maximum(polygon_uv_areas(o.data, uv), 0.0) * 4096 ** 2 /
+                                      world_polygon_areas(o)), world_polygon_areas(o))
+        check(abs(got / density - 1) <= 0.05, f"pages: {o.name} density {got:.2f} on a 4096 page")
+    check(one == {0} and op_atlas.LAST_PAGES["pages"] == 1,
+          f"pages: one page when the area fits ({sorted(one, key=str)}; {op_atlas.LAST_MESSAGE})")
+    # Max Pages too small: an error report, no UV changed.
+    before = [stored_layer_uvs(o.data) for o in objs]
+    try:
+        result = bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=page, max_stretch=1.05, max_pages=1)
+        check(False, f"pages: Max Pages 1 should be refused, got {result}")
+    except RuntimeError as e:
+        text = str(e)
+        print(f"pages: Max Pages 1 refused: {text.strip()}", flush=True)
+        check("max_pages" in text and "Traceback" not in text, f"pages: Max Pages reported ({text!r})")
+    check(all(np.array_equal(b, stored_layer_uvs(o.data)) for b, o in zip(before, objs)),
+          "pages: the refused run leaves the UVs unchanged")
+    for o in objs:
+        bpy.data.objects.remove(o)
+
+
 SPIDER = "/usr/share/assimp/models/OBJ/spider.obj"
 
 
@@ -808,6 +956,7 @@ def main():
     test_atlas_bake(lib)
     test_atlas_winding(lib)
     test_atlas_spider(lib)
+    test_atlas_pages(lib)
     if FAILURES:
         raise AssertionError(f"{len(FAILURES)} check(s) failed:\n" + "\n".join(FAILURES))
     print("blender add-on test: all checks passed", flush=True)

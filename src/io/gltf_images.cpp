@@ -68,10 +68,14 @@ std::string read_bytes(const fs::path& p) {
   return s.str();
 }
 
-// The MIME type glTF core carries, from the bytes; "" for any other format.
+// The MIME type glTF carries, from the bytes: core's PNG and JPEG, and the
+// WebP and KTX2 images of EXT_texture_webp and KHR_texture_basisu (a document
+// naming those declares the extension already); "" for any other format.
 std::string mime_of(const std::string& b) {
   if (b.size() >= 8 && b.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) return "image/png";
   if (b.size() >= 3 && b.compare(0, 3, "\xFF\xD8\xFF") == 0) return "image/jpeg";
+  if (b.size() >= 12 && b.compare(0, 4, "RIFF") == 0 && b.compare(8, 4, "WEBP") == 0) return "image/webp";
+  if (b.size() >= 12 && b.compare(0, 12, "\xABKTX 20\xBB\r\n\x1A\n") == 0) return "image/ktx2";
   return "";
 }
 
