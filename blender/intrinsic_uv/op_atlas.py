@@ -320,7 +320,7 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
             work, pages = self.solve_together(lib, objs)
             if self.bake_textures and pages.count > 1:
                 raise ValueError(f"Bake Textures writes one image per material: the charts take {pages.count} "
-                                 "pages (raise Page Size, lower Texel Density or set Max Pages to 1)")
+                                 "pages (raise Page Size or lower Texel Density so that they fit one)")
             wm.progress_update(len(objs))
             return work, pages
         work = []

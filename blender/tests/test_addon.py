@@ -836,10 +836,12 @@ def test_atlas_pages(lib):
     objs = [small, large]
     for o in objs:
         o.select_set(True)
+    # Max Stretch 1.03 keeps every chart of the large sphere within a page (12.8 units a side at 40 texels
+    # per unit): at 1.05 one is larger and shrunk, and its density is then not the one asked.
     density, page = 40.0, 512
     area = sum(world_polygon_areas(o).sum() for o in objs)
     need = area * density ** 2 / page ** 2  # pages of surface at that density, before any packing loss
-    check(bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=page, max_stretch=1.05) == {"FINISHED"},
+    check(bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=page, max_stretch=1.03) == {"FINISHED"},
           "pages: finished")
     info = op_atlas.LAST_PAGES or {}
     used = set()
@@ -861,6 +863,7 @@ def test_atlas_pages(lib):
     shared = texel_owners(objs, page)
     print(f"pages: surface {area:.1f} square units = {need:.2f} pages at {density:g} texels per unit; tiles used "
           f"{sorted(used)}; {shared} texels covered by both objects; {op_atlas.LAST_MESSAGE}", flush=True)
+    check(info.get("shrunk_charts") == 0, f"pages: no chart larger than a page ({info})")
     check(need > 1 and len(used) > 1, f"pages: more than one page used ({sorted(used)}) for {need:.2f} pages of area")
     check(used == set(range(info.get("pages", -1))), f"pages: the tiles are 0..pages-1 ({sorted(used)}, {info})")
     check(shared == 0, f"pages: no texel of one object's charts on the other's ({shared})")
@@ -868,7 +871,7 @@ def test_atlas_pages(lib):
           all(f"{100 * u:.0f}%" in op_atlas.LAST_MESSAGE for u in info.get("page_utilization", [None])),
           f"pages: the message gives pages and per-page utilization ({op_atlas.LAST_MESSAGE})")
     # A page large enough for all: one page, same density.
-    check(bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=4096, max_stretch=1.05) == {"FINISHED"},
+    check(bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=4096, max_stretch=1.03) == {"FINISHED"},
           "pages: large page finished")
     one = set()
     for o in objs:
@@ -877,12 +880,13 @@ def test_atlas_pages(lib):
         got = weighted_median(np.sqrt(np.maximum(polygon_uv_areas(o.data, uv), 0.0) * 4096 ** 2 /
                                       world_polygon_areas(o)), world_polygon_areas(o))
         check(abs(got / density - 1) <= 0.05, f"pages: {o.name} density {got:.2f} on a 4096 page")
+    print(f"pages: on a 4096 page: tiles {sorted(one, key=str)}; {op_atlas.LAST_MESSAGE}", flush=True)
     check(one == {0} and op_atlas.LAST_PAGES["pages"] == 1,
           f"pages: one page when the area fits ({sorted(one, key=str)}; {op_atlas.LAST_MESSAGE})")
     # Max Pages too small: an error report, no UV changed.
     before = [stored_layer_uvs(o.data) for o in objs]
     try:
-        result = bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=page, max_stretch=1.05, max_pages=1)
+        result = bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=page, max_stretch=1.03, max_pages=1)
         check(False, f"pages: Max Pages 1 should be refused, got {result}")
     except RuntimeError as e:
         text = str(e)
@@ -890,6 +894,33 @@ def test_atlas_pages(lib):
         check("max_pages" in text and "Traceback" not in text, f"pages: Max Pages reported ({text!r})")
     check(all(np.array_equal(b, stored_layer_uvs(o.data)) for b, o in zip(before, objs)),
           "pages: the refused run leaves the UVs unchanged")
+    try:
+        bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=page, max_stretch=1.03, bake_textures=True)
+        check(False, "pages: Bake Textures on two pages should be refused")
+    except RuntimeError as e:
+        check("Bake Textures" in str(e), f"pages: Bake Textures on two pages refused ({e})")
+    check(all(np.array_equal(b, stored_layer_uvs(o.data)) for b, o in zip(before, objs)),
+          "pages: the refused bake leaves the UVs unchanged")
+    # Fix Winding on the joint atlas: a third of the small sphere's polygons reversed, reversed back.
+    made = windings(small.data)
+    reversed_set = reverse_a_third(small)
+    check(bpy.ops.uv.intrinsic_atlas(texel_density=density, page_size=page, max_stretch=1.03,
+                                     fix_winding=True) == {"FINISHED"}, "pages: Fix Winding finished")
+    flips, mirrored, _ = local_flips(small.data, stored_layer_uvs(small.data))
+    n = op_atlas.LAST_WINDING[small.name]["reversed_faces"]
+    after = windings(small.data)
+    print(f"pages: Fix Winding: {n} of {len(reversed_set)} reversed polygons reversed back, local flips {flips}; "
+          f"{op_atlas.LAST_MESSAGE}", flush=True)
+    check(n == len(reversed_set) and all(same_cycle(after[k], made[k]) for k in range(len(made))),
+          "pages: Fix Winding reverses the reversed polygons back")
+    check(flips == 0 and mirrored == 0 and op_atlas.LAST_WINDING[large.name]["reversed_faces"] == 0,
+          f"pages: Fix Winding mirrors nothing ({flips}, {mirrored})")
+    # The overlap measure can tell: without a Texel Density each object fills its own [0,1]^2.
+    check(bpy.ops.uv.intrinsic_atlas(max_stretch=1.03) == {"FINISHED"}, "pages: default atlas finished")
+    shared = texel_owners(objs, page)
+    print(f"pages: control, default atlas: {shared} texels covered by both objects", flush=True)
+    check(op_atlas.LAST_PAGES is None and shared > 0,
+          f"pages: the default atlas puts both objects on [0,1]^2 ({shared} texels shared)")
     for o in objs:
         bpy.data.objects.remove(o)
 
