@@ -196,12 +196,13 @@ namespace intrinsic::gltf {
 
 namespace {
 
-// Texture indices named by texture infos ({"index": t, ...} under a key
+// Calls fn(info) for every texture info ({"index": t, ...} under a key
 // ending in "Texture", the spec's and the KHR_materials_* extensions'
-// spelling) anywhere outside the "textures" array.
-void texture_refs(const json& j, std::set<int>& out, bool top = true) {
+// spelling) anywhere outside the "textures" array. J: json or const json.
+template <class J, class Fn>
+void each_texture_info(J& j, const Fn& fn, bool top = true) {
   if (j.is_array()) {
-    for (const json& e : j) texture_refs(e, out, false);
+    for (auto& e : j) each_texture_info(e, fn, false);
     return;
   }
   if (!j.is_object()) return;
@@ -210,8 +211,8 @@ void texture_refs(const json& j, std::set<int>& out, bool top = true) {
     const std::string& k = it.key();
     if (k.size() > 7 && k.compare(k.size() - 7, 7, "Texture") == 0 && it->is_object() && it->contains("index") &&
         (*it)["index"].is_number_integer())
-      out.insert((*it)["index"].get<int>());
-    texture_refs(*it, out, false);
+      fn(*it);
+    each_texture_info(*it, fn, false);
   }
 }
 
@@ -234,7 +235,7 @@ void image_refs(const json& j, const std::set<int>& textures, std::set<int>& ima
 struct Refs {
   std::set<int> textures, images, samplers;
   explicit Refs(const json& j) {
-    texture_refs(j, textures);
+    each_texture_info(j, [this](const json& info) { textures.insert(info["index"].get<int>()); });
     image_refs(j, textures, images, samplers);
   }
 };
@@ -254,24 +255,6 @@ std::vector<int> drop(json& j, const char* key, const std::set<int>& gone) {
   return to;
 }
 
-void renumber_texture_infos(json& j, const std::vector<int>& to, bool top = true) {
-  if (j.is_array()) {
-    for (json& e : j) renumber_texture_infos(e, to, false);
-    return;
-  }
-  if (!j.is_object()) return;
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    if (top && it.key() == "textures") continue;
-    const std::string& k = it.key();
-    if (k.size() > 7 && k.compare(k.size() - 7, 7, "Texture") == 0 && it->is_object() && it->contains("index") &&
-        (*it)["index"].is_number_integer()) {
-      const int t = (*it)["index"].get<int>();
-      if (t >= 0 && static_cast<std::size_t>(t) < to.size()) (*it)["index"] = to[static_cast<std::size_t>(t)];
-    }
-    renumber_texture_infos(*it, to, false);
-  }
-}
-
 }  // namespace
 
 std::vector<int> prune_replaced_textures(const json& before, json& after) {
@@ -287,7 +270,10 @@ std::vector<int> prune_replaced_textures(const json& before, json& after) {
   const std::vector<int> t_to = drop(after, "textures", textures);
   const std::vector<int> i_to = drop(after, "images", images);
   const std::vector<int> s_to = drop(after, "samplers", samplers);
-  renumber_texture_infos(after, t_to);
+  each_texture_info(after, [&t_to](json& info) {
+    const int t = info["index"].get<int>();
+    if (t >= 0 && static_cast<std::size_t>(t) < t_to.size()) info["index"] = t_to[static_cast<std::size_t>(t)];
+  });
   auto renumber = [](json& o, const char* key, const std::vector<int>& to) {
     if (o.is_object() && o.contains(key) && o[key].is_number_integer()) {
       const int v = o[key].get<int>();
