@@ -14,7 +14,7 @@ PACKAGES=(
   libcli11-dev             # command line
   nlohmann-json3-dev       # JSON reports and constraint files
   libpng-dev zlib1g-dev    # PNG pictures, gzip meshes
-  libstb-dev               # stb_easy_font for picture labels
+  libstb-dev               # stb_easy_font for picture labels; stb_image to turn TGA/BMP/... images into PNG for glTF outputs
   libjpeg62-turbo-dev      # JPEG textures (texture transfer): libjpeg-turbo, hardened against hostile files
   libtinygltf-dev          # glTF 2.0 binary (.glb) output of `intrinsic atlas`
   libassimp-dev            # every other asset format (FBX, Collada, 3DS, LWO, X, .blend...: src/io/assimp_reader.cpp)
