@@ -236,6 +236,8 @@ def atlas(
     allow_missing_images: Optional[bool] = None,
     pack_only: Optional[bool] = None,
     keep_overlaps: Optional[bool] = None,
+    uv: Any = None,
+    uv_index: Any = None,
 ) -> Atlas:
     """`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or a mesh file (atlas(path)).
 
@@ -270,7 +272,8 @@ def atlas(
     surface length on pages of `resolution` texels (UDIM: page k at u in [k, k+1]), at most
     `max_pages` (0: no limit); the report lists "pages", "page_utilization" and "chart_page".
     `pack_only=True` (`--pack-only`) re-packs the input's own UVs (charts kept, quarter turns, one
-    scale); `keep_overlaps=True` leaves input charts that overlap each other on each other.
+    scale): a file's, or with arrays `uv` (k x 2) and `uv_index` (#F x 3 rows of uv, as an Atlas
+    gives them); `keep_overlaps=True` leaves input charts that overlap each other on each other.
     `instances` (`--instances`): "shared" (default) charts a mesh several nodes draw once, "unique"
     gives each instance its own charts (docs/formats.md "Instances").
     Raises UsageError for bad options and InputError for unreadable or invalid input.
@@ -285,6 +288,7 @@ def atlas(
                  replace_used_set=replace_used_set, transfer_textures=transfer_textures,
                  texture_size=texture_size, texture_padding=texture_padding, instances=instances,
                  allow_missing_images=allow_missing_images, texels_per_unit=texels_per_unit,
-                 max_pages=max_pages, pack_only=pack_only, keep_overlaps=keep_overlaps)
+                 max_pages=max_pages, pack_only=pack_only, keep_overlaps=keep_overlaps, uv=uv,
+                 uv_index=uv_index)
     given["lambda"] = lambda_
     return _intrinsic.atlas(V, F, **{k: v for k, v in given.items() if v is not None})

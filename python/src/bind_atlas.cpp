@@ -21,6 +21,12 @@ struct AtlasOutput {
 
 // seams: a path to a seams file (read against the mesh, errors name its
 // lines) or k x 2 vertex indices (checked by atlas() itself).
+// The arrays' own UVs (pack_only): uv (k x 2) and uv_index (#F x 3 rows of
+// uv), as an Atlas gives them; checked by the re-pack against F.
+struct UvArgs {
+  py::object uv = py::none(), uv_index = py::none();
+};
+
 struct SeamsArg {
   py::object value = py::none();
   bool is_path() const { return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"); }
@@ -66,7 +72,8 @@ std::vector<int> to_face_groups(const py::handle& obj) {
 }
 
 // Range checks are atlas()'s own (Error(Usage)), as for the command line.
-AtlasOptions atlas_options(const py::kwargs& kwargs, ReadOptions& read, SeamsArg& seams, AtlasOutput& out) {
+AtlasOptions atlas_options(const py::kwargs& kwargs, ReadOptions& read, SeamsArg& seams, UvArgs& uvs,
+                           AtlasOutput& out) {
   AtlasOptions o;
   // The chart map first, spelled as parameterize()'s options.
   py::dict rest = py::dict(kwargs).attr("copy")();
@@ -79,6 +86,8 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, ReadOptions& read, SeamsArg
     else if (k == "max_pages") o.max_pages = value.cast<int>();
     else if (k == "pack_only") o.pack_only = value.cast<bool>();
     else if (k == "keep_overlaps") o.keep_overlaps = value.cast<bool>();
+    else if (k == "uv") uvs.uv = py::reinterpret_borrow<py::object>(value);
+    else if (k == "uv_index") uvs.uv_index = py::reinterpret_borrow<py::object>(value);
     else if (k == "max_normal_deviation") o.max_normal_deviation_deg = value.cast<double>();
     else if (k == "min_chart_faces") o.min_chart_faces = value.cast<int>();
     else if (k == "max_stretch") o.max_stretch = value.cast<double>();
@@ -116,8 +125,9 @@ bool from_gltf_path(const py::object& V, const py::object& F) {
 AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs& kwargs) {
   AtlasRequest request;
   SeamsArg seams;
+  UvArgs uvs;
   AtlasOutput out;
-  request.options = atlas_options(kwargs, request.read, seams, out);
+  request.options = atlas_options(kwargs, request.read, seams, uvs, out);
   request.textures = out.textures;
   request.texcoord_set = out.gltf.texcoord_set;
   if (out.textures.enabled && out.gltf.texcoord_set < 0 && from_gltf_path(V, F))
@@ -130,6 +140,14 @@ AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs
   if (!from_file) {
     data.V = to_V(V);
     data.F = to_F(F);
+    if (uvs.uv.is_none() != uvs.uv_index.is_none()) throw_usage("uv and uv_index go together (an Atlas's uv, uv_index)");
+    if (!uvs.uv.is_none()) {
+      data.TC = to_UV(uvs.uv, "uv");
+      data.FTC = to_F(uvs.uv_index);
+      if (data.FTC.rows() != data.F.rows()) throw_usage("uv_index needs one row per face of F");
+      if (data.FTC.size() > 0 && (data.FTC.minCoeff() < 0 || data.FTC.maxCoeff() >= data.TC.rows()))
+        throw_usage("uv_index refers to a row outside uv");
+    }
   }
   AtlasOutcome o;
   {

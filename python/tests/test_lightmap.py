@@ -72,3 +72,17 @@ def test_instances_keyword_is_checked():
     with pytest.raises(intrinsic.UsageError, match="instances"):
         intrinsic.atlas(str(mesh("torus")), instances="several")
     assert intrinsic.InstanceMode.UNIQUE is not None
+
+
+def test_pack_only_of_arrays_equals_pack_only_of_the_file(tmp_path):
+    # The arrays an Atlas gives (V, F, uv, uv_index) re-pack to the same
+    # layout as the OBJ written from them.
+    first = intrinsic.atlas(str(mesh("torus")))
+    path = str(tmp_path / "first.obj")
+    intrinsic.write_atlas(path, first)
+    from_file = intrinsic.atlas(path, pack_only=True)
+    from_arrays = intrinsic.atlas(first.V, first.F, uv=first.uv, uv_index=first.uv_index, pack_only=True)
+    assert from_arrays.report["charts"] == from_file.report["charts"]
+    assert np.allclose(from_arrays.uv[from_arrays.uv_index], from_file.uv[from_file.uv_index], atol=1e-6)
+    with pytest.raises(intrinsic.UsageError, match="together"):
+        intrinsic.atlas(first.V, first.F, uv=first.uv, pack_only=True)
