@@ -10,12 +10,11 @@
 // Images in a format glTF does not carry (TGA, BMP, ...; assimp's sources
 // name them) are converted to PNG with stb_image.
 #include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "io/gltf_document.h"
 #include "io/gltf_images.h"
+#include "io/text_file.h"
 
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
@@ -60,13 +59,6 @@ fs::path existing(const fs::path& p) {
   return {};
 }
 
-std::string read_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (!in) throw_input("cannot read image '" + p.string() + "'");
-  return s.str();
-}
 
 // The MIME type glTF carries, from the bytes: core's PNG and JPEG, and the
 // WebP and KTX2 images of EXT_texture_webp and KHR_texture_basisu (a document
@@ -126,7 +118,7 @@ struct Placer {
 
   // The image file at `found` placed for the output.
   void place(json& img, const std::string& path, const fs::path& found) {
-    std::string bytes = read_bytes(found);
+    std::string bytes = detail::read_text_file(found.string(), "image");
     const bool convert = mime_of(bytes).empty();
     if (convert) {
       bytes = to_png(bytes);

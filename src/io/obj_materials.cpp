@@ -9,7 +9,6 @@
 //   the base colour, Pm/Pr from metallic/roughness, Ke from the emission,
 //   map_Kd, norm and map_Ke from its textures, the images written beside it.
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -17,6 +16,7 @@
 #include "io/gltf_document.h"
 #include "io/gltf_images.h"
 #include "io/obj_materials.h"
+#include "io/text_file.h"
 
 namespace intrinsic::io {
 
@@ -25,12 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string read_file(const fs::path& p) { return detail::read_text_file(p.string(), "file"); }
 
 bool is_file(const fs::path& p) {
   std::error_code ec;
