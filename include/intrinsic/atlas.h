@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "intrinsic/choice.h"
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/mesh_data.h"
 #include "intrinsic/metrics.h"
@@ -28,6 +29,8 @@ enum class Segmentation {
   NormalCones,  // region growing: normals within max_normal_deviation of the chart's mean, never across sharp edges
   Components,   // one chart per manifold piece (then split only where needed)
 };
+template <>
+ChoiceTable<Segmentation> choice_table<Segmentation>();
 
 // How a chart was flattened.
 enum class ChartMethod {
@@ -37,6 +40,8 @@ enum class ChartMethod {
   OptimalLambda,      // the mixed map at the chart's optimal lambda (paper section 5.1)
   OptimizedBoundary,  // the fixed-boundary map after boundary optimization (paper section 5.2)
 };
+template <>
+ChoiceTable<ChartMethod> choice_table<ChartMethod>();
 // "natural", "triangle", "fixed-boundary", "optimal-lambda", "optimized-boundary"
 const char* chart_method_name(ChartMethod m);
 
@@ -48,6 +53,8 @@ const char* chart_method_name(ChartMethod m);
 // split as for the natural map, so a method with more distortion or folds
 // gives more charts, never an invalid one.
 enum class ChartOptimizer { None, OptimalLambda, OptimizeBoundary };
+template <>
+ChoiceTable<ChartOptimizer> choice_table<ChartOptimizer>();
 struct ChartMapOptions {
   WeightOptions weights;                         // fixed boundaries only
   BoundaryShape boundary = BoundaryShape::Natural;  // Natural, Circle or Square
@@ -163,6 +170,8 @@ struct PackOptions {
 // lightmap), or each mesh of it on its own filling the unit square (a glTF
 // document's meshes, an OBJ file's `o` objects; src/atlas/atlas_per_mesh.cpp).
 enum class AtlasScope { Whole, PerMesh };
+template <>
+ChoiceTable<AtlasScope> choice_table<AtlasScope>();
 
 // The one-call form's options: ChartOptions' and PackOptions' fields side by
 // side (chart_options and pack_options take them apart; a test checks that

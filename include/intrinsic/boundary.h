@@ -10,12 +10,17 @@
 #include <utility>
 #include <vector>
 
+#include "intrinsic/choice.h"
 #include "intrinsic/mesh.h"
 
 namespace intrinsic {
 
 enum class BoundaryShape { Circle, Square, Given, Natural };
+template <>
+ChoiceTable<BoundaryShape> choice_table<BoundaryShape>();
 enum class Spacing { ArcLength, Uniform };
+template <>
+ChoiceTable<Spacing> choice_table<Spacing>();
 
 std::string boundary_shape_name(BoundaryShape s);  // "circle", "square", "given", "natural"
 std::string spacing_name(Spacing s);               // "arclength", "uniform"

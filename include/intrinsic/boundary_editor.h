@@ -32,11 +32,14 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "intrinsic/choice.h"
 #include "intrinsic/parameterizer.h"
 
 namespace intrinsic {
 
 enum class BasisMode { Full, Lazy };
+template <>
+ChoiceTable<BasisMode> choice_table<BasisMode>();
 
 struct EditOptions {
   BasisMode basis = BasisMode::Lazy;

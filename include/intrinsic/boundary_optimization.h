@@ -19,13 +19,20 @@
 #include <string>
 #include <vector>
 
+#include "intrinsic/choice.h"
 #include "intrinsic/parameterizer.h"
 
 namespace intrinsic {
 
 enum class BoundaryEnergy { EdgeLength, Area, SymmetricDirichlet };
+template <>
+ChoiceTable<BoundaryEnergy> choice_table<BoundaryEnergy>();
 enum class GradientRoute { Adjoint, Responses };
+template <>
+ChoiceTable<GradientRoute> choice_table<GradientRoute>();
 enum class Descent { LBFGS, GradientDescent };
+template <>
+ChoiceTable<Descent> choice_table<Descent>();
 
 BoundaryEnergy parse_boundary_energy(const std::string& name);  // edge | area | dirichlet
 GradientRoute parse_gradient_route(const std::string& name);    // adjoint | responses

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "intrinsic/choice.h"
 #include "intrinsic/error.h"
 #include "intrinsic/atlas.h"
 #include "intrinsic/boundary.h"
@@ -28,6 +29,8 @@ namespace intrinsic {
 // what a texture atlas wants); Unique gives each node a copy of the mesh, so
 // each instance has charts of its own (what a lightmap wants).
 enum class InstanceMode { Shared, Unique };
+template <>
+ChoiceTable<InstanceMode> choice_table<InstanceMode>();
 
 struct ReadOptions {
   // Refuse files announcing or containing more than this many vertices or

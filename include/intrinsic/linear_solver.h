@@ -12,6 +12,9 @@
 #include <Eigen/Sparse>
 #include <memory>
 #include <string>
+#include <string_view>
+
+#include "intrinsic/choice.h"
 
 namespace intrinsic {
 namespace detail {
@@ -31,9 +34,14 @@ using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, int indices
 // Hermitian matrix; CHOLMOD's complex factor when that fails, or with
 // --solver cholmod).
 enum class SolverKind { Auto, Cholmod, Umfpack, EigenLLT, EigenLU, CG, BiCGSTAB, SupernodalLU, SupernodalCholesky };
+template <>
+ChoiceTable<SolverKind> choice_table<SolverKind>();
 
 std::string solver_name(SolverKind k);
 SolverKind parse_solver(const std::string& name);  // throws Error(Usage)
+// The solver named `name` that this build has: Error(Usage) "<label>: ..."
+// for a name not in the table and for one it lacks (SuiteSparse not found).
+SolverKind parse_solver(const std::string& name, std::string_view label);
 bool solver_available(SolverKind k);                // false e.g. for CHOLMOD without SuiteSparse
 
 class LinearSolver {

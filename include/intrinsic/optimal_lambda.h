@@ -8,11 +8,14 @@
 #include <array>
 #include <string>
 
+#include "intrinsic/choice.h"
 #include "intrinsic/parameterize.h"
 
 namespace intrinsic {
 
 enum class LambdaEnergy { EdgeLength, Area };
+template <>
+ChoiceTable<LambdaEnergy> choice_table<LambdaEnergy>();
 
 // E(lambda) = sum_k c[k] lambda^k.
 using Quartic = std::array<double, 5>;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "intrinsic/choice.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/linear_solver.h"
@@ -21,10 +22,14 @@ namespace intrinsic {
 
 // The scale asked for (options).
 enum class ScaleMode { Unit, Surface };
+template <>
+ChoiceTable<ScaleMode> choice_table<ScaleMode>();
 
 // Where the result was placed (result): fitted into [0,1]^2, at the
 // surface's own scale, or exactly where given positions or pins put it.
 enum class Placement { Unit, Surface, Given };
+template <>
+ChoiceTable<Placement> choice_table<Placement>();
 std::string placement_name(Placement p);  // "unit", "surface", "given"
 
 // What happens to boundary loops other than the outer one (holes) when their
@@ -38,12 +43,16 @@ enum class HoleRule {
   // a conformal part (authalic, tutte, floater) have no such term: Free.
   Natural,
 };
+template <>
+ChoiceTable<HoleRule> choice_table<HoleRule>();
 
 std::string hole_rule_name(HoleRule r);  // "fill", "free", "natural"
 
 // The hole rule that was applied (result). FreeNoConformalTerm: HoleRule::Natural
 // asked for with a method that has no conformal part, so the holes were free.
 enum class HolesApplied { None, Fill, Free, Natural, FreeNoConformalTerm };
+template <>
+ChoiceTable<HolesApplied> choice_table<HolesApplied>();
 // "none", "fill", "free", "natural", "free (method has no conformal term)".
 std::string holes_applied_name(HolesApplied h);
 

@@ -9,16 +9,21 @@
 #include <vector>
 
 #include "intrinsic/metrics.h"
-#include "intrinsic/names.h"
+#include "intrinsic/choice.h"
 #include "intrinsic/render.h"
 
 namespace intrinsic {
+
+// The five pictures of `intrinsic render`.
+enum class PictureMode { Checker, Layout, Angle, Area, Stretch };
+template <>
+ChoiceTable<PictureMode> choice_table<PictureMode>();
 
 inline constexpr std::array<PictureMode, 5> kAllPictureModes = {PictureMode::Checker, PictureMode::Layout,
                                                                 PictureMode::Angle, PictureMode::Area,
                                                                 PictureMode::Stretch};
 
-// PictureMode's names (names.h): "checker", "layout", "angle", "area", "stretch".
+// PictureMode's names (its choice table): "checker", "layout", "angle", "area", "stretch".
 std::string mode_name(PictureMode m);
 PictureMode parse_mode(const std::string& name, std::string_view label = "mode");  // throws Error(Usage)
 

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "intrinsic/choice.h"
+
 namespace intrinsic {
 
 // A decoded texture image as stored: top row first, `channels` (1 grey,
@@ -36,6 +38,8 @@ std::string encode_texture_png(const Texture& t);
 
 enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };  // glTF sampler wrapS/wrapT 10497/33071/33648
 enum class TextureFilter { Linear, Nearest };
+template <>
+ChoiceTable<TextureWrap> choice_table<TextureWrap>();
 // glTF sampler codes: wrap 10497/33071/33648 (anything else, or absent, is
 // Repeat, glTF's default); magFilter 9728 = Nearest, else Linear.
 TextureWrap texture_wrap_from_gltf(int code);
@@ -57,6 +61,8 @@ struct TextureSampler {
 // (metallic-roughness, occlusion), TangentNormal = tangent-space normal map
 // (re-expressed in the new tangent frame, see TransferMesh tangents).
 enum class TextureRole { Color, Data, TangentNormal };
+template <>
+ChoiceTable<TextureRole> choice_table<TextureRole>();
 
 // Triangles of one surface seen through two UV layouts; row 3*f+k is corner k
 // of face f. UVs are in glTF image convention: u right, v DOWN, (0,0) =

@@ -15,11 +15,14 @@
 
 #include <string>
 
+#include "intrinsic/choice.h"
 #include "intrinsic/mesh.h"
 
 namespace intrinsic {
 
 enum class Method { Conformal, Authalic, Mixed, Tutte, Floater };
+template <>
+ChoiceTable<Method> choice_table<Method>();
 
 struct WeightOptions {
   Method method = Method::Conformal;

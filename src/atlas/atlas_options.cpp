@@ -73,4 +73,44 @@ void check_pack_options(const PackOptions& o) {
 }
 
 }  // namespace detail
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+template <>
+ChoiceTable<Segmentation> choice_table<Segmentation>() {
+  static const Choice<Segmentation> rows[] = {{Segmentation::NormalCones, "normal-cones"},
+                                              {Segmentation::Components, "components"}};
+  return make_choice_table(rows);
+}
+
+// How a chart was flattened (atlas reports only).
+template <>
+ChoiceTable<ChartMethod> choice_table<ChartMethod>() {
+  static const Choice<ChartMethod> rows[] = {{ChartMethod::Natural, "natural", false},
+                                             {ChartMethod::Triangle, "triangle", false},
+                                             {ChartMethod::FixedBoundary, "fixed-boundary", false},
+                                             {ChartMethod::OptimalLambda, "optimal-lambda", false},
+                                             {ChartMethod::OptimizedBoundary, "optimized-boundary", false}};
+  return make_choice_table(rows);
+}
+
+template <>
+ChoiceTable<ChartOptimizer> choice_table<ChartOptimizer>() {
+  static const Choice<ChartOptimizer> rows[] = {{ChartOptimizer::None, "none"},
+                                                {ChartOptimizer::OptimalLambda, "optimal-lambda"},
+                                                {ChartOptimizer::OptimizeBoundary, "optimize-boundary"}};
+  return make_choice_table(rows);
+}
+
+template <>
+ChoiceTable<AtlasScope> choice_table<AtlasScope>() {
+  static const Choice<AtlasScope> rows[] = {{AtlasScope::Whole, "whole"}, {AtlasScope::PerMesh, "per-mesh"}};
+  return make_choice_table(rows);
+}
+
+// Declared in atlas.h as a C string, for callers that print it directly.
+const char* chart_method_name(ChartMethod m) {
+  for (const Choice<ChartMethod>& c : choice_table<ChartMethod>())
+    if (c.value == m) return c.name;
+  return "?";
+}
+
 }  // namespace intrinsic

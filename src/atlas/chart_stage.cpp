@@ -15,13 +15,11 @@
 #include "atlas/thresholds.h"
 #include "intrinsic/error.h"
 #include "util/parallel_for.h"
+#include "util/stopwatch.h"
 
 namespace intrinsic {
+using detail::ms_since;
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 void count_split(detail::ChartStatus status, AtlasCharts& r) {
   ++r.splits;

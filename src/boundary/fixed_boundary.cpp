@@ -3,7 +3,7 @@
 
 #include "intrinsic/boundary.h"
 #include "intrinsic/error.h"
-#include "intrinsic/names.h"
+#include "intrinsic/choice.h"
 
 namespace intrinsic {
 
@@ -80,6 +80,23 @@ std::vector<FixedVertex> square_boundary(const MatrixX3d& V, const std::vector<i
     }
   }
   return out;
+}
+
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+// Given positions come from a file the command line names by its path.
+template <>
+ChoiceTable<BoundaryShape> choice_table<BoundaryShape>() {
+  static const Choice<BoundaryShape> rows[] = {{BoundaryShape::Circle, "circle"},
+                                               {BoundaryShape::Square, "square"},
+                                               {BoundaryShape::Natural, "natural"},
+                                               {BoundaryShape::Given, "given", false}};
+  return make_choice_table(rows);
+}
+
+template <>
+ChoiceTable<Spacing> choice_table<Spacing>() {
+  static const Choice<Spacing> rows[] = {{Spacing::ArcLength, "arclength"}, {Spacing::Uniform, "uniform"}};
+  return make_choice_table(rows);
 }
 
 }  // namespace intrinsic

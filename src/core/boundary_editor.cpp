@@ -247,4 +247,11 @@ int BoundaryEditor::responses() const {
   return options_.basis == BasisMode::Full ? static_cast<int>(basis_.cols()) : static_cast<int>(lazy_.size());
 }
 
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+template <>
+ChoiceTable<BasisMode> choice_table<BasisMode>() {
+  static const Choice<BasisMode> rows[] = {{BasisMode::Full, "full"}, {BasisMode::Lazy, "lazy"}};
+  return make_choice_table(rows);
+}
+
 }  // namespace intrinsic

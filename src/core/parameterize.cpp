@@ -10,7 +10,7 @@
 
 #include "core/placement.h"
 #include "intrinsic/error.h"
-#include "intrinsic/names.h"
+#include "intrinsic/choice.h"
 #include "intrinsic/parameterizer.h"
 
 namespace intrinsic {
@@ -115,5 +115,39 @@ void scale_to_surface_area(MatrixX2d& UV, const Mesh& mesh) {
 }
 
 ParamResult parameterize(const Mesh& mesh, const ParamOptions& o) { return Parameterizer(mesh, o).solve(); }
+
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+template <>
+ChoiceTable<ScaleMode> choice_table<ScaleMode>() {
+  static const Choice<ScaleMode> rows[] = {{ScaleMode::Unit, "unit"}, {ScaleMode::Surface, "surface"}};
+  return make_choice_table(rows);
+}
+
+// A result's placement: "given" is where given positions or pins put it.
+template <>
+ChoiceTable<Placement> choice_table<Placement>() {
+  static const Choice<Placement> rows[] = {
+      {Placement::Unit, "unit"}, {Placement::Surface, "surface"}, {Placement::Given, "given", false}};
+  return make_choice_table(rows);
+}
+
+template <>
+ChoiceTable<HoleRule> choice_table<HoleRule>() {
+  static const Choice<HoleRule> rows[] = {
+      {HoleRule::Fill, "fill"}, {HoleRule::Free, "free"}, {HoleRule::Natural, "natural"}};
+  return make_choice_table(rows);
+}
+
+// What a result applied to its holes (reports only, never parsed).
+template <>
+ChoiceTable<HolesApplied> choice_table<HolesApplied>() {
+  static const Choice<HolesApplied> rows[] = {{HolesApplied::None, "none", false},
+                                              {HolesApplied::Fill, "fill", false},
+                                              {HolesApplied::Free, "free", false},
+                                              {HolesApplied::Natural, "natural", false},
+                                              {HolesApplied::FreeNoConformalTerm,
+                                               "free (method has no conformal term)", false}};
+  return make_choice_table(rows);
+}
 
 }  // namespace intrinsic

@@ -44,7 +44,8 @@ std::string attribute_bytes(const draco::PointAttribute& att, std::uint32_t coun
   }
 }
 
-int components_of(const std::string& type) {
+// Draco attributes are scalars or vectors (0: any other accessor type).
+int vector_components(const std::string& type) {
   static const std::pair<const char*, int> types[] = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}};
   for (const auto& [t, n] : types)
     if (type == t) return n;
@@ -91,7 +92,7 @@ void decode_primitive(GltfDocument& doc, json& prim, const std::string& path, st
     if (!att) fail(name, ap, "no Draco attribute with id " + std::to_string(id));
     const int a = index_at(prim["attributes"], it.key().c_str(), naccessors, name, path + "/attributes");
     const json& acc = doc.json["accessors"][static_cast<std::size_t>(a)];
-    const int components = components_of(acc.value("type", std::string()));
+    const int components = vector_components(acc.value("type", std::string()));
     if (components == 0 || integer(acc.value("count", json(0)), name, "/accessors/" + std::to_string(a) + "/count") != mesh.num_points())
       fail(name, ap, "Draco attribute " + std::to_string(id) + " has " + std::to_string(mesh.num_points()) +
                          " points, accessor " + std::to_string(a) + " wants " + acc.value("count", json(0)).dump() + " of type " +

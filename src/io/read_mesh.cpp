@@ -186,4 +186,11 @@ MeshData read_mesh(const std::string& path, const ReadOptions& options) {
   return read_bytes(bytes, path, options, true);
 }
 
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+template <>
+ChoiceTable<InstanceMode> choice_table<InstanceMode>() {
+  static const Choice<InstanceMode> rows[] = {{InstanceMode::Shared, "shared"}, {InstanceMode::Unique, "unique"}};
+  return make_choice_table(rows);
+}
+
 }  // namespace intrinsic

@@ -15,22 +15,15 @@
 
 #include "intrinsic/metrics.h"
 #include "util/parallel_for.h"
+#include "mesh/degenerate_face.h"
 
 namespace intrinsic {
 namespace {
 
 enum class FaceKind : char { Counted, Collapsed, Degenerate };
 
-// make_mesh's zero-area test (twice the area against the longest edge
-// squared), as uv_atlas_metrics counts degenerate faces.
-bool degenerate_3d(const MatrixX3d& V, const MatrixX3i& F, int f) {
-  const Eigen::Vector3d x0 = V.row(F(f, 0)), x1 = V.row(F(f, 1)), x2 = V.row(F(f, 2));
-  const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
-  return !((x1 - x0).cross(x2 - x0).norm() > 1e-12 * longest);
-}
-
 FaceKind classify(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d& UV, int f) {
-  if (degenerate_3d(V, F, f)) return FaceKind::Degenerate;
+  if (detail::degenerate_face(V, F, f)) return FaceKind::Degenerate;
   const Eigen::Vector2d a = UV.row(F(f, 0)), b = UV.row(F(f, 1)), c = UV.row(F(f, 2));
   if (!a.allFinite() || !b.allFinite() || !c.allFinite() || orient2d_sign(a, b, c) == 0) return FaceKind::Collapsed;
   return FaceKind::Counted;

@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "intrinsic/metrics.h"
+#include "mesh/degenerate_face.h"
 
 namespace intrinsic {
 namespace {
@@ -89,13 +90,6 @@ void label_charts(const MatrixX3i& T, std::vector<int>& chart, std::vector<int>&
   }
 }
 
-bool degenerate_3d(const MatrixX3d& PT, const MatrixX3i& FT, int f) {
-  const Eigen::Vector3d x0 = PT.row(FT(f, 0)), x1 = PT.row(FT(f, 1)), x2 = PT.row(FT(f, 2));
-  const double longest = std::max({(x1 - x0).squaredNorm(), (x2 - x1).squaredNorm(), (x0 - x2).squaredNorm()});
-  // make_mesh's test: twice the area against the longest edge squared.
-  return !((x1 - x0).cross(x2 - x0).norm() > 1e-12 * longest);
-}
-
 // Utilization over [0,1]^2 or the bounding square, and over the bounding box.
 void utilization(const MatrixX3i& FT, const MatrixX2d& UV, UvAtlasMetrics& r) {
   double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
@@ -137,7 +131,7 @@ UvAtlasMetrics uv_atlas_metrics(const MatrixX3d& PT, const MatrixX3i& FT, const 
     ++ch.faces;
     ch.area_3d += 0.5 * (x1 - x0).cross(x2 - x0).norm();
     if (std::isfinite(area2)) ch.uv_area += 0.5 * std::abs(area2), r.uv_area += 0.5 * std::abs(area2);
-    degenerate[f] = degenerate_3d(PT, FT, f);
+    degenerate[f] = detail::degenerate_face(PT, FT, f);
     r.degenerate_faces += degenerate[f];
     sign[f] = (a.allFinite() && b.allFinite() && c.allFinite()) ? orient2d_sign(a, b, c) * listing[f] : 0;
     if (!degenerate[f]) majority[r.face_chart[f]] += listing[f];  // zero-area faces do not vote

@@ -7,7 +7,7 @@
 
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/error.h"
-#include "intrinsic/names.h"
+#include "intrinsic/choice.h"
 #include "intrinsic/metrics.h"
 
 namespace intrinsic {
@@ -111,6 +111,28 @@ double boundary_energy(const MatrixX3d& V, const MatrixX3i& F, const Eigen::Matr
     case BoundaryEnergy::SymmetricDirichlet: return dirichlet_energy(V, F, UV, gradient);
   }
   return 0;
+}
+
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+template <>
+ChoiceTable<BoundaryEnergy> choice_table<BoundaryEnergy>() {
+  static const Choice<BoundaryEnergy> rows[] = {{BoundaryEnergy::EdgeLength, "edge"},
+                                                {BoundaryEnergy::Area, "area"},
+                                                {BoundaryEnergy::SymmetricDirichlet, "dirichlet"}};
+  return make_choice_table(rows);
+}
+
+template <>
+ChoiceTable<GradientRoute> choice_table<GradientRoute>() {
+  static const Choice<GradientRoute> rows[] = {{GradientRoute::Adjoint, "adjoint"},
+                                               {GradientRoute::Responses, "responses"}};
+  return make_choice_table(rows);
+}
+
+template <>
+ChoiceTable<Descent> choice_table<Descent>() {
+  static const Choice<Descent> rows[] = {{Descent::LBFGS, "lbfgs"}, {Descent::GradientDescent, "gradient"}};
+  return make_choice_table(rows);
 }
 
 }  // namespace intrinsic

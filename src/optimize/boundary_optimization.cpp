@@ -15,13 +15,11 @@
 #include "intrinsic/assemble.h"
 #include "intrinsic/error.h"
 #include "intrinsic/metrics.h"
+#include "util/stopwatch.h"
 
 namespace intrinsic {
+using detail::ms_since;
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 int count_flips(const MatrixX3i& F, const MatrixX2d& UV) {
   int flips = 0;

@@ -11,15 +11,13 @@
 
 #include "core/placement.h"
 #include "intrinsic/error.h"
-#include "intrinsic/names.h"
+#include "intrinsic/choice.h"
 #include "intrinsic/metrics.h"
+#include "util/stopwatch.h"
 
 namespace intrinsic {
+using detail::ms_since;
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Adds (p0 + p1 x + p2 x^2)^2 to c.
 void add_square(Quartic& c, double p0, double p1, double p2) {
@@ -187,6 +185,13 @@ OptimalLambdaResult optimal_lambda(const Mesh& mesh, const OptimalLambdaOptions&
 
   result.map = blended_map(mesh, o, conformal, authalic, result);
   return result;
+}
+
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+template <>
+ChoiceTable<LambdaEnergy> choice_table<LambdaEnergy>() {
+  static const Choice<LambdaEnergy> rows[] = {{LambdaEnergy::EdgeLength, "edge"}, {LambdaEnergy::Area, "area"}};
+  return make_choice_table(rows);
 }
 
 }  // namespace intrinsic

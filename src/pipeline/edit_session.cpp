@@ -7,13 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "intrinsic/error.h"
+#include "util/stopwatch.h"
 
 namespace intrinsic {
+using detail::ms_since;
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // What must be equal for a request to reuse the session's factorization:
 // everything but the moves, the constraints, the pin positions and whether

@@ -12,16 +12,13 @@
 #include "intrinsic/parameterizer.h"
 #include "intrinsic/pipeline.h"
 #include "mesh/topology_build.h"
+#include "util/stopwatch.h"
 
 namespace intrinsic {
+using detail::ms_since;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-}  // namespace
-
-namespace {
 
 Mesh checked(const MeshData& data, const ValidateOptions& vo) { return make_mesh(data, vo); }
 Mesh checked(MeshData&& data, const ValidateOptions& vo) { return detail::make_mesh_taking(std::move(data), vo); }

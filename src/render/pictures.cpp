@@ -130,4 +130,15 @@ Picture make_picture(PictureMode mode, const MatrixX3d& V, const MatrixX3i& F, c
   return p;
 }
 
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+template <>
+ChoiceTable<PictureMode> choice_table<PictureMode>() {
+  static const Choice<PictureMode> rows[] = {{PictureMode::Checker, "checker"},
+                                             {PictureMode::Layout, "layout"},
+                                             {PictureMode::Angle, "angle"},
+                                             {PictureMode::Area, "area"},
+                                             {PictureMode::Stretch, "stretch"}};
+  return make_choice_table(rows);
+}
+
 }  // namespace intrinsic

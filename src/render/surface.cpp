@@ -14,7 +14,7 @@ namespace intrinsic::render {
 
 namespace {
 
-constexpr Rgb kBackground = {255, 255, 255};
+constexpr Rgb kSurfaceBackground = {255, 255, 255};
 
 // Bilinear, repeating in both directions; v = 0 is the bottom image row.
 Rgb sample_texture(const Image& tex, double u, double v) {
@@ -87,7 +87,7 @@ Image draw_surface(const MatrixX3d& V, const MatrixX3i& F, const SurfacePaint& p
     if (std::isfinite(ext) && ext > 0) uv_scale = 1 / ext, uv_u0 = lo[0], uv_v0 = lo[1];
   }
 
-  SampleBuffer buf(width * ss, height * ss, kBackground);
+  SampleBuffer buf(width * ss, height * ss, kSurfaceBackground);
   for_each_band(buf.height, [&](int y0, int y1) {
     for (Eigen::Index f = 0; f < F.rows(); ++f) {
       const int i0 = F(f, 0), i1 = F(f, 1), i2 = F(f, 2);

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "intrinsic/error.h"
-#include "intrinsic/names.h"
+#include "intrinsic/choice.h"
 #include "util/parallel_for.h"
 
 #ifdef INTRINSIC_HAVE_SUITESPARSE
@@ -511,6 +511,18 @@ const SparseMatrix& LinearSolver::matrix() const {
   }
 #endif
   return impl_->A;
+}
+
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+template <>
+ChoiceTable<SolverKind> choice_table<SolverKind>() {
+  static const Choice<SolverKind> rows[] = {{SolverKind::Auto, "auto"},         {SolverKind::Cholmod, "cholmod"},
+                                            {SolverKind::Umfpack, "umfpack"},   {SolverKind::EigenLLT, "eigen-llt"},
+                                            {SolverKind::EigenLU, "eigen-lu"},  {SolverKind::CG, "cg"},
+                                            {SolverKind::BiCGSTAB, "bicgstab"},
+                                            {SolverKind::SupernodalLU, "supernodal-lu"},
+                                            {SolverKind::SupernodalCholesky, "supernodal-cholesky"}};
+  return make_choice_table(rows);
 }
 
 }  // namespace intrinsic

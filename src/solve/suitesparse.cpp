@@ -18,15 +18,12 @@
 #include "solve/ordering.h"
 #include "solve/solver_threads.h"
 #include "util/parallel_for.h"
+#include "util/stopwatch.h"
 
 namespace intrinsic::detail {
 namespace {
 
 using Long = SuiteSparse_long;
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // 64-bit copies of a compressed matrix's index arrays.
 struct LongPattern {

@@ -26,25 +26,12 @@
 #include "solve/supernodal_blas.h"
 #include "solve/supernodal_schedule.h"
 #include "util/parallel_for.h"
+#include "util/stopwatch.h"
 
 namespace intrinsic::detail {
 namespace {
 
 using Long = std::int64_t;
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// Column blocks of a supernode with nscol columns: about 128 wide, so a top
-// separator of 2000 columns gives the threads 15 blocks to share; narrower
-// supernodes stay whole. A function of nscol only (determinism).
-int column_blocks(int nscol) { return std::max(1, nscol / 128); }
-int block_start(int nscol, int b) { return static_cast<int>(static_cast<Long>(nscol) * b / column_blocks(nscol)); }
-
-// Supernodes with fewer flops run on one thread even at the top: a thread
-// costs tens of microseconds.
-constexpr double kParallelFlops = 2e6;
 
 // A worker's scratch: where each row of the current supernode sits in its
 // panel, and room for one update block.

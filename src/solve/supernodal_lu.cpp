@@ -25,6 +25,7 @@
 #include "solve/suitesparse.h"
 #include "solve/supernodal_blas.h"
 #include "solve/supernodal_schedule.h"
+#include "util/stopwatch.h"
 
 namespace intrinsic::detail {
 namespace {
@@ -32,10 +33,6 @@ namespace {
 using Long = std::int64_t;
 using blas::gemm;
 using blas::trsm;
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // In-place LU without pivoting of the n x n block A (leading dimension lda),
 // recursively halved so that most of the work is one gemm. False when a
@@ -65,19 +62,9 @@ bool dense_lu(int n, double* A, int lda, const double* floor) {
   return dense_lu(n2, A22, lda, floor + n1);
 }
 
-// Column blocks of a supernode with nscol columns, as in the supernodal
-// Cholesky: about 128 wide, narrower supernodes whole. A function of nscol
-// only, and every supernode is blocked the same way whatever runs it, so the
-// BLAS calls (and their results) do not depend on the threads.
-int column_blocks(int nscol) { return std::max(1, nscol / 128); }
-int block_start(int nscol, int b) { return static_cast<int>(static_cast<Long>(nscol) * b / column_blocks(nscol)); }
 // Row (or column) slices of about 256 for the triangular solves of a block.
 int slices_of(int count) { return std::max(1, count / 256); }
 int slice_start(int count, int t) { return static_cast<int>(static_cast<Long>(count) * t / slices_of(count)); }
-
-// Supernodes with fewer flops run on one thread even at the top: a thread
-// costs tens of microseconds.
-constexpr double kParallelFlops = 2e6;
 
 // Leaves the panels' doubles uninitialized when they are allocated: each
 // supernode zeroes its own panels where it is factored, on the thread that
@@ -105,7 +92,7 @@ using Panels = std::vector<double, UninitializedAllocator<double>>;
 
 // A worker's scratch: where each row of the current supernode sits in its
 // panel, and room for one update block.
-struct Workspace {
+struct LuWorkspace {
   std::vector<int> map;
   std::vector<double> work;
   std::int64_t placed = 0;  // entries of A assembled by this worker
@@ -147,7 +134,7 @@ struct SupernodalLU::Impl {
   double update_block(int s, int c1, int c2, const int* map, std::vector<double>& work);
   void block_solves(int s, int c1, int c2, int node_threads);
   void trailing_update(int s, int c1, int c2, int node_threads);
-  bool factor_node(int s, double* floor, Workspace& ws, int node_threads, double& node_flops);
+  bool factor_node(int s, double* floor, LuWorkspace& ws, int node_threads, double& node_flops);
   bool numeric(const SparseMatrix& matrix);
   void forward_node(int s, double* Y, int nrhs, bool transposed, double* top_buffer, std::vector<double>& W,
                     int node_threads) const;
@@ -346,7 +333,7 @@ void SupernodalLU::Impl::trailing_update(int s, int c1, int c2, int node_threads
 // the triangular solves beside it, the update of the blocks to its right).
 // Each step's pieces are independent, so node_threads threads share them;
 // the pieces are the same for any node_threads. False at a bad pivot.
-bool SupernodalLU::Impl::factor_node(int s, double* floor, Workspace& ws, int node_threads,
+bool SupernodalLU::Impl::factor_node(int s, double* floor, LuWorkspace& ws, int node_threads,
                                      double& node_flops) {
   const int k1 = super[s], nscol = super[s + 1] - k1;
   const Long psi = pi[s], nsrow = pi[s + 1] - psi;
@@ -384,8 +371,8 @@ bool SupernodalLU::Impl::numeric(const SparseMatrix& matrix) {
   Ux.resize(ux[nsuper]);
   // The subtrees on `threads` workers, each with its own scratch, then the
   // top supernodes one by one, the large ones split between the threads.
-  std::vector<Workspace> ws(threads);
-  for (Workspace& w : ws) w.map.assign(n, 0);
+  std::vector<LuWorkspace> ws(threads);
+  for (LuWorkspace& w : ws) w.map.assign(n, 0);
   const int tasks = static_cast<int>(schedule.subtrees.size());
   std::vector<double> task_flops(tasks, 0.0);
   std::vector<char> failed(tasks, 0);
@@ -413,7 +400,7 @@ bool SupernodalLU::Impl::numeric(const SparseMatrix& matrix) {
   A = nullptr;
   // Each entry of A was placed once, unless the pattern was not symmetric.
   Long placed = 0;
-  for (const Workspace& w : ws) placed += w.placed;
+  for (const LuWorkspace& w : ws) placed += w.placed;
   return placed == matrix.nonZeros();
 }
 

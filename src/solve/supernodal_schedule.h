@@ -11,6 +11,7 @@
 // number of threads.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <exception>
@@ -22,6 +23,20 @@
 #include "solve/suitesparse.h"
 
 namespace intrinsic::detail {
+
+// Column blocks of a supernode with nscol columns (the supernodal Cholesky
+// and LU alike): about 128 wide, so a top separator of 2000 columns gives the
+// threads 15 blocks to share; narrower supernodes stay whole. A function of
+// nscol only, and every supernode is blocked the same way whatever runs it,
+// so the BLAS calls (and their results) do not depend on the threads.
+inline int column_blocks(int nscol) { return std::max(1, nscol / 128); }
+inline int block_start(int nscol, int b) {
+  return static_cast<int>(static_cast<std::int64_t>(nscol) * b / column_blocks(nscol));
+}
+
+// Supernodes with fewer flops run on one thread even at the top: a thread
+// costs tens of microseconds.
+constexpr double kParallelFlops = 2e6;
 
 struct SupernodalSchedule {
   // Independent subtrees, as ranges [first, last] of the (postordered)

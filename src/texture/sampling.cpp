@@ -117,4 +117,19 @@ std::array<float, 4> sample_texture(const Texture& t, const TextureSampler& s, d
   return out;
 }
 
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+template <>
+ChoiceTable<TextureRole> choice_table<TextureRole>() {
+  static const Choice<TextureRole> rows[] = {
+      {TextureRole::Color, "color"}, {TextureRole::Data, "data"}, {TextureRole::TangentNormal, "normal"}};
+  return make_choice_table(rows);
+}
+
+template <>
+ChoiceTable<TextureWrap> choice_table<TextureWrap>() {
+  static const Choice<TextureWrap> rows[] = {
+      {TextureWrap::Repeat, "repeat"}, {TextureWrap::ClampToEdge, "clamp"}, {TextureWrap::MirroredRepeat, "mirror"}};
+  return make_choice_table(rows);
+}
+
 }  // namespace intrinsic

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "intrinsic/error.h"
-#include "intrinsic/names.h"
+#include "intrinsic/choice.h"
 
 namespace intrinsic {
 
@@ -70,6 +70,17 @@ Eigen::Matrix3d face_weights(const MatrixX3d& V, const MatrixX3i& F, int f, cons
       }
     }
   return out;
+}
+
+// How the command line, Python and the reports spell these (intrinsic/choice.h).
+template <>
+ChoiceTable<Method> choice_table<Method>() {
+  static const Choice<Method> rows[] = {{Method::Conformal, "conformal"},
+                                        {Method::Authalic, "authalic"},
+                                        {Method::Mixed, "mixed"},
+                                        {Method::Tutte, "tutte"},
+                                        {Method::Floater, "floater"}};
+  return make_choice_table(rows);
 }
 
 }  // namespace intrinsic
