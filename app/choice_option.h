@@ -1,12 +1,14 @@
 // A CLI11 check for an option whose value is one of an enum's names: the
-// allowed list and the message come from the name table (names.h), so
+// allowed list and the message come from the name table (intrinsic/choice.h), so
 // `--help` shows exactly the names the library parses.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "intrinsic/names.h"
+#include "intrinsic/boundary_editor.h"
+#include "intrinsic/intrinsic.h"
+#include "intrinsic/pictures.h"
 
 namespace intrinsic::app {
 

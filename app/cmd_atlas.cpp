@@ -7,6 +7,7 @@
 
 #include "choice_option.h"
 #include "command.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/error.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"

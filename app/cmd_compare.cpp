@@ -8,7 +8,7 @@
 
 #include "command.h"
 #include "intrinsic/error.h"
-#include "intrinsic/names.h"
+#include "intrinsic/intrinsic.h"
 #include "intrinsic/io.h"
 #include "intrinsic/parameterize.h"
 #include "intrinsic/pictures.h"

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "intrinsic/names.h"
+#include "intrinsic/intrinsic.h"
 #include "intrinsic/weights.h"
 
 namespace intrinsic::app {

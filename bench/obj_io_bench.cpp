@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "bench_timing.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/io.h"
 
 using namespace intrinsic;

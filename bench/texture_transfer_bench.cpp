@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "intrinsic/atlas.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"

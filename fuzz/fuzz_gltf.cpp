@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "fuzz_support.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/gltf.h"
 
 namespace {

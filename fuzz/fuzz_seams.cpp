@@ -5,6 +5,7 @@
 // y * 5 + x; two faces per quad, (a, a+1, a+6) and (a, a+6, a+5), row by
 // row: 30 faces, as fuzz/make_corpus.py assumes for the seeds).
 #include "fuzz_support.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/io.h"
 #include "intrinsic/atlas.h"
 

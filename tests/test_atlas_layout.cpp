@@ -1,5 +1,5 @@
 // The atlas's layout on shapes whose good layout is known
-// (src/mesh/generate_cad.cpp): a flat side of a CAD plate is one chart
+// (src/generate/generate_cad.cpp): a flat side of a CAD plate is one chart
 // whatever its long thin triangles and holes, flat panels and a tube are one
 // chart, a fold makes two, a box unfolds without distortion and straight
 // edges stay straight and on the axes, and the charts do not depend on the

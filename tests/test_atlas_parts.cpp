@@ -1,4 +1,4 @@
-// generate_parts (src/mesh/generate_parts.cpp), the many-part asset of the
+// generate_parts (src/generate/generate_parts.cpp), the many-part asset of the
 // atlas's scale test, checked against what it promises, counted here from
 // the faces alone: one connected piece per part, the face count asked for,
 // closed parts closed (every edge in two faces, listed both ways) and

@@ -14,6 +14,7 @@
 
 #include "gltf_support.h"
 #include "intrinsic/atlas.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"
 

@@ -11,9 +11,10 @@
 #include "cli_support.h"
 #include "gltf_support.h"
 #include "intrinsic/atlas.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"
-#include "intrinsic/names.h"
+#include "intrinsic/intrinsic.h"
 
 namespace intrinsic {
 namespace {

@@ -28,6 +28,7 @@
 
 #include "atlas_test_support.h"
 #include "cli_support.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"

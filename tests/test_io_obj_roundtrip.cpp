@@ -16,6 +16,7 @@
 
 #include "cli_support.h"
 #include "intrinsic/atlas.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/io.h"
 #include "test_support.h"

@@ -7,9 +7,13 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/io.h"
-#include "intrinsic/names.h"
+#include "intrinsic/boundary_editor.h"
+#include "intrinsic/intrinsic.h"
+#include "intrinsic/pictures.h"
+#include "intrinsic/texture.h"
 #include "intrinsic/pipeline.h"
 
 namespace intrinsic {

@@ -17,6 +17,7 @@
 
 #include "cli_support.h"
 #include "gltf_support.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"

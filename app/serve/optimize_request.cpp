@@ -2,7 +2,7 @@
 #include "serve/optimize_request.h"
 
 #include "intrinsic/error.h"
-#include "intrinsic/names.h"
+#include "intrinsic/intrinsic.h"
 
 namespace intrinsic::app {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "intrinsic/io.h"
 #include "intrinsic/error.h"
-#include "intrinsic/names.h"
+#include "intrinsic/intrinsic.h"
 #include "weight_args.h"
 
 namespace intrinsic::app {

@@ -3,7 +3,7 @@
 // defines it. Parsing, printing, the allowed lists of `--help` and the
 // messages for a bad value all come from the table, so the command line, the
 // Python module, the server and the JSON reports cannot spell a value
-// differently. intrinsic/names.h gathers every table for the shells.
+// differently.
 #pragma once
 
 #include <cstddef>

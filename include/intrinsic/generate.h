@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
+#include "intrinsic/image.h"
 #include "intrinsic/mesh_data.h"
-#include "intrinsic/render.h"
 
 namespace intrinsic {
 
@@ -69,7 +69,7 @@ Eigen::Vector3d textured_asset_colour(const Eigen::Vector3d& p);
 // (with NAME.mtl, map_Kd NAME.png beside it); all files or none.
 void write_textured_asset(const std::string& path, const TexturedAsset& asset);
 
-// Shapes whose good atlas layout is known (src/mesh/generate_cad.cpp), for
+// Shapes whose good atlas layout is known (src/generate/generate_cad.cpp), for
 // the atlas's layout tests: unjittered grids unless said, every vertex shared
 // by all the faces meeting at it, consistently oriented, closed ones outward.
 // A machined plate as CAD exporters write it: 4 x 3 x 0.2 around the origin,
@@ -104,7 +104,7 @@ MeshData generate_flat_rectangle(const GenerateOptions& o);
 // "rectangle". Throws Error(Usage).
 MeshData generate_surface(const std::string& name, const GenerateOptions& o);
 
-// A machine-like asset of many parts (src/mesh/generate_parts.cpp), the
+// A machine-like asset of many parts (src/generate/generate_parts.cpp), the
 // scale test of `intrinsic atlas` (generate surface "parts"): `parts`
 // disjoint pieces of varied shape and size, side by side on a grid, each a
 // jittered grid of its own. Closed pieces are outward-oriented.

@@ -5,8 +5,8 @@
 // every other format assimp imports (FBX, Collada, 3DS, LWO, X, .blend...:
 // supported_formats() lists them). Writers
 // never leave a partial file: temporary file in the target directory, renamed.
-// Then the side files (boundary positions, constraints, seams) and the atlas
-// writers.
+// Then the side files (boundary positions, constraints). The atlas's own
+// files (seams in, atlases out) are in intrinsic/atlas_files.h.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +16,6 @@
 
 #include "intrinsic/choice.h"
 #include "intrinsic/error.h"
-#include "intrinsic/atlas.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/mesh_data.h"
@@ -125,30 +124,6 @@ std::vector<FixedVertex> parse_boundary_text(const std::string& text, const std:
 // resolve_constraints, against the mesh.
 Constraints parse_constraints_json(const std::string& text, const std::string& name);
 Constraints read_constraints_file(const std::string& path);
-
-// Seams files (src/io/seams_file.cpp): one edge `i j` per line, 0-based
-// vertex indices in input order, `#` comments. Throws Error(Input) naming the
-// file and line for a malformed line, an out-of-range index, a pair that is
-// not an edge of `mesh` (find_seam_problem), and for a file with no edge.
-std::vector<SeamEdge> parse_seams_text(const std::string& text, const std::string& name, const MeshData& mesh);
-std::vector<SeamEdge> read_seams_file(const std::string& path, const MeshData& mesh);
-
-// Atlases (src/io/atlas_writer.cpp). The OBJ: the input's vertices in input
-// order, one `vt` per atlas UV, the result's faces (the input's, reoriented
-// ones reversed) `f v/vt` (seams only through the per-corner texture
-// coordinates); atomically, with the material files its mtllib needs beside
-// it (docs/formats.md "OBJ materials travel with the output").
-void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r);
-// The same OBJ naming exactly `mtllib`, files the caller writes itself.
-void write_atlas_obj_naming(const std::string& path, const MeshData& m, const AtlasResult& r,
-                            const std::vector<std::string>& mtllib);
-// The atlas in the format the extension names: .obj (write_atlas_obj), or
-// .glb/.gltf: the input's own glTF document with the atlas added when `m` was
-// read from glTF (write_gltf_atlas, intrinsic/gltf.h), else write_glb's
-// one-mesh file (vertices split at seams). check_atlas_output throws
-// Error(Usage) for any other extension, before anything is written.
-void check_atlas_output(const std::string& path);
-void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r);
 
 // Atomically writes `contents` to `path` (temp file + rename). Shared by every
 // writer in the project (JSON reports, PNG images, meshes).

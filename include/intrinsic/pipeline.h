@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "intrinsic/atlas.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/io.h"

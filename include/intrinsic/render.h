@@ -15,21 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "intrinsic/image.h"
 #include "intrinsic/mesh.h"
 
 namespace intrinsic {
-
-// Row-major, top row first, 3 bytes (R, G, B) per pixel.
-struct Image {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;
-
-  Image() = default;
-  Image(int w, int h, std::uint8_t grey = 255)
-      : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, grey) {}
-  const std::uint8_t* pixel(int x, int y) const { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
-  std::uint8_t* pixel(int x, int y) { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
-};
 
 struct RenderOptions {
   int width = 1024, height = 1024;  // output size in pixels, 1..16384
@@ -80,9 +69,5 @@ Image render_face_values(const MatrixX3d& V, const MatrixX3i& F, const MatrixX2d
 Image compose_panels(const std::vector<Image>& panels, const std::vector<std::string>& captions,
                      int columns);
 
-std::string encode_png(const Image& image);
-// Any PNG colour type/bit depth is converted to RGB8 (alpha is composited on
-// white). Throws Error(Input) on malformed data.
-Image decode_png(const std::string& bytes);
 
 }  // namespace intrinsic

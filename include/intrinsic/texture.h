@@ -13,28 +13,9 @@
 #include <vector>
 
 #include "intrinsic/choice.h"
+#include "intrinsic/image.h"
 
 namespace intrinsic {
-
-// A decoded texture image as stored: top row first, `channels` (1 grey,
-// 2 grey+alpha, 3 RGB, 4 RGBA) values per texel in [0,1] exactly as encoded
-// (no colour-space conversion); `bits` 8 or 16 = what the file had, used when
-// encoding back.
-struct Texture {
-  int width = 0, height = 0, channels = 4, bits = 8;
-  std::vector<float> texels;  // width * height * channels, row-major, top row first
-};
-
-// PNG or JPEG (told apart by their magic bytes). Malformed or truncated data,
-// or more than 16384 texels per side: Error(Input) naming `name`.
-Texture decode_texture(const std::string& bytes, const std::string& name);
-// Reads and decodes a file: Error(Input) with the errno when it cannot be
-// read (a missing file has os_error ENOENT), Error(Input) when malformed.
-// (pictures.h's read_picture_texture turns it into the renderer's RGB8.)
-Texture read_texture_file(const std::string& path);
-// PNG bytes with the texture's channels and bit depth (values rounded to the
-// nearest code, clamped to [0,1]). Error(Usage) for an inconsistent Texture.
-std::string encode_texture_png(const Texture& t);
 
 enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };  // glTF sampler wrapS/wrapT 10497/33071/33648
 enum class TextureFilter { Linear, Nearest };

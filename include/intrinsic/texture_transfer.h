@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "intrinsic/atlas.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/mesh_data.h"
 

@@ -2,6 +2,7 @@
 // file through the library's atlas job (pipeline.h), with the same report and
 // the same OBJ bytes.
 #include "common.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/error.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"

@@ -14,7 +14,9 @@
 
 #include "intrinsic/boundary.h"
 #include "intrinsic/mesh_data.h"
-#include "intrinsic/names.h"
+#include "intrinsic/boundary_editor.h"
+#include "intrinsic/intrinsic.h"
+#include "intrinsic/pictures.h"
 #include "intrinsic/pipeline.h"
 
 namespace intrinsic::python {

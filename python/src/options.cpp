@@ -1,7 +1,7 @@
 // Python keyword options -> the library's typed requests (pipeline.h):
 // parameterize(V, F, **options) and Parameterizer(...) fill a ParamRequest,
 // atlas() an AtlasRequest's chart map. Choices go through the name tables
-// (names.h) with the keyword as the label, so a bad value reads
+// (intrinsic/choice.h) with the keyword as the label, so a bad value reads
 // "method: 'foo' is not one of conformal, ...", and the library's own checks
 // name keywords (OptionSpelling::Keyword), never command-line flags.
 #include <iostream>
@@ -9,7 +9,7 @@
 #include "common.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
-#include "intrinsic/names.h"
+#include "intrinsic/intrinsic.h"
 
 namespace intrinsic::python {
 namespace {

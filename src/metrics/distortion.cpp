@@ -175,7 +175,7 @@ Eigen::MatrixX2i unique_edges(const MatrixX3i& F) {
     part_max[p] = x;
   });
   const int n = *std::max_element(part_max.begin(), part_max.end());
-  const SparseMatrix larger = detail::vertex_adjacency_pattern(F, n, {}, detail::AdjacencyNeighbours::LargerOnly);
+  const detail::SparseMatrix larger = detail::vertex_adjacency_pattern(F, n, {}, detail::AdjacencyNeighbours::LargerOnly);
   const int* at = larger.outerIndexPtr();
   const int* other = larger.innerIndexPtr();
   Eigen::MatrixX2i E(at[n], 2);

@@ -3,6 +3,7 @@
 // (atlas.h).
 #include <chrono>
 
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/pipeline.h"
 

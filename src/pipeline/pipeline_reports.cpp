@@ -4,7 +4,7 @@
 // and values.
 #include <cmath>
 
-#include "intrinsic/names.h"
+#include "intrinsic/intrinsic.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/pipeline.h"
 #include "intrinsic/report.h"

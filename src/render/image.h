@@ -1,12 +1,11 @@
 // Small pixel-level helpers shared by the renderer's drawing code; the Image
-// type itself is public (intrinsic/render.h).
+// type itself is public (intrinsic/image.h).
 #pragma once
 
 #include <array>
 #include <cstdint>
 
 #include "intrinsic/render.h"
-#include "intrinsic/texture.h"
 
 namespace intrinsic::render {
 
@@ -22,10 +21,6 @@ struct Rect {
 // Both clip to the image, so callers can draw partly outside it.
 void fill_rect(Image& img, Rect r, Rgb colour);
 void blit(Image& dst, const Image& src, int x, int y);
-
-// RGB8 from any texture (grey replicated, alpha composited on white), for
-// decode_png and the checker picture's texture.
-Image picture_from_texture(const Texture& t);
 
 inline Rgb get_pixel(const Image& img, int x, int y) {
   const std::uint8_t* p = img.pixel(x, y);

@@ -1,6 +1,6 @@
 // Picture modes and their option parsing.
 #include "intrinsic/pictures.h"
-#include "intrinsic/texture.h"
+#include "intrinsic/image.h"
 
 #include <algorithm>
 #include <cctype>
@@ -70,7 +70,7 @@ void check_png_path(const std::string& path, const std::string& option) {
     throw_usage(option + " '" + path + "': pictures are written as PNG; use a name ending in .png");
 }
 
-Image read_picture_texture(const std::string& path) { return render::picture_from_texture(read_texture_file(path)); }
+Image read_picture_texture(const std::string& path) { return picture_from_texture(read_texture_file(path)); }
 
 const Eigen::VectorXd& mode_values(PictureMode m, const FaceDistortion& fd) {
   switch (m) {

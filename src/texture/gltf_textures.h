@@ -9,7 +9,7 @@
 
 #include "intrinsic/texture.h"
 #include "intrinsic/texture_transfer.h"
-#include "io/gltf_write_hook.h"
+#include "atlas/files/gltf_write_hook.h"
 
 namespace intrinsic::gltf_textures {
 

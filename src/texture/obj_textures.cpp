@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
 #include "intrinsic/texture.h"

@@ -11,24 +11,16 @@
 #include <vector>
 
 #include "intrinsic/texture.h"
+#include "io/image_codecs.h"
 
 namespace intrinsic::detail {
 
-// Largest accepted side of a decoded or requested texture, so a crafted
-// header cannot make us allocate gigabytes.
-constexpr int kMaxTextureSide = 16384;
-
-// Error(Usage) unless 1..4 channels, 8 or 16 bits, a size within limits and
-// a texel buffer of exactly width * height * channels values.
-void check_texture(const Texture& t, const char* what);
 
 // The UV area of a triangle soup given per corner (3m x 2, row 3f+k corner
 // k of face f): with the 3D area, a layout's texel density, which
 // `--texture-size 0` keeps from the source layout.
 double corner_uv_area(const Eigen::MatrixX2d& uv);
 
-Texture decode_png_texture(const std::string& bytes, const std::string& name);
-Texture decode_jpeg_texture(const std::string& bytes, const std::string& name);
 
 // sRGB electro-optical transfer function and its inverse (IEC 61966-2-1),
 // on values in [0,1].

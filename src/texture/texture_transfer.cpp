@@ -1,6 +1,7 @@
 // write_atlas_with_textures (texture_transfer.h): the atlas written with its
 // textures following it, through the glTF writer's hook or the OBJ side
 // (docs/textures.md), and the report's "textures" object.
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/texture_transfer.h"
 
 #include "intrinsic/error.h"

@@ -15,12 +15,15 @@
 // same on any number of threads.
 #pragma once
 
+#include <Eigen/Sparse>
 #include <vector>
 
-#include "intrinsic/linear_solver.h"
 #include "intrinsic/mesh_data.h"
 
 namespace intrinsic::detail {
+
+// The solver's matrix type (intrinsic/linear_solver.h names it the same).
+using SparseMatrix = Eigen::SparseMatrix<double>;
 
 // Which neighbours a kept vertex's column holds.
 enum class AdjacencyNeighbours {

@@ -2,6 +2,7 @@
 // checks the result (exit 0 on success).
 #include <cstdio>
 
+#include "intrinsic/intrinsic.h"  // the front door: the whole public API must compile outside the tree
 #include "intrinsic/error.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/metrics.h"

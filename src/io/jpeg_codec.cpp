@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "intrinsic/error.h"
-#include "texture/texture_internal.h"
+#include "io/image_codecs.h"
 
 namespace intrinsic {
 namespace {

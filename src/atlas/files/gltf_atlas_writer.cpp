@@ -18,10 +18,11 @@
 #include <set>
 #include <unordered_map>
 
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/gltf.h"
 #include "io/gltf_document.h"
 #include "io/gltf_images.h"
-#include "io/gltf_write_hook.h"
+#include "atlas/files/gltf_write_hook.h"
 
 namespace intrinsic {
 

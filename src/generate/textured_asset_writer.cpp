@@ -10,7 +10,7 @@
 #include "intrinsic/error.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/io.h"
-#include "intrinsic/pictures.h"
+#include "intrinsic/image.h"
 #include "io/gltf_document.h"
 
 namespace intrinsic {

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <set>
 
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/io.h"
 #include "intrinsic/atlas.h"
 #include "intrinsic/error.h"

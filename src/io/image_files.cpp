@@ -6,7 +6,7 @@
 
 #include "intrinsic/error.h"
 #include "io/text_file.h"
-#include "texture/texture_internal.h"
+#include "io/image_codecs.h"
 
 namespace intrinsic {
 

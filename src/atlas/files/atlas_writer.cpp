@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "intrinsic/atlas.h"
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/error.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"

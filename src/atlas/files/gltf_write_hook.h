@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "intrinsic/atlas_files.h"
 #include "intrinsic/gltf.h"
 #include "io/gltf_document.h"
 
