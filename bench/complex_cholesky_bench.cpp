@@ -25,7 +25,7 @@
 
 #include "bench_timing.h"
 #include "core/natural_system.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/mesh.h"
 

@@ -12,7 +12,7 @@
 #include <random>
 
 #include "bench_timing.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/boundary_editor.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"

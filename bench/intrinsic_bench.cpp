@@ -45,7 +45,7 @@
 
 #include "bench_timing.h"
 #include "compensated_residual.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"

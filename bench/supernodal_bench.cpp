@@ -29,10 +29,10 @@
 #include <vector>
 
 #include "bench_timing.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/generate.h"
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 #include "intrinsic/mesh.h"
 #include "intrinsic/weights.h"
 

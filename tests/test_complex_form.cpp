@@ -5,7 +5,7 @@
 #include <random>
 
 #include "core/natural_system.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/parameterize.h"
 #include "solve/complex_form.h"
 #include "test_support.h"

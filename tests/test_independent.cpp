@@ -18,7 +18,7 @@
 #include <queue>
 
 #include "independent_assembly.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/charts.h"
 #include "intrinsic/io.h"

@@ -14,7 +14,7 @@
 #include "cli_support.h"
 #include "core/natural_system.h"
 #include "independent_assembly.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"

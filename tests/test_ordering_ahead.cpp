@@ -13,7 +13,7 @@
 #include <set>
 #include <vector>
 
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/generate.h"
 #include "intrinsic/mesh.h"
 #include "intrinsic/parameterizer.h"

@@ -14,7 +14,7 @@
 #include <utility>
 
 #include "cli_support.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/error.h"
 #include "intrinsic/weights.h"
 #include "intrinsic/metrics.h"

@@ -7,10 +7,10 @@
 // the same bit for bit with 1, 2 and 3 threads.
 #include <random>
 
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/error.h"
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 #include "intrinsic/parameterize.h"
 #include "solve/supernodal_cholesky.h"
 #include "solve/supernodal_lu.h"

@@ -13,9 +13,9 @@
 #include <random>
 
 #include "core/natural_system.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/error.h"
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 #include "intrinsic/parameterize.h"
 #include "solve/complex_form.h"
 #include "solve/eliminated_system.h"

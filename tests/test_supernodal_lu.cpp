@@ -7,9 +7,9 @@
 // to UMFPACK on matrices that need pivoting.
 #include <random>
 
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/boundary.h"
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 #include "intrinsic/parameterize.h"
 #include "solve/supernodal_lu.h"
 #include "util/parallel_for.h"

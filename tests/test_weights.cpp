@@ -2,7 +2,7 @@
 // to zero; conformal symmetric, authalic not).
 #include <gtest/gtest.h>
 
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/weights.h"
 #include "test_support.h"
 

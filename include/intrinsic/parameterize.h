@@ -13,7 +13,7 @@
 #include "intrinsic/choice.h"
 #include "intrinsic/boundary.h"
 #include "intrinsic/constraints.h"
-#include "intrinsic/linear_solver.h"
+#include "intrinsic/solver_kind.h"
 #include "intrinsic/mesh.h"
 #include "intrinsic/metrics.h"
 #include "intrinsic/weights.h"

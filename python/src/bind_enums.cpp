@@ -14,7 +14,7 @@
 #include "intrinsic/boundary.h"
 #include "intrinsic/boundary_editor.h"
 #include "intrinsic/boundary_optimization.h"
-#include "intrinsic/linear_solver.h"
+#include "intrinsic/solver_kind.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
 #include "intrinsic/weights.h"

@@ -9,7 +9,7 @@
 #include <numeric>
 #include <set>
 
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/error.h"
 #include "util/parallel_for.h"
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "intrinsic/boundary.h"
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 #include "intrinsic/parameterize.h"
 
 namespace intrinsic {

@@ -10,7 +10,7 @@
 #include "core/hole_fill.h"
 #include "core/natural_system.h"
 #include "core/parameterizer_impl.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "solve/ordering_ahead.h"
 #include "weights/assemble_stages.h"
 

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 
 namespace intrinsic::detail {
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "intrinsic/error.h"
+#include "generate/check_rings.h"
 
 namespace intrinsic {
 namespace {
@@ -209,10 +210,6 @@ void add_cell(Grid& g, int a, int b, int c, int d) {
   g.faces.emplace_back(a, d, c);
 }
 
-void check_rings(const GenerateOptions& o) {
-  if (o.rings < 1 || o.rings > 5000) throw_usage("rings must be between 1 and 5000");
-}
-
 // Torus grid: nu x nv points, (u, v) periodic; `skip(i, j)` leaves cell (i, j) out.
 Grid torus_grid(int nu, int nv, double R, double r, double u0, double v0, const GenerateOptions& o,
                 const std::function<bool(int, int)>& skip) {
@@ -235,7 +232,7 @@ Grid torus_grid(int nu, int nv, double R, double r, double u0, double v0, const 
 }  // namespace
 
 MeshData generate_bumpy_sphere(const GenerateOptions& o) {
-  check_rings(o);
+  detail::check_rings(o);
   const int rows = std::max(3, o.rings), cols = std::max(4, 2 * o.rings);
   std::mt19937_64 rng(o.seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -261,7 +258,7 @@ MeshData generate_bumpy_sphere(const GenerateOptions& o) {
 }
 
 MeshData generate_torus(const GenerateOptions& o) {
-  check_rings(o);
+  detail::check_rings(o);
   const int nu = std::max(6, 3 * o.rings), nv = std::max(3, o.rings);
   return to_mesh(torus_grid(nu, nv, 1.0, 0.4, 0, 0, o, [](int, int) { return false; }));
 }
@@ -270,7 +267,7 @@ MeshData generate_torus(const GenerateOptions& o) {
 // between the two hole loops (the second torus is the mirror image of the
 // first, so corresponding loop points face each other): genus 2.
 MeshData generate_genus2(const GenerateOptions& o) {
-  check_rings(o);
+  detail::check_rings(o);
   const int nu = std::max(8, 3 * o.rings), nv = std::max(6, o.rings);
   const int pa = std::max(2, nu / 8), pb = std::max(2, nv / 3), steps = std::max(2, pa);
   const double R = 1.0, r = 0.4, c = R + r + 0.35;

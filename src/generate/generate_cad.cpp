@@ -17,6 +17,7 @@
 
 #include "intrinsic/error.h"
 #include "intrinsic/generate.h"
+#include "generate/check_rings.h"
 
 namespace intrinsic {
 namespace {
@@ -40,10 +41,6 @@ struct Builder {
     return m;
   }
 };
-
-void check_rings(const GenerateOptions& o) {
-  if (o.rings < 1 || o.rings > 5000) throw_usage("rings must be between 1 and 5000");
-}
 
 // A sheet over a rows x cols grid of points, id(i, j) = i * cols + j, two
 // triangles per kept cell, counter-clockwise in (j, i), the diagonals
@@ -80,10 +77,33 @@ double cross2(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::V
   return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
 }
 
+// A closed slab from the open top surface in `b`: the top's points again
+// `thickness` lower with its faces reversed, and the walls, outer and of the
+// holes: one quad down from every boundary edge of the top, run against the
+// top's direction.
+void extrude_down(Builder& b, double thickness) {
+  const int top_points = static_cast<int>(b.points.size()), top_faces = static_cast<int>(b.faces.size());
+  for (int v = 0; v < top_points; ++v) b.add(b.points[v] - Eigen::Vector3d(0, 0, thickness));
+  for (int f = 0; f < top_faces; ++f) {
+    const Eigen::Vector3i t = b.faces[f];
+    b.faces.emplace_back(t[0] + top_points, t[2] + top_points, t[1] + top_points);
+  }
+  std::set<std::pair<int, int>> directed;
+  for (int f = 0; f < top_faces; ++f)
+    for (int e = 0; e < 3; ++e) directed.emplace(b.faces[f][e], b.faces[f][(e + 1) % 3]);
+  for (int f = 0; f < top_faces; ++f)
+    for (int e = 0; e < 3; ++e) {
+      const int p = b.faces[f][e], q = b.faces[f][(e + 1) % 3];
+      if (directed.count({q, p})) continue;
+      b.faces.emplace_back(q, p, p + top_points);
+      b.faces.emplace_back(q, p + top_points, q + top_points);
+    }
+}
+
 }  // namespace
 
 MeshData generate_drilled_plate(const GenerateOptions& o) {
-  check_rings(o);
+  detail::check_rings(o);
   const int nx = 8, ny = 6, k = std::max(1, 2 * o.rings / 5);
   const double side = 0.5, h = side / k, thickness = 0.2, radius = 0.3 * side;
   const double x0 = -0.5 * nx * side, y0 = -0.5 * ny * side;
@@ -146,30 +166,12 @@ MeshData generate_drilled_plate(const GenerateOptions& o) {
         }
       }
     }
-  // The bottom: the top's points at -thickness / 2, its faces reversed.
-  const int top_points = static_cast<int>(b.points.size()), top_faces = static_cast<int>(b.faces.size());
-  for (int v = 0; v < top_points; ++v) b.add(b.points[v] - Eigen::Vector3d(0, 0, thickness));
-  for (int f = 0; f < top_faces; ++f) {
-    const Eigen::Vector3i t = b.faces[f];
-    b.faces.emplace_back(t[0] + top_points, t[2] + top_points, t[1] + top_points);
-  }
-  // The walls, outer and of the holes: one quad down from every boundary
-  // edge of the top, run against the top's direction.
-  std::set<std::pair<int, int>> directed;
-  for (int f = 0; f < top_faces; ++f)
-    for (int e = 0; e < 3; ++e) directed.emplace(b.faces[f][e], b.faces[f][(e + 1) % 3]);
-  for (int f = 0; f < top_faces; ++f)
-    for (int e = 0; e < 3; ++e) {
-      const int p = b.faces[f][e], q = b.faces[f][(e + 1) % 3];
-      if (directed.count({q, p})) continue;
-      b.faces.emplace_back(q, p, p + top_points);
-      b.faces.emplace_back(q, p + top_points, q + top_points);
-    }
+  extrude_down(b, thickness);
   return b.mesh();
 }
 
 MeshData generate_box(const GenerateOptions& o) {
-  check_rings(o);
+  detail::check_rings(o);
   // Squares of side 0.5 / m: 4m x 2m x m of them along x, y, z.
   const int m = std::max(1, o.rings / 3);
   const std::array<int, 3> cells{4 * m, 2 * m, m};
@@ -207,7 +209,7 @@ MeshData generate_box(const GenerateOptions& o) {
 }
 
 MeshData generate_l_panel(const GenerateOptions& o) {
-  check_rings(o);
+  detail::check_rings(o);
   const int n = 5 * std::max(1, o.rings / 8);  // cells per unit length
   const double h = 1.0 / n;
   auto keep = [n](int i, int j) {
@@ -219,7 +221,7 @@ MeshData generate_l_panel(const GenerateOptions& o) {
 }
 
 MeshData generate_panel_with_strip(const GenerateOptions& o) {
-  check_rings(o);
+  detail::check_rings(o);
   const int n = std::max(2, o.rings);  // cells along the panel's side
   const double h = 2.0 / n;
   const int strip_rows = std::max(1, static_cast<int>(std::lround(0.1 / h)));
@@ -232,7 +234,7 @@ MeshData generate_panel_with_strip(const GenerateOptions& o) {
 }
 
 MeshData generate_long_cylinder(const GenerateOptions& o) {
-  check_rings(o);
+  detail::check_rings(o);
   const double radius = 0.2, length = 4;
   const int around = std::max(6, 6 * o.rings / 5);
   // Each ring turned half a step from the last, rings sqrt(3)/2 steps apart:
@@ -256,7 +258,7 @@ MeshData generate_long_cylinder(const GenerateOptions& o) {
 }
 
 MeshData generate_flat_rectangle(const GenerateOptions& o) {
-  check_rings(o);
+  detail::check_rings(o);
   const int n = std::max(1, o.rings / 2);  // cells along the short side
   const double h = 1.0 / n;
   std::mt19937_64 rng(o.seed);

@@ -12,7 +12,7 @@
 #include <deque>
 
 #include "core/parameterizer_impl.h"
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/error.h"
 #include "intrinsic/metrics.h"
 #include "util/stopwatch.h"

@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 #include "intrinsic/error.h"
 
 namespace intrinsic::detail {

@@ -11,7 +11,7 @@
 
 #include <complex>
 
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 
 namespace intrinsic::detail {
 

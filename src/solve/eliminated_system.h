@@ -9,8 +9,8 @@
 #include <memory>
 #include <vector>
 
-#include "intrinsic/assemble.h"
-#include "intrinsic/linear_solver.h"
+#include "weights/assemble.h"
+#include "solve/linear_solver.h"
 
 namespace intrinsic::detail {
 

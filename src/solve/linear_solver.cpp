@@ -2,7 +2,7 @@
 // level-set nested dissection ordering (solve/ordering.h) instead of their
 // own analysis: CHOLMOD's default tries METIS, which on meshes costs more
 // than the factorization it saves, and AMD fills more on large meshes.
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>

@@ -14,7 +14,7 @@
 
 #include <vector>
 
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 
 namespace intrinsic::detail {
 

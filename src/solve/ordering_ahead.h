@@ -27,7 +27,7 @@
 #include <thread>
 #include <vector>
 
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 #include "intrinsic/mesh.h"
 #include "solve/suitesparse.h"
 

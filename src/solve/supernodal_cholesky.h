@@ -21,7 +21,7 @@
 #include <complex>
 #include <memory>
 
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 #include "solve/suitesparse.h"
 
 namespace intrinsic::detail {

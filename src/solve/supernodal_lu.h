@@ -23,7 +23,7 @@
 #include <memory>
 #include <vector>
 
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 
 namespace intrinsic::detail {
 

@@ -9,7 +9,7 @@
 // place (no triplet list, which at 1M vertices costs 12 x #F triplets of 16
 // bytes and a sort). Every pass runs on all cores with the same result on
 // any number of them.
-#include "intrinsic/assemble.h"
+#include "weights/assemble.h"
 
 #include <algorithm>
 

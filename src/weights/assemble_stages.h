@@ -5,7 +5,7 @@
 // assemble_weight_matrix (intrinsic/assemble.h) is the two in a row.
 #pragma once
 
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 #include "intrinsic/weights.h"
 
 namespace intrinsic::detail {

@@ -1,4 +1,5 @@
-// One sparse linear solver behind a small interface: factor once, solve many
+// One sparse linear solver behind a small interface (internal; the public
+// choice of backend is intrinsic/solver_kind.h): factor once, solve many
 // right-hand sides (u and v together). Backends: our supernodal Cholesky on
 // CHOLMOD's analysis (both cores), CHOLMOD supernodal Cholesky,
 // a supernodal LU without pivoting on CHOLMOD's analysis (for the
@@ -14,7 +15,7 @@
 #include <string>
 #include <string_view>
 
-#include "intrinsic/choice.h"
+#include "intrinsic/solver_kind.h"
 
 namespace intrinsic {
 namespace detail {
@@ -22,27 +23,6 @@ class AnalysisAhead;  // src/solve/ordering_ahead.h (internal)
 }
 
 using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, int indices
-
-// SupernodalLU: LU without pivoting on the Cholesky pattern; every solve's
-// residual is checked and the solver switches to UMFPACK (kind() then says
-// so) when the factorization needs pivoting. Auto uses it for
-// non-symmetric systems when SuiteSparse and OpenBLAS are built in.
-// SupernodalCholesky: the library's own supernodal Cholesky on CHOLMOD's
-// analysis, subtrees of the elimination tree on separate cores; Auto uses it
-// for symmetric systems (CHOLMOD when it finds the matrix not positive
-// definite), the natural map's complex form included (L L^H of the n x n
-// Hermitian matrix; CHOLMOD's complex factor when that fails, or with
-// --solver cholmod).
-enum class SolverKind { Auto, Cholmod, Umfpack, EigenLLT, EigenLU, CG, BiCGSTAB, SupernodalLU, SupernodalCholesky };
-template <>
-ChoiceTable<SolverKind> choice_table<SolverKind>();
-
-std::string solver_name(SolverKind k);
-SolverKind parse_solver(const std::string& name);  // throws Error(Usage)
-// The solver named `name` that this build has: Error(Usage) "<label>: ..."
-// for a name not in the table and for one it lacks (SuiteSparse not found).
-SolverKind parse_solver(const std::string& name, std::string_view label);
-bool solver_available(SolverKind k);                // false e.g. for CHOLMOD without SuiteSparse
 
 class LinearSolver {
  public:

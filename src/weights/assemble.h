@@ -1,11 +1,11 @@
-// Assembly of the weight matrix K of a method: K_ij = -w_ij, K_ii = sum_j w_ij
+// Assembly of the weight matrix K (internal) of a method: K_ij = -w_ij, K_ii = sum_j w_ij
 // (so K u = 0 is docs/maths.md §1.4's "M u = 0" up to sign, and the conformal K is positive
 // semi-definite), and its split into free and fixed blocks for elimination.
 #pragma once
 
 #include <vector>
 
-#include "intrinsic/linear_solver.h"
+#include "solve/linear_solver.h"
 #include "intrinsic/weights.h"
 
 namespace intrinsic {
