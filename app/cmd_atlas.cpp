@@ -71,7 +71,7 @@ int run_atlas(const AtlasArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   AtlasRequest request;
   request.options = a.options;
-  set_chart_map(a, request.options.chart_map);
+  set_chart_map(a, request.options.charts.chart_map);
   request.options.scope = parse_choice<AtlasScope>(a.scope, "--atlas");
   check_atlas_output(a.output);
   request.read.max_vertices = a.max_vertices;
@@ -167,8 +167,8 @@ void add_map_options(CLI::App* cmd, const std::shared_ptr<AtlasArgs>& a) {
 
 // Packing: padding, page size, lightmap density and pages, re-packing existing UVs.
 void add_pack_options(CLI::App* cmd, const std::shared_ptr<AtlasArgs>& a) {
-  cmd->add_option("--padding", a->options.padding, "Texels between charts")->capture_default_str();
-  cmd->add_option("--texels-per-unit", a->options.texels_per_unit,
+  cmd->add_option("--padding", a->options.pack.padding, "Texels between charts")->capture_default_str();
+  cmd->add_option("--texels-per-unit", a->options.pack.texels_per_unit,
                   "Lightmaps: every chart at this many texels per unit of surface length, on pages of "
                   "--resolution texels (UDIM tiles 1001, 1002, ...: page k at u in [k, k+1]; 0: one page, "
                   "charts scaled to fill it)")
@@ -181,59 +181,59 @@ void add_pack_options(CLI::App* cmd, const std::shared_ptr<AtlasArgs>& a) {
   cmd->add_flag("--keep-overlaps", a->options.keep_overlaps,
                 "--pack-only: input charts that overlap each other (mirrored halves sharing texels) stay on each "
                 "other (default: separated)");
-  cmd->add_option("--max-pages", a->options.max_pages,
+  cmd->add_option("--max-pages", a->options.pack.max_pages,
                   "--texels-per-unit: refuse (exit 2, nothing written) when more pages are needed (0: no limit)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_option("--resolution", a->options.resolution, "Texture (page) width the padding is measured in")
+  cmd->add_option("--resolution", a->options.pack.resolution, "Texture (page) width the padding is measured in")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
 }
 
 // Where charts are cut and how far they may stretch.
 void add_chart_options(CLI::App* cmd, const std::shared_ptr<AtlasArgs>& a) {
-  cmd->add_option("--max-normal-deviation", a->options.max_normal_deviation_deg,
+  cmd->add_option("--max-normal-deviation", a->options.charts.max_normal_deviation_deg,
                   "Degrees between a face normal and its chart's mean normal")
       ->check(CLI::Range(1.0, 180.0))
       ->capture_default_str();
-  cmd->add_option("--hard-angle", a->options.hard_angle_deg,
+  cmd->add_option("--hard-angle", a->options.charts.hard_angle_deg,
                   "Always cut edges whose faces' normals turn by more than this many degrees (0: none)")
       ->check(CLI::Range(0.0, 179.999))
       ->capture_default_str();
-  cmd->add_option("--min-chart-faces", a->options.min_chart_faces,
+  cmd->add_option("--min-chart-faces", a->options.charts.min_chart_faces,
                   "Charts with fewer faces may merge into a neighbour up to its own stretch (0: no merging)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--seams", a->seams,
                   "Cut exactly these edges (one 'i j' per line, 0-based vertex indices); charts are the pieces "
                   "between them, split only where validity needs");
-  cmd->add_option("--max-stretch", a->options.max_stretch,
+  cmd->add_option("--max-stretch", a->options.charts.max_stretch,
                   "Split charts above, and merge neighbouring charts while the union stays within, this stretch: "
                   "95% of each chart's surface stretched or shrunk by at most this factor (max(s1, 1/s2))")
       ->check(CLI::Range(1.0, 100.0))
       ->capture_default_str();
-  cmd->add_option("--max-face-stretch", a->options.max_face_stretch,
+  cmd->add_option("--max-face-stretch", a->options.charts.max_face_stretch,
                   "No face of a chart stretched or shrunk more than this (max(s1, 1/s2) at the atlas's texel density)")
       ->check(CLI::Range(1.0, 1e6))
       ->capture_default_str();
-  cmd->add_option("--isometric-iterations", a->options.chart_map.isometric_iterations,
+  cmd->add_option("--isometric-iterations", a->options.charts.chart_map.isometric_iterations,
                   "Local/global steps refining each chart's natural conformal map toward an isometry (0: none)")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   cmd->add_flag_callback(
-      "--per-chart-stretch", [a] { a->options.atlas_stretch_budget = false; },
+      "--per-chart-stretch", [a] { a->options.charts.atlas_stretch_budget = false; },
       "Keep every merged chart within --max-stretch (default: unions under 1% of the surface may merge "
       "past it while the whole atlas's 95th percentile stays within it)");
-  cmd->add_option("--max-charts", a->options.max_charts,
+  cmd->add_option("--max-charts", a->options.charts.max_charts,
                   "Merge further (past both stretch bounds, never past validity) down to this many charts (0: no limit)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_option("--weld", a->options.weld,
+  cmd->add_option("--weld", a->options.charts.weld,
                   "Weld vertices closer than EPS times the bounding box diagonal, for the computation only "
                   "(coincident corners of unwelded exports; 0: off); the output keeps the input's vertices")
       ->check(CLI::Range(0.0, 0.999999))
       ->capture_default_str();
-  cmd->add_flag("!--keep-winding", a->options.reorient,
+  cmd->add_flag("!--keep-winding", a->options.charts.reorient,
                 "Keep the winding of faces listed against their piece's orientation and cut there (default: "
                 "write them reversed, so charts may span them)");
 }

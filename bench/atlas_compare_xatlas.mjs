@@ -7,23 +7,13 @@
 // to the longer side instead, so charts keep their shape; as xatlas's own example writes them, no flip) and
 // faces `f v/vt`, so `intrinsic metrics` measures both atlases the same way.
 // Prints {"seconds": ..., "width", "height", "vertices_out"} as JSON.
-// Indices into xatlas are 16-bit (xatlasjs's createMesh): under 65,536 vertices.
-import { readFileSync, writeFileSync } from "node:fs";
-import { createRequire } from "node:module";
-import { Api } from "xatlasjs/dist/node/api.mjs";
-
-const require = createRequire(import.meta.url);
-const createXAtlasModule = (await import("xatlasjs/dist/node/xatlas.js")).default;
+import { writeFileSync } from "node:fs";
+import { readMesh, xatlasApi } from "./xatlas_api.mjs";
 
 const [input, output] = process.argv.slice(2);
-const mesh = JSON.parse(readFileSync(input, "utf8"));
+const mesh = readMesh(input);
 const nv = mesh.V.length / 3;
-if (nv >= 65536) throw new Error(`${nv} vertices: xatlasjs takes 16-bit indices`);
-
-const XAtlas = Api(createXAtlasModule);
-const api = await new Promise((resolve) => {
-  const a = new XAtlas(() => resolve(a), (path, dir) => require.resolve("xatlasjs/dist/node/" + path));
-});
+const api = await xatlasApi();
 const t0 = process.hrtime.bigint();
 api.createAtlas();
 if (!api.addMesh(new Uint16Array(mesh.F), new Float32Array(mesh.V))) throw new Error("xatlas refused the mesh");

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
     AtlasCharts c;
     for (int r = 0; r < runs; ++r) {
       const double c0 = cpu_ms();
-      c = compute_charts(mesh, chart_options(options));
+      c = compute_charts(mesh, options.charts);
       charts_cpu.push_back(cpu_ms() - c0);
       flatten.push_back(c.timings.flatten_ms);
       merge.push_back(c.timings.merge_ms);

@@ -277,7 +277,7 @@ void check_file(const std::string& name) {
   expect_valid_atlas(m, r);
   // The distortion bound holds for the whole atlas, measured independently:
   // 95% of the surface within max_stretch (docs/maths.md §9.7).
-  EXPECT_LE(test::quantile(test::face_stretch(m, r), 0.95), AtlasOptions().max_stretch + 1e-9);
+  EXPECT_LE(test::quantile(test::face_stretch(m, r), 0.95), AtlasOptions().charts.max_stretch + 1e-9);
   const double l2 = sander_l2(m, r);
   EXPECT_NEAR(l2, r.stretch_l2_mean, 1e-6 * l2);
 }
@@ -300,7 +300,7 @@ TEST(Atlas, ComponentsSegmentationCutsClosedSurfaces) {
   GenerateOptions o;
   o.rings = 10;
   AtlasOptions ao;
-  ao.segmentation = Segmentation::Components;  // one chart per piece first: the splits must cut the handles
+  ao.charts.segmentation = Segmentation::Components;  // one chart per piece first: the splits must cut the handles
   for (const char* name : {"sphere", "torus", "genus2"}) {
     SCOPED_TRACE(name);
     const MeshData m = generate_surface(name, o);
@@ -379,7 +379,7 @@ MeshData strip_with_backwards_faces() {
 TEST(Atlas, InconsistentOrientationIsCutNotMirrored) {
   const MeshData m = strip_with_backwards_faces();
   AtlasOptions keep;
-  keep.reorient = false;
+  keep.charts.reorient = false;
   const AtlasResult r = atlas(m, keep);
   expect_valid_atlas(m, r);
   // By hand: a backwards face lists its diagonal as its quad's first face
@@ -409,7 +409,7 @@ TEST(Atlas, ReorientWritesTheMinorityReversed) {
     else EXPECT_EQ(r.F.row(f), m.F.row(f));
   }
   AtlasOptions keep;
-  keep.reorient = false;
+  keep.charts.reorient = false;
   EXPECT_EQ(atlas(m, keep).F, m.F);  // without it the input's winding is kept
 }
 
@@ -473,7 +473,7 @@ TEST(Atlas, BadInputIsRefusedClearly) {
   test::expect_error([&] { atlas(m); }, ErrorKind::Input, "non-finite");
   m.V(1, 0) = 1;
   AtlasOptions o;
-  o.padding = -1;
+  o.pack.padding = -1;
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Usage, "padding");
   MeshData empty;
   test::expect_error([&] { atlas(empty); }, ErrorKind::Input, "no vertices");
@@ -535,8 +535,8 @@ void expect_padding_and_utilization(const MeshData& m) {
   for (const auto& [res, pad] : {std::pair<int, double>{256, 3}, {1024, 2}, {128, 0}}) {
     SCOPED_TRACE(res);
     AtlasOptions o;
-    o.resolution = res;
-    o.padding = pad;
+    o.pack.resolution = res;
+    o.pack.padding = pad;
     const AtlasResult r = atlas(m, o);
     expect_valid_atlas(m, r);
     const double gap = pad / res, border = std::ceil(pad / 2) / res;
@@ -583,16 +583,16 @@ TEST(AtlasSeams, CutExactlyThereAndNowhereElseOnAPatch) {
       m.F.row(f++) << a, a + n + 1, a + n;
     }
   AtlasOptions o;
-  for (int x = 0; x + 1 < n; ++x) o.seams.push_back({4 * n + x, 4 * n + x + 1});  // row y = 4
+  for (int x = 0; x + 1 < n; ++x) o.charts.seams.push_back({4 * n + x, 4 * n + x + 1});  // row y = 4
   const AtlasResult r = atlas(m, o);
   expect_valid_atlas(m, r);
   EXPECT_EQ(r.charts.size(), 2u);
-  EXPECT_EQ(uncut_seams(m, r, o.seams), 0);
+  EXPECT_EQ(uncut_seams(m, r, o.charts.seams), 0);
   // Seam length: the listed edges' lengths, summed here. Each chart's
   // boundary: the seam plus its half of the patch's border, so the two
   // boundaries add up to twice the seam plus the border, measured here too.
   double seam = 0, border = 0;
-  for (const SeamEdge& e : o.seams) seam += (m.V.row(e.a) - m.V.row(e.b)).norm();
+  for (const SeamEdge& e : o.charts.seams) seam += (m.V.row(e.a) - m.V.row(e.b)).norm();
   for (int k = 0; k + 1 < n; ++k)
     for (auto [a, b] : {std::pair{k, k + 1}, {k * n, (k + 1) * n}, {k * n + n - 1, (k + 1) * n + n - 1},
                         {(n - 1) * n + k, (n - 1) * n + k + 1}})
@@ -651,12 +651,12 @@ TEST(AtlasSeams, EverySeamIsCutOnClosedSurfaces) {
     std::set<std::pair<int, int>> seen;
     for (int f = 0; f < m.F.rows(); f += 7) {
       const int a = m.F(f, 0), b = m.F(f, 1);
-      if (seen.insert({std::min(a, b), std::max(a, b)}).second) o.seams.push_back({a, b});
+      if (seen.insert({std::min(a, b), std::max(a, b)}).second) o.charts.seams.push_back({a, b});
     }
     const AtlasResult r = atlas(m, o);
     expect_valid_atlas(m, r);
-    EXPECT_EQ(uncut_seams(m, r, o.seams), 0);
-    EXPECT_GT(uncut_seams(m, atlas(m), o.seams), 0);  // the check sees uncut seams
+    EXPECT_EQ(uncut_seams(m, r, o.charts.seams), 0);
+    EXPECT_GT(uncut_seams(m, atlas(m), o.charts.seams), 0);  // the check sees uncut seams
   }
 }
 
@@ -677,15 +677,15 @@ TEST(AtlasSeams, BadSeamsAreRefused) {
   test::expect_error([&] { parse_seams_text("# nothing\n\n", "s.txt", m); }, ErrorKind::Input, "s.txt: no seam edges");
   test::expect_error([&] { read_seams_file("/nonexistent/seams.txt", m); }, ErrorKind::Input, "cannot open");
   AtlasOptions o;
-  o.seams = {{0, 3}};
+  o.charts.seams = {{0, 3}};
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Input, "seam edge 0: vertices 0 and 3 are not an edge");
-  o.seams = {{0, 9}};
+  o.charts.seams = {{0, 9}};
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Input, "out of range");
   // One check (find_seam_problem): the library names the seam's index, the
   // file reader maps it to the line that listed it (a repeated line skipped).
-  o.seams = {{1, 2}, {2, 3}, {3, 0}};
+  o.charts.seams = {{1, 2}, {2, 3}, {3, 0}};
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Input, "seam edge 2: vertices 3 and 0 are not an edge");
-  EXPECT_EQ(find_seam_problem(m, o.seams).index, 2);
+  EXPECT_EQ(find_seam_problem(m, o.charts.seams).index, 2);
   EXPECT_EQ(find_seam_problem(m, {{1, 2}, {2, 3}}).index, -1);
   test::expect_error([&] { parse_seams_text("1 2\n2 1\n# c\n\n2 3\n3 0\n", "s.txt", m); }, ErrorKind::Input,
                      "s.txt:6: vertices 3 and 0 are not an edge");
@@ -732,10 +732,10 @@ TEST(AtlasCli, SeamsFileOptionsAndErrors) {
 // --max-charts merges past the stretch bound while the union stays valid.
 void expect_max_charts_merges(const MeshData& m, AtlasOptions o = {}) {
   const AtlasResult free = atlas(m, o);
-  o.max_charts = std::max<int>(1, static_cast<int>(free.charts.size()) / 2);
+  o.charts.max_charts = std::max<int>(1, static_cast<int>(free.charts.size()) / 2);
   const AtlasResult fewer = atlas(m, o);
   expect_valid_atlas(m, fewer);
-  EXPECT_LE(static_cast<int>(fewer.charts.size()), o.max_charts);
+  EXPECT_LE(static_cast<int>(fewer.charts.size()), o.charts.max_charts);
 }
 
 // A sphere cap under a tight stretch bound: 7 charts, merged down to 3
@@ -744,7 +744,7 @@ TEST(Atlas, MaxChartsMergesFurther) {
   GenerateOptions g;
   g.rings = 14;
   AtlasOptions o;
-  o.max_stretch = 1.01;
+  o.charts.max_stretch = 1.01;
   const MeshData cap = generate_sphere_cap(g);
   ASSERT_GE(atlas(cap, o).charts.size(), 4u);
   expect_max_charts_merges(cap, o);
@@ -776,7 +776,7 @@ TEST(Atlas, AtlasStretchBudgetMergesSmallParts) {
     return charts.size();
   };
   AtlasOptions per_chart;
-  per_chart.atlas_stretch_budget = false;
+  per_chart.charts.atlas_stretch_budget = false;
   const AtlasResult bounded = atlas(m, per_chart);
   const AtlasResult budget = atlas(m);
   expect_valid_atlas(m, budget);
@@ -785,7 +785,7 @@ TEST(Atlas, AtlasStretchBudgetMergesSmallParts) {
   EXPECT_LT(small_part_charts(budget), small_part_charts(bounded));
   EXPECT_LE(budget.charts.size(), bounded.charts.size());
   // The bound is on the whole atlas's 95th percentile of per-face stretch.
-  EXPECT_LE(test::quantile(test::face_stretch(m, budget), 0.95), AtlasOptions().max_stretch + 1e-9);
+  EXPECT_LE(test::quantile(test::face_stretch(m, budget), 0.95), AtlasOptions().charts.max_stretch + 1e-9);
 }
 
 // `intrinsic atlas` on the mesh file `in`: the same bytes twice, the input's
@@ -880,10 +880,10 @@ TEST(Atlas, EveryParamMapPerChart) {
   const MeshData m = generate_sphere_cap(g);
   const Mesh mesh = make_mesh(m);
   AtlasOptions o;
-  o.segmentation = Segmentation::Components;
-  o.max_stretch = 100;
-  o.max_face_stretch = 1e6;  // a circle boundary on a cap stretches its rim faces more than 2x
-  o.padding = 0;
+  o.charts.segmentation = Segmentation::Components;
+  o.charts.max_stretch = 100;
+  o.charts.max_face_stretch = 1e6;  // a circle boundary on a cap stretches its rim faces more than 2x
+  o.pack.padding = 0;
   struct Case {
     ChartMapOptions map;
     ChartMethod method;
@@ -903,7 +903,7 @@ TEST(Atlas, EveryParamMapPerChart) {
   cases[3].method = ChartMethod::OptimizedBoundary;
   for (size_t k = 0; k < cases.size(); ++k) {
     SCOPED_TRACE(k);
-    o.chart_map = cases[k].map;
+    o.charts.chart_map = cases[k].map;
     const AtlasResult r = atlas(m, o);
     expect_valid_atlas(m, r);
     ASSERT_EQ(r.charts.size(), 1u);
@@ -945,8 +945,8 @@ TEST(Atlas, EveryParamMapPerChart) {
     expect_similar(m, r, expected);
   }
   // A chart map that cannot be is refused before any work.
-  o.chart_map = ChartMapOptions();
-  o.chart_map.optimizer = ChartOptimizer::OptimalLambda;
+  o.charts.chart_map = ChartMapOptions();
+  o.charts.chart_map.optimizer = ChartOptimizer::OptimalLambda;
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Usage, "fixed chart boundary");
 }
 

@@ -69,8 +69,8 @@ void expect_one_uv_per_group_vertex(const AtlasResult& r, const std::vector<int>
 
 AtlasOptions small_charts() {
   AtlasOptions o;
-  o.max_stretch = 1.02;  // many charts, so many chart boundaries to cross quads
-  o.min_chart_faces = 0;
+  o.charts.max_stretch = 1.02;  // many charts, so many chart boundaries to cross quads
+  o.charts.min_chart_faces = 0;
   return o;
 }
 
@@ -88,7 +88,7 @@ TEST(AtlasFaceGroups, QuadsStayInOneChart) {
       for (const auto& [gid, cs] : charts_of) plain_split += cs.size() > 1;
     }
     EXPECT_GT(plain_split, 0);
-    o.face_group = group;
+    o.charts.face_group = group;
     const AtlasResult r = atlas(m, o);
     EXPECT_EQ(r.split_groups, 0);
     std::map<int, std::set<int>> charts_of;
@@ -108,9 +108,9 @@ TEST(AtlasFaceGroups, NoGroupsChangeNothing) {
   AtlasOptions o = small_charts();
   const AtlasResult plain = atlas(m, o);
   for (int kind = 0; kind < 2; ++kind) {
-    o.face_group.assign(m.F.rows(), -1);
+    o.charts.face_group.assign(m.F.rows(), -1);
     if (kind == 1)
-      for (int f = 0; f < m.F.rows(); ++f) o.face_group[f] = f;  // one face each
+      for (int f = 0; f < m.F.rows(); ++f) o.charts.face_group[f] = f;  // one face each
     const AtlasResult r = atlas(m, o);
     EXPECT_TRUE(r.UV == plain.UV);
     EXPECT_EQ(r.face_chart, plain.face_chart);
@@ -123,10 +123,10 @@ TEST(AtlasFaceGroups, BadGroupsAreRefused) {
   g.rings = 6;
   const MeshData m = generate_torus(g);
   AtlasOptions o;
-  o.face_group.assign(m.F.rows() - 1, 0);
+  o.charts.face_group.assign(m.F.rows() - 1, 0);
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Usage, "face groups number");
-  o.face_group.assign(m.F.rows(), 0);
-  o.face_group[3] = -2;
+  o.charts.face_group.assign(m.F.rows(), 0);
+  o.charts.face_group[3] = -2;
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Usage, "face 3: group -2");
 }
 

@@ -270,8 +270,8 @@ TEST(AtlasMetrics, AtlasWithoutPaddingNeverOverlaps) {
   const MeshData m = read_mesh_from_memory(text, "finding.obj");
   for (double padding : {0.0, 2.0}) {
     AtlasOptions o;
-    o.padding = padding;
-    o.min_chart_faces = 0;
+    o.pack.padding = padding;
+    o.charts.min_chart_faces = 0;
     const AtlasResult r = atlas(m, o);
     EXPECT_EQ(r.overlapping, 0) << padding;
     const UvAtlasMetrics um = test::measure_atlas(m.V, m.F, r);

@@ -88,15 +88,15 @@ TEST(AtlasPages, TwoSpheresOfDifferentSizeGetOneDensity) {
   const MeshData small = sphere(1, 0), large = sphere(4, 20);
   const MeshData m = both(small, large);
   AtlasOptions o;
-  o.texels_per_unit = 40;
-  o.resolution = 512;
+  o.pack.texels_per_unit = 40;
+  o.pack.resolution = 512;
   const AtlasResult r = atlas(m, o);
   EXPECT_EQ(r.flipped, 0);
   EXPECT_GE(r.pages, 2);  // 4pi(1 + 16) * 40^2 texels: more than one 512 page holds
   expect_pages_clean(r);
   const int n = static_cast<int>(small.F.rows());
-  EXPECT_NEAR(median_density(m, r, 0, n, o.resolution), 40, 2.0);
-  EXPECT_NEAR(median_density(m, r, n, static_cast<int>(m.F.rows()), o.resolution), 40, 2.0);
+  EXPECT_NEAR(median_density(m, r, 0, n, o.pack.resolution), 40, 2.0);
+  EXPECT_NEAR(median_density(m, r, n, static_cast<int>(m.F.rows()), o.pack.resolution), 40, 2.0);
   EXPECT_TRUE(r.shrunk_charts.empty());
   // Pages filled in turn: every page but the last at least half full.
   for (int p = 0; p + 1 < r.pages; ++p) EXPECT_GT(r.page_utilization[static_cast<std::size_t>(p)], 0.5) << "page " << p;
@@ -105,12 +105,12 @@ TEST(AtlasPages, TwoSpheresOfDifferentSizeGetOneDensity) {
 TEST(AtlasPages, DensityScalesWithTheAskedFigure) {
   const MeshData m = sphere(1, 0);
   AtlasOptions o;
-  o.resolution = 1024;
+  o.pack.resolution = 1024;
   for (double t : {16.0, 64.0}) {
-    o.texels_per_unit = t;
+    o.pack.texels_per_unit = t;
     const AtlasResult r = atlas(m, o);
     EXPECT_EQ(r.pages, 1);
-    EXPECT_NEAR(median_density(m, r, 0, static_cast<int>(m.F.rows()), o.resolution), t, 0.05 * t);
+    EXPECT_NEAR(median_density(m, r, 0, static_cast<int>(m.F.rows()), o.pack.resolution), t, 0.05 * t);
     expect_pages_clean(r);
   }
 }
@@ -118,8 +118,8 @@ TEST(AtlasPages, DensityScalesWithTheAskedFigure) {
 TEST(AtlasPages, ChartLargerThanAPageIsShrunkNeverDropped) {
   const MeshData m = generate_flat_disk(GenerateOptions{});  // one chart of diameter 2
   AtlasOptions o;
-  o.resolution = 128;
-  o.texels_per_unit = 200;  // 400 texels across: three pages wide
+  o.pack.resolution = 128;
+  o.pack.texels_per_unit = 200;  // 400 texels across: three pages wide
   const AtlasResult r = atlas(m, o);
   ASSERT_EQ(r.charts.size(), 1u);
   EXPECT_EQ(r.pages, 1);
@@ -130,9 +130,9 @@ TEST(AtlasPages, ChartLargerThanAPageIsShrunkNeverDropped) {
 TEST(AtlasPages, MaxPagesRefusesAndWritesNothing) {
   const MeshData m = both(sphere(1, 0), sphere(4, 20));
   AtlasOptions o;
-  o.texels_per_unit = 40;
-  o.resolution = 512;
-  o.max_pages = 1;
+  o.pack.texels_per_unit = 40;
+  o.pack.resolution = 512;
+  o.pack.max_pages = 1;
   try {
     atlas(m, o);
     ADD_FAILURE() << "more pages than allowed";
@@ -160,8 +160,8 @@ TEST(AtlasPages, InstancedSceneAtOneDensity) {
   test::write_text(dir / "scene.gltf", d.gltf());
   AtlasRequest req;
   req.read.instances = InstanceMode::Unique;
-  req.options.texels_per_unit = 24;
-  req.options.resolution = 512;
+  req.options.pack.texels_per_unit = 24;
+  req.options.pack.resolution = 512;
   const AtlasOutcome o = atlas_file(dir / "scene.gltf", req);
   const int n = static_cast<int>(o.data.F.rows()) / 2;
   ASSERT_EQ(2 * n, o.data.F.rows());

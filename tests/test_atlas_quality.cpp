@@ -87,14 +87,14 @@ TEST(AtlasQuality, StretchBoundHoldsFaceByFaceOnClosedSurfaces) {
     const MeshData m = generate_surface(name, g);
     for (bool budget : {false, true}) {
       AtlasOptions o;
-      o.atlas_stretch_budget = budget;
+      o.charts.atlas_stretch_budget = budget;
       const AtlasResult r = atlas(m, o);
       const Stretch s = face_stretch(m, r);
-      EXPECT_LE(quantile(s, 0.95), o.max_stretch + 1e-9) << name;
-      EXPECT_LE(*std::max_element(s.stretch.begin(), s.stretch.end()), o.max_face_stretch + 1e-9) << name;
+      EXPECT_LE(quantile(s, 0.95), o.charts.max_stretch + 1e-9) << name;
+      EXPECT_LE(*std::max_element(s.stretch.begin(), s.stretch.end()), o.charts.max_face_stretch + 1e-9) << name;
       for (const AtlasChart& c : r.charts) {
-        if (!budget) EXPECT_LE(c.face_stretch_p95, o.max_stretch) << name;
-        EXPECT_LE(c.face_stretch_max, o.max_face_stretch) << name;
+        if (!budget) EXPECT_LE(c.face_stretch_p95, o.charts.max_stretch) << name;
+        EXPECT_LE(c.face_stretch_max, o.charts.max_face_stretch) << name;
       }
     }
   }
@@ -111,7 +111,7 @@ TEST(AtlasQuality, CubeUnfoldsWithoutDistortion) {
 TEST(AtlasQuality, HardAngleNeverCrossesTheCubesEdges) {
   const MeshData m = cube(6);
   AtlasOptions o;
-  o.hard_angle_deg = 80;
+  o.charts.hard_angle_deg = 80;
   const AtlasResult r = atlas(m, o);
   EXPECT_EQ(r.cleaning.hard_edges, 12 * 6);
   // Every chart lies on one side of the cube: its faces share one normal.
@@ -163,8 +163,8 @@ TEST(AtlasQuality, WeldedAndUnweldedExportsGiveTheSameCharts) {
   EXPECT_EQ(pairs.size(), a.charts.size()) << "the two partitions into charts differ";
   // Turned off, the soup falls apart into its faces.
   AtlasOptions off;
-  off.weld = 0;
-  off.min_chart_faces = 0;
+  off.charts.weld = 0;
+  off.charts.min_chart_faces = 0;
   EXPECT_EQ(atlas(soup, off).charts.size(), static_cast<size_t>(welded.F.rows()));
 }
 
@@ -195,7 +195,7 @@ MeshData slit_square(int n) {
 TEST(AtlasQuality, ChartsNeverTouchThemselvesAtASlit) {
   const MeshData m = slit_square(8);
   AtlasOptions o;
-  o.weld = 0;
+  o.charts.weld = 0;
   const AtlasResult r = atlas(m, o);
   const UvAtlasMetrics um = test::measure_atlas(m.V, m.F, r);  // exact overlap test
   EXPECT_EQ(um.overlapping_triangles, 0);

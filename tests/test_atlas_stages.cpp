@@ -56,9 +56,9 @@ void expect_same_atlas(const AtlasResult& a, const AtlasResult& b) {
 TEST(AtlasStages, ComputeThenPackIsAtlas) {
   for (const MeshData& m : {sphere(), torus()}) {
     AtlasOptions o;
-    o.resolution = 512;
-    o.padding = 3;
-    const AtlasCharts charts = compute_charts(m, chart_options(o));
+    o.pack.resolution = 512;
+    o.pack.padding = 3;
+    const AtlasCharts charts = compute_charts(m, o.charts);
     expect_same_atlas(pack_charts(charts, pack_options(o)), atlas(m, o));
   }
 }
@@ -70,8 +70,8 @@ TEST(AtlasStages, RepackEqualsFreshAtlas) {
   const AtlasCharts charts = compute_charts(m);
   for (auto [resolution, padding] : {std::pair{256, 4.0}, std::pair{2048, 1.0}, std::pair{64, 0.0}}) {
     AtlasOptions o;
-    o.resolution = resolution;
-    o.padding = padding;
+    o.pack.resolution = resolution;
+    o.pack.padding = padding;
     PackOptions p;
     p.resolution = resolution;
     p.padding = padding;
@@ -213,40 +213,20 @@ TEST(AtlasStages, BadPackInput) {
   test::expect_error([&] { pack_charts(broken); }, ErrorKind::Usage, "rows no chart uses");
   // atlas() checks the packing options before computing any chart.
   AtlasOptions o;
-  o.padding = -1;
+  o.pack.padding = -1;
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Usage, "padding");
 }
 
-// The one-call options and the stages' options have the same defaults.
-TEST(AtlasStages, DefaultsAgree) {
-  const AtlasOptions a;
-  const ChartOptions c = chart_options(a), d;
-  EXPECT_EQ(c.segmentation, d.segmentation);
-  EXPECT_EQ(c.max_normal_deviation_deg, d.max_normal_deviation_deg);
-  EXPECT_EQ(c.sharp_angle_deg, d.sharp_angle_deg);
-  EXPECT_EQ(c.hard_angle_deg, d.hard_angle_deg);
-  EXPECT_EQ(c.max_stretch, d.max_stretch);
-  EXPECT_EQ(c.max_face_stretch, d.max_face_stretch);
-  EXPECT_EQ(c.atlas_stretch_budget, d.atlas_stretch_budget);
-  EXPECT_EQ(c.min_chart_faces, d.min_chart_faces);
-  EXPECT_EQ(c.degenerate_ratio, d.degenerate_ratio);
-  EXPECT_EQ(c.weld, d.weld);
-  EXPECT_EQ(c.reorient, d.reorient);
-  EXPECT_EQ(c.seams.size(), d.seams.size());
-  EXPECT_EQ(c.max_charts, d.max_charts);
-  EXPECT_EQ(c.chart_map.isometric_iterations, d.chart_map.isometric_iterations);
-  EXPECT_EQ(c.chart_map.boundary, d.chart_map.boundary);
-  EXPECT_EQ(pack_options(a).resolution, PackOptions().resolution);
-  EXPECT_EQ(pack_options(a).padding, PackOptions().padding);
-  // And the helpers carry values that are not the defaults.
+// The one call runs the pack stage with the orientation kept exactly when
+// it re-packs the input's own UVs; every other pack option is its own.
+TEST(AtlasStages, PackOptionsOfTheOneCall) {
   AtlasOptions o;
-  o.max_stretch = 1.3, o.weld = 0, o.max_charts = 9, o.seams = {{0, 1}}, o.resolution = 77, o.padding = 5;
-  EXPECT_EQ(chart_options(o).max_stretch, 1.3);
-  EXPECT_EQ(chart_options(o).weld, 0);
-  EXPECT_EQ(chart_options(o).max_charts, 9);
-  EXPECT_EQ(chart_options(o).seams.size(), 1u);
+  o.pack.resolution = 77, o.pack.padding = 5, o.pack.keep_orientation = true;
+  EXPECT_FALSE(pack_options(o).keep_orientation);
   EXPECT_EQ(pack_options(o).resolution, 77);
   EXPECT_EQ(pack_options(o).padding, 5);
+  o.pack_only = true;
+  EXPECT_TRUE(pack_options(o).keep_orientation);
 }
 
 }  // namespace

@@ -35,13 +35,13 @@ UvAtlasMetrics measure(const MeshData& m, const AtlasResult& r) { return test::m
 TEST(AtlasWeld, UnweldedPairBecomesOneChart) {
   const MeshData m = unwelded_square();
   AtlasOptions none;
-  none.weld = 0;
+  none.charts.weld = 0;
   const AtlasResult apart = atlas(m, none);
   EXPECT_EQ(apart.components, 2);
   EXPECT_EQ(apart.charts.size(), 2u);
   EXPECT_EQ(apart.cleaning.welded_vertices, 0);
   AtlasOptions o;
-  o.weld = 1e-6;
+  o.charts.weld = 1e-6;
   const AtlasResult r = atlas(m, o);
   EXPECT_EQ(r.cleaning.welded_vertices, 2);
   EXPECT_EQ(r.components, 1);
@@ -57,11 +57,11 @@ TEST(AtlasWeld, UnweldedPairBecomesOneChart) {
   MeshData gap = m;
   gap.V(3, 0) += 1e-3 * std::sqrt(2.0);
   gap.V(5, 1) += 1e-3 * std::sqrt(2.0);
-  o.weld = 0.5e-3;
+  o.charts.weld = 0.5e-3;
   EXPECT_EQ(atlas(gap, o).cleaning.welded_vertices, 0);
-  o.weld = 2e-3;
+  o.charts.weld = 2e-3;
   EXPECT_EQ(atlas(gap, o).cleaning.welded_vertices, 2);
-  o.weld = -1;
+  o.charts.weld = -1;
   test::expect_error([&] { atlas(m, o); }, ErrorKind::Usage, "weld");
 }
 
@@ -74,9 +74,9 @@ TEST(AtlasWeldCorpus, TeapotSeams) {
   const int duplicates = static_cast<int>(m.V.rows() - distinct.size());
   ASSERT_GT(duplicates, 0);
   AtlasOptions o;
-  o.weld = 1e-9;
+  o.charts.weld = 1e-9;
   AtlasOptions none;
-  none.weld = 0;
+  none.charts.weld = 0;
   const AtlasResult plain = atlas(m, none);
   const AtlasResult r = atlas(m, o);
   EXPECT_EQ(r.cleaning.welded_vertices, duplicates);

@@ -75,8 +75,8 @@ struct SeamEdge {
   int a = 0, b = 0;
 };
 
-// The charts stage (compute_charts): everything up to packing. The fields
-// are AtlasOptions' of the same name, defaults and meaning; none of them
+// The charts stage (compute_charts): everything up to packing (AtlasOptions::
+// charts in the one call); none of them
 // depends on the texture's resolution or padding (the stretch and the
 // sparse-chart test are measured at the charts' own scale, UV area = 3D area).
 struct ChartOptions {
@@ -143,8 +143,8 @@ struct ChartOptions {
   std::vector<int> face_group;
 };
 
-// The pack stage (pack_charts): all that only packing uses. The same fields
-// as AtlasOptions'.
+// The pack stage (pack_charts): all that only packing uses (AtlasOptions::
+// pack in the one call).
 struct PackOptions {
   // Texture size the padding is measured in (texels of the [0,1]^2 square).
   int resolution = 1024;
@@ -173,23 +173,11 @@ enum class AtlasScope { Whole, PerMesh };
 template <>
 ChoiceTable<AtlasScope> choice_table<AtlasScope>();
 
-// The one-call form's options: ChartOptions' and PackOptions' fields side by
-// side (chart_options and pack_options take them apart; a test checks that
-// the defaults agree). Each field is documented where it belongs above.
+// The one-call form's options: the two stages' own, and what only the one
+// call decides.
 struct AtlasOptions {
-  ChartMapOptions chart_map;
-  Segmentation segmentation = Segmentation::NormalCones;
-  double max_normal_deviation_deg = 60;
-  double sharp_angle_deg = 70;
-  double hard_angle_deg = 0;
-  double max_stretch = 1.08;
-  double max_face_stretch = 2;
-  bool atlas_stretch_budget = true;
-  int min_chart_faces = 20;
-  int resolution = 1024;  // PackOptions
-  double padding = 2;     // PackOptions
-  double texels_per_unit = 0;  // PackOptions
-  int max_pages = 0;           // PackOptions
+  ChartOptions charts;  // the charts stage (compute_charts)
+  PackOptions pack;     // the pack stage (pack_charts); keep_orientation comes from pack_only
   // Re-pack the input's own texture coordinates (MeshData::TC/FTC) instead
   // of cutting charts: its charts (faces connected through shared UV rows)
   // keep their shape, turned only by quarter turns, all scaled by one factor
@@ -199,17 +187,12 @@ struct AtlasOptions {
   // Error(Input) for an input without texture coordinates on every face.
   bool pack_only = false;
   bool keep_overlaps = false;
-  double degenerate_ratio = 1e-12;
-  double weld = 1e-7;
-  bool reorient = true;
-  std::vector<SeamEdge> seams;
-  int max_charts = 0;
-  std::vector<int> face_group;
   // PerMesh: one atlas per mesh, each in [0,1]^2 (they overlap each other);
   // refused with Error(Usage) for an input without meshes to tell apart.
   AtlasScope scope = AtlasScope::Whole;
 };
-ChartOptions chart_options(const AtlasOptions& options);
+// The pack stage's options as the one call runs them (pack, with
+// keep_orientation set by pack_only).
 PackOptions pack_options(const AtlasOptions& options);
 
 struct AtlasChart {

@@ -19,8 +19,8 @@
 //    (pipeline.h: what `intrinsic atlas` runs):
 //
 //      intrinsic::AtlasRequest request;
-//      request.options.max_stretch = 1.08;         // charts within this stretch
-//      request.options.resolution = 2048;          // texels the padding is measured in
+//      request.options.charts.max_stretch = 1.08;  // charts within this stretch
+//      request.options.pack.resolution = 2048;     // texels the padding is measured in
 //      intrinsic::AtlasOutcome out = intrinsic::atlas_file("scene.glb", request);
 //      // out.result: UV, FUV (per corner), charts, utilization, flipped (0), overlaps (0)
 //      intrinsic::write_atlas_file("scene_atlas.glb", out.data, out.result);

@@ -78,29 +78,29 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, ReadOptions& read, SeamsArg
   AtlasOptions o;
   // The chart map first, spelled as parameterize()'s options.
   py::dict rest = py::dict(kwargs).attr("copy")();
-  set_chart_map(o.chart_map, rest);
+  set_chart_map(o.charts.chart_map, rest);
   for (const auto& [key, value] : rest) {
     const std::string k = py::str(key);
-    if (k == "padding") o.padding = value.cast<double>();
-    else if (k == "resolution") o.resolution = value.cast<int>();
-    else if (k == "texels_per_unit") o.texels_per_unit = value.cast<double>();
-    else if (k == "max_pages") o.max_pages = value.cast<int>();
+    if (k == "padding") o.pack.padding = value.cast<double>();
+    else if (k == "resolution") o.pack.resolution = value.cast<int>();
+    else if (k == "texels_per_unit") o.pack.texels_per_unit = value.cast<double>();
+    else if (k == "max_pages") o.pack.max_pages = value.cast<int>();
     else if (k == "pack_only") o.pack_only = value.cast<bool>();
     else if (k == "keep_overlaps") o.keep_overlaps = value.cast<bool>();
     else if (k == "uv") uvs.uv = py::reinterpret_borrow<py::object>(value);
     else if (k == "uv_index") uvs.uv_index = py::reinterpret_borrow<py::object>(value);
-    else if (k == "max_normal_deviation") o.max_normal_deviation_deg = value.cast<double>();
-    else if (k == "min_chart_faces") o.min_chart_faces = value.cast<int>();
-    else if (k == "max_stretch") o.max_stretch = value.cast<double>();
-    else if (k == "max_charts") o.max_charts = value.cast<int>();
-    else if (k == "hard_angle") o.hard_angle_deg = value.cast<double>();
-    else if (k == "max_face_stretch") o.max_face_stretch = value.cast<double>();
-    else if (k == "isometric_iterations") o.chart_map.isometric_iterations = value.cast<int>();
-    else if (k == "weld") o.weld = value.cast<double>();
-    else if (k == "reorient") o.reorient = value.cast<bool>();
-    else if (k == "atlas_stretch_budget") o.atlas_stretch_budget = value.cast<bool>();
+    else if (k == "max_normal_deviation") o.charts.max_normal_deviation_deg = value.cast<double>();
+    else if (k == "min_chart_faces") o.charts.min_chart_faces = value.cast<int>();
+    else if (k == "max_stretch") o.charts.max_stretch = value.cast<double>();
+    else if (k == "max_charts") o.charts.max_charts = value.cast<int>();
+    else if (k == "hard_angle") o.charts.hard_angle_deg = value.cast<double>();
+    else if (k == "max_face_stretch") o.charts.max_face_stretch = value.cast<double>();
+    else if (k == "isometric_iterations") o.charts.chart_map.isometric_iterations = value.cast<int>();
+    else if (k == "weld") o.charts.weld = value.cast<double>();
+    else if (k == "reorient") o.charts.reorient = value.cast<bool>();
+    else if (k == "atlas_stretch_budget") o.charts.atlas_stretch_budget = value.cast<bool>();
     else if (k == "seams") seams.value = py::reinterpret_borrow<py::object>(value);
-    else if (k == "face_groups") o.face_group = to_face_groups(value);
+    else if (k == "face_groups") o.charts.face_group = to_face_groups(value);
     else if (k == "scope") o.scope = to_choice<AtlasScope>(value, "scope");
     else if (k == "max_vertices") read.max_vertices = value.cast<std::int64_t>();
     else if (k == "instances") read.instances = to_choice<InstanceMode>(value, "instances");
@@ -112,7 +112,7 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, ReadOptions& read, SeamsArg
     else if (k == "texture_padding") out.textures.padding = value.cast<int>();
     else throw_usage("unknown option '" + k + "'");
   }
-  if (!seams.value.is_none() && !seams.is_path()) o.seams = to_seams(seams.value);
+  if (!seams.value.is_none() && !seams.is_path()) o.charts.seams = to_seams(seams.value);
   return o;
 }
 

@@ -8,7 +8,7 @@ namespace intrinsic {
 
 AtlasResult atlas(const MeshData& input, const AtlasOptions& options) {
   if (options.scope == AtlasScope::PerMesh) return detail::atlas_per_mesh(input, options);
-  const ChartOptions chart = chart_options(options);
+  const ChartOptions& chart = options.charts;
   const PackOptions pack = pack_options(options);
   detail::check_chart_options(chart);
   detail::check_pack_options(pack);

@@ -1,37 +1,12 @@
-// The atlas's options: the one-call form's AtlasOptions taken apart into the
-// two stages' ChartOptions and PackOptions (atlas.h), and each stage's range
-// checks (Error(Usage)), done before any work.
+// The atlas's options: the pack stage's options as the one call runs them,
+// and each stage's range checks (Error(Usage)), done before any work.
 #include "atlas/atlas_internal.h"
 #include "intrinsic/error.h"
 
 namespace intrinsic {
 
-ChartOptions chart_options(const AtlasOptions& o) {
-  ChartOptions c;
-  c.chart_map = o.chart_map;
-  c.segmentation = o.segmentation;
-  c.max_normal_deviation_deg = o.max_normal_deviation_deg;
-  c.sharp_angle_deg = o.sharp_angle_deg;
-  c.hard_angle_deg = o.hard_angle_deg;
-  c.max_stretch = o.max_stretch;
-  c.max_face_stretch = o.max_face_stretch;
-  c.atlas_stretch_budget = o.atlas_stretch_budget;
-  c.min_chart_faces = o.min_chart_faces;
-  c.degenerate_ratio = o.degenerate_ratio;
-  c.weld = o.weld;
-  c.reorient = o.reorient;
-  c.seams = o.seams;
-  c.max_charts = o.max_charts;
-  c.face_group = o.face_group;
-  return c;
-}
-
 PackOptions pack_options(const AtlasOptions& o) {
-  PackOptions p;
-  p.resolution = o.resolution;
-  p.padding = o.padding;
-  p.texels_per_unit = o.texels_per_unit;
-  p.max_pages = o.max_pages;
+  PackOptions p = o.pack;
   p.keep_orientation = o.pack_only;
   return p;
 }

@@ -115,7 +115,7 @@ void add_stretch(StretchSummary& to, const StretchSummary& s, double area, doubl
 }  // namespace
 
 AtlasResult atlas_per_mesh(const MeshData& input, const AtlasOptions& options) {
-  const SeamProblem bad = find_seam_problem(input, options.seams);
+  const SeamProblem bad = find_seam_problem(input, options.charts.seams);
   if (bad.index >= 0) throw_input("seam edge " + std::to_string(bad.index) + ": " + bad.message);
   int meshes = 0;
   const std::vector<int> group = face_meshes(input, meshes);
@@ -129,12 +129,12 @@ AtlasResult atlas_per_mesh(const MeshData& input, const AtlasOptions& options) {
   double area = 0, utilization = 0, stretch_mean = 0;
   Eigen::Index uv_rows = 0;
   for (int g = 0; g < meshes; ++g) {
-    Part p = cut_out(input, group, g, options.seams);
-    each.seams = p.seams;
-    if (!options.face_group.empty()) {  // the part's faces' groups, in the part's face order
-      detail::check_face_groups(options.face_group, static_cast<int>(input.F.rows()));
-      each.face_group.clear();
-      for (int f : p.faces) each.face_group.push_back(options.face_group[static_cast<std::size_t>(f)]);
+    Part p = cut_out(input, group, g, options.charts.seams);
+    each.charts.seams = p.seams;
+    if (!options.charts.face_group.empty()) {  // the part's faces' groups, in the part's face order
+      detail::check_face_groups(options.charts.face_group, static_cast<int>(input.F.rows()));
+      each.charts.face_group.clear();
+      for (int f : p.faces) each.charts.face_group.push_back(options.charts.face_group[static_cast<std::size_t>(f)]);
     }
     const AtlasResult r = atlas(p.mesh, each);
     const int chart0 = static_cast<int>(out.charts.size());

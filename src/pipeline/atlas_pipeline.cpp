@@ -16,7 +16,7 @@ AtlasOutcome run(MeshData data, const AtlasRequest& request, Clock::time_point t
   AtlasOutcome out;
   out.data = std::move(data);
   out.options = request.options;
-  if (!request.seams_file.empty()) out.options.seams = read_seams_file(request.seams_file, out.data);
+  if (!request.seams_file.empty()) out.options.charts.seams = read_seams_file(request.seams_file, out.data);
   if (out.options.pack_only && out.data.gltf)
     read_gltf_texcoords(out.data, request.texcoord_set < 0 ? 0 : request.texcoord_set);
   out.read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();

@@ -90,28 +90,28 @@ nlohmann::json atlas_report_json(const AtlasOutcome& o, const std::string& outpu
   j["split_reasons"] = {{"not_disk", sr.not_disk},         {"refused", sr.refused}, {"solve_failed", sr.solve_failed},
                         {"flipped", sr.flipped},           {"boundary_crossing", sr.boundary_crossing},
                         {"sparse", sr.sparse},             {"stretch", sr.stretch}};
-  if (!opt.face_group.empty()) j["split_groups"] = r.split_groups;
+  if (!opt.charts.face_group.empty()) j["split_groups"] = r.split_groups;
   j["utilization"] = r.utilization;
   j["stretch_l2_mean"] = r.stretch_l2_mean;  // area-weighted mean of per-chart mean L2, not Sander's RMS
   j["stretch"] = stretch_json(r.stretch);
   j["seam_length"] = r.seam_length;
   j["flipped"] = r.flipped;
   j["overlapping"] = r.overlapping;
-  j["resolution"] = opt.resolution;
-  j["padding"] = opt.padding;
-  if (opt.texels_per_unit > 0) {
+  j["resolution"] = opt.pack.resolution;
+  j["padding"] = opt.pack.padding;
+  if (opt.pack.texels_per_unit > 0) {
     // Lightmap pages: the density asked, and per page its fill.
-    j["texels_per_unit"] = opt.texels_per_unit;
+    j["texels_per_unit"] = opt.pack.texels_per_unit;
     j["pages"] = r.pages;
     j["page_utilization"] = r.page_utilization;
     j["chart_page"] = r.chart_page;
     j["shrunk_charts"] = r.shrunk_charts;
   }
-  j["max_stretch"] = opt.max_stretch;
-  j["max_face_stretch"] = opt.max_face_stretch;
-  j["atlas_stretch_budget"] = opt.atlas_stretch_budget;
-  j["max_charts"] = opt.max_charts;
-  j["seam_edges"] = opt.seams.size();
+  j["max_stretch"] = opt.charts.max_stretch;
+  j["max_face_stretch"] = opt.charts.max_face_stretch;
+  j["atlas_stretch_budget"] = opt.charts.atlas_stretch_budget;
+  j["max_charts"] = opt.charts.max_charts;
+  j["seam_edges"] = opt.charts.seams.size();
   // The input's own texture coordinates, if it had any, are not in the
   // output: the atlas takes their place.
   j["replaced_texcoords"] = o.data.had_texcoords;
@@ -122,10 +122,10 @@ nlohmann::json atlas_report_json(const AtlasOutcome& o, const std::string& outpu
                   {"skipped_primitives", sc.skipped_primitives}};
   }
   j["cleaning"] = cleaning_json(r.cleaning);
-  j["hard_angle"] = opt.hard_angle_deg;
-  j["weld"] = opt.weld;
-  j["reorient"] = opt.reorient;
-  j["chart_map"] = atlas_chart_map_json(opt.chart_map);
+  j["hard_angle"] = opt.charts.hard_angle_deg;
+  j["weld"] = opt.charts.weld;
+  j["reorient"] = opt.charts.reorient;
+  j["chart_map"] = atlas_chart_map_json(opt.charts.chart_map);
   j["chart_list"] = atlas_charts_json(r.charts);
   const AtlasTimings& t = r.timings;
   j["timings_ms"] = {{"read", o.read_ms},     {"clean", t.clean_ms}, {"segment", t.segment_ms},

@@ -72,7 +72,7 @@ void put_statements(std::string& s, const MeshData& m, int f) {
 }
 
 // The input's corner of face f that the result's corner c is: the result
-// lists reversed faces 0, 2, 1 (AtlasOptions::reorient).
+// lists reversed faces 0, 2, 1 (ChartOptions::reorient).
 int input_corner(const MeshData& m, const AtlasResult& r, int f, int c) {
   if (c == 0 || r.F(f, c) == m.F(f, c)) return c;
   return 3 - c;
