@@ -51,22 +51,6 @@ void set_chart_map(const AtlasArgs& a, ChartMapOptions& m) {
   }
 }
 
-// The library names its options as keywords; here they are flags.
-TextureTransferReport write_with_textures(const AtlasArgs& a, const AtlasOutcome& o) {
-  try {
-    return write_atlas_with_textures(a.output, o.data, o.result, a.gltf, a.textures);
-  } catch (const Error& e) {
-    if (e.kind() != ErrorKind::Usage) throw;
-    std::string m = e.what();
-    for (const auto& [key, flag] : {std::pair<std::string, std::string>{"transfer_textures", "--transfer-textures"},
-                                    {"replace_used_set", "--replace-uv-set"}, {"texture_size", "--texture-size"},
-                                    {"texture_padding", "--texture-padding"}})
-      for (std::size_t at = m.find(key); at != std::string::npos; at = m.find(key, at + flag.size()))
-        m.replace(at, key.size(), flag);
-    throw_usage(m);
-  }
-}
-
 int run_atlas(const AtlasArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   AtlasRequest request;
@@ -78,13 +62,16 @@ int run_atlas(const AtlasArgs& a) {
   request.read.max_faces = faces_for_vertices(a.max_vertices);
   request.read.instances = parse_choice<InstanceMode>(a.instances, "--instances");
   request.seams_file = a.seams;
+  // The library's messages name the options as flags.
   request.textures = a.textures;
+  request.textures.spelling = OptionSpelling::Flag;
+  GltfWriteOptions gltf = a.gltf;
+  gltf.spelling = OptionSpelling::Flag;
   request.texcoord_set = a.gltf.texcoord_set;
-  if (a.textures.enabled && a.gltf.texcoord_set < 0 && mesh_extension(a.output) != ".obj")
-    throw_usage("--transfer-textures replaces the set the textures read: add --uv-set N (usually 0)");
+  request.output = a.output;
   const AtlasOutcome o = atlas_file(a.input, request);
   const auto t1 = std::chrono::steady_clock::now();
-  const TextureTransferReport baked = write_with_textures(a, o);
+  const TextureTransferReport baked = write_atlas_with_textures(a.output, o.data, o.result, gltf, request.textures);
   nlohmann::json j = atlas_report_json(o, a.output);
   if (a.textures.enabled) j["textures"] = texture_transfer_json(baked);
   // What writing added beside the output, or could not find (only when

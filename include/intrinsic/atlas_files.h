@@ -56,6 +56,7 @@ struct GltfWriteOptions {
   // folder, or by its file name there) is Error(Input) unless this is true;
   // then its URI is written as it was and listed in missing_images.
   bool allow_missing_images = false;
+  OptionSpelling spelling = OptionSpelling::Keyword;  // how messages name these options
 };
 
 // What write_gltf_atlas did besides the atlas.

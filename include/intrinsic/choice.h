@@ -78,6 +78,25 @@ bool is_choice(std::string_view text) {
   return false;
 }
 
+// How messages about a request name its options: "optimize_lambda" (the
+// Python keyword, the default) or "--optimize-lambda" (the command line).
+// Every options struct a shell fills carries one, so the library's messages
+// are right for each shell as they are.
+enum class OptionSpelling { Keyword, Flag };
+// `key` in keyword spelling ("optimize_lambda") as `spelling` writes it: the
+// flag is the keyword with dashes, except where the command line's flag
+// says more than the keyword (pins: --pin, once per pin; replace_used_set:
+// --replace-uv-set).
+inline std::string option_label(std::string_view key, OptionSpelling spelling) {
+  if (spelling == OptionSpelling::Keyword) return std::string(key);
+  if (key == "pins") return "--pin";
+  if (key == "replace_used_set") return "--replace-uv-set";
+  std::string flag = "--" + std::string(key);
+  for (char& c : flag)
+    if (c == '_') c = '-';
+  return flag;
+}
+
 // The value named `text`. Throws Error(Usage) "<label>: 'foo' is not one of
 // a, b, c"; `label` is how the caller's user names the option ("--method"
 // on the command line, "method" in Python).

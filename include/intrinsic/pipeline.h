@@ -31,11 +31,6 @@
 
 namespace intrinsic {
 
-// How messages about a request name its options: "optimize_lambda" (the
-// Python keyword, the default) or "--optimize-lambda" (the command line).
-enum class OptionSpelling { Keyword, Flag };
-// `key` in keyword spelling ("optimize_lambda") as `spelling` writes it.
-std::string option_label(std::string_view key, OptionSpelling spelling);
 
 // A pin written as text, "VERTEX:U,V" (e.g. "12:0.5,0"). Malformed text is
 // Error(Usage) naming the option as `spelling` writes it; the vertex range is
@@ -125,8 +120,12 @@ struct AtlasRequest {
   // when the atlas is written (write_atlas_with_textures, texture_transfer.h);
   // checked with the request, before any work.
   TextureTransferOptions textures;
-  // options.pack_only on a glTF input: the TEXCOORD_n set re-packed (-1: 0).
+  // options.pack_only on a glTF input: the TEXCOORD_n set re-packed (-1: 0);
+  // with textures.enabled, the set the atlas replaces.
   int texcoord_set = -1;
+  // Where the atlas will be written, when known: a request that cannot be
+  // written there is refused before any work.
+  std::string output;
 };
 
 struct AtlasOutcome {

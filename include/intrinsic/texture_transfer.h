@@ -26,6 +26,7 @@ struct TextureTransferOptions {
   int size = 2048;
   int padding = 4;      // texels of dilation around every chart (texture.h TransferOptions)
   int supersample = 2;  // samples per texel along each axis, 1..4
+  OptionSpelling spelling = OptionSpelling::Keyword;  // how messages name these options
 };
 
 // One texture slot of one material that now reads a baked image.
@@ -48,6 +49,12 @@ struct TextureTransferReport {
 
 // Error(Usage) for options out of range (before any work).
 void check_texture_transfer(const TextureTransferOptions& options);
+// What the input and the output allow, checked before any work when they are
+// known (an empty `output`: not yet): a glTF input's textures are baked only
+// into a glTF output, and only when the atlas replaces the set they read
+// (`texcoord_set`, the glTF TEXCOORD_n; -1: none given).
+void check_texture_transfer_input(const TextureTransferOptions& options, bool gltf_input, const std::string& output,
+                                  int texcoord_set);
 
 // write_atlas_file (gltf.h) with the textures following the atlas when
 // `textures.enabled`: a glTF input needs gltf.texcoord_set >= 0 (the set the

@@ -116,13 +116,6 @@ AtlasOptions atlas_options(const py::kwargs& kwargs, ReadOptions& read, SeamsArg
   return o;
 }
 
-// A glTF file given by path (transfer_textures then needs uv_set).
-bool from_gltf_path(const py::object& V, const py::object& F) {
-  if (!F.is_none()) return false;
-  const std::string ext = mesh_extension(to_path(V));
-  return ext == ".glb" || ext == ".gltf";
-}
-
 AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs& kwargs) {
   AtlasRequest request;
   SeamsArg seams;
@@ -131,8 +124,6 @@ AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs
   request.options = atlas_options(kwargs, request.read, seams, uvs, out);
   request.textures = out.textures;
   request.texcoord_set = out.gltf.texcoord_set;
-  if (out.textures.enabled && out.gltf.texcoord_set < 0 && from_gltf_path(V, F))
-    throw_usage("transfer_textures replaces the set the textures read: give uv_set (usually 0)");
   request.read.max_faces = faces_for_vertices(request.read.max_vertices);
   if (seams.is_path()) request.seams_file = to_path(seams.value);
   const bool from_file = F.is_none();

@@ -6,6 +6,7 @@
 #include "intrinsic/atlas_files.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/pipeline.h"
+#include "intrinsic/texture_transfer.h"
 
 namespace intrinsic {
 namespace {
@@ -28,6 +29,9 @@ AtlasOutcome run(MeshData data, const AtlasRequest& request, Clock::time_point t
 
 AtlasOutcome atlas_file(const std::string& path, const AtlasRequest& request) {
   if (request.textures.enabled) check_texture_transfer(request.textures);
+  const std::string ext = mesh_extension(path);
+  check_texture_transfer_input(request.textures, ext == ".gltf" || ext == ".glb", request.output,
+                               request.texcoord_set);
   const auto t0 = Clock::now();
   return run(read_mesh(path, request.read), request, t0);
 }

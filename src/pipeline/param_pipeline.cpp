@@ -148,15 +148,6 @@ ParamOutcome run(const MeshData& data, const ParamRequest& r, double read_ms, Me
 
 }  // namespace
 
-std::string option_label(std::string_view key, OptionSpelling spelling) {
-  if (spelling == OptionSpelling::Keyword) return std::string(key);
-  if (key == "pins") return "--pin";  // repeated once per pin on the command line
-  std::string flag = "--" + std::string(key);
-  for (char& c : flag)
-    if (c == '_') c = '-';
-  return flag;
-}
-
 void check_param_request(const ParamRequest& r) {
   const auto label = [&](std::string_view key) { return option_label(key, r.spelling); };
   if (!(r.options.max_residual > 0)) throw_usage(label("max_residual") + " must be a positive number");

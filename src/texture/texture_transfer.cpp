@@ -12,9 +12,23 @@
 namespace intrinsic {
 
 void check_texture_transfer(const TextureTransferOptions& o) {
-  if (o.size < 0 || o.size > 16384) throw_usage("texture_size must be 0 (each source's own density) or 1..16384");
-  if (o.padding < -1 || o.padding > 1024) throw_usage("texture_padding must be -1 (fill the image) or 0..1024");
-  if (o.supersample < 1 || o.supersample > 4) throw_usage("texture_supersample must be between 1 and 4");
+  const auto label = [&](std::string_view key) { return option_label(key, o.spelling); };
+  if (o.size < 0 || o.size > 16384)
+    throw_usage(label("texture_size") + " must be 0 (each source's own density) or 1..16384");
+  if (o.padding < -1 || o.padding > 1024)
+    throw_usage(label("texture_padding") + " must be -1 (fill the image) or 0..1024");
+  if (o.supersample < 1 || o.supersample > 4) throw_usage(label("texture_supersample") + " must be between 1 and 4");
+}
+
+void check_texture_transfer_input(const TextureTransferOptions& o, bool gltf_input, const std::string& output,
+                                  int texcoord_set) {
+  if (!o.enabled || !gltf_input) return;
+  const auto label = [&](std::string_view key) { return option_label(key, o.spelling); };
+  if (!output.empty() && mesh_extension(output) == ".obj")
+    throw_usage(label("transfer_textures") + ": a glTF input is written back as .glb or .gltf");
+  if (texcoord_set < 0)
+    throw_usage(label("transfer_textures") + " replaces the set the textures read: add " + label("uv_set") +
+                " N (usually 0)");
 }
 
 TextureTransferReport write_atlas_with_textures(const std::string& path, const MeshData& m, const AtlasResult& r,
@@ -37,18 +51,19 @@ TextureTransferReport write_atlas_with_textures(const std::string& path, const M
   check_texture_transfer(textures);
   check_atlas_output(path);
   const std::string ext = mesh_extension(path);
+  const auto label = [&](std::string_view key) { return option_label(key, textures.spelling); };
   if (m.gltf) {
-    if (ext == ".obj") throw_usage("transfer_textures: a glTF input is written back as .glb or .gltf");
-    if (gltf.texcoord_set < 0)
-      throw_usage("transfer_textures replaces the set the textures read: give the uv set (usually 0)");
+    check_texture_transfer_input(textures, true, path, gltf.texcoord_set);
     GltfWriteOptions o = gltf;
     o.replace_used_set = true;
     keep(write_gltf_atlas_hooked(path, m, r, o, gltf_textures::texture_hook(*m.gltf, r, textures, report)));
     return report;
   }
   if (ext != ".obj" || m.material_libraries.empty())
-    throw_usage("transfer_textures needs a glTF input, or an OBJ input with mtllib materials written as .obj");
-  if (!m.has_uv()) throw_usage("transfer_textures: " + m.path + " has no texture coordinates on every face to bake from");
+    throw_usage(label("transfer_textures") +
+                " needs a glTF input, or an OBJ input with mtllib materials written as .obj");
+  if (!m.has_uv())
+    throw_usage(label("transfer_textures") + ": " + m.path + " has no texture coordinates on every face to bake from");
   return write_obj_with_textures(path, m, r, textures);
 }
 

@@ -116,7 +116,9 @@ int choose_set(const GltfDocument& doc, const json& prim, const std::string& pat
     used_sets(materials[static_cast<std::size_t>(m)], sets);
     if (sets.count(o.texcoord_set))
       throw_usage(doc.name + ": " + path + ": TEXCOORD_" + std::to_string(o.texcoord_set) + " is read by a texture of material " +
-                  std::to_string(m) + " (transfer_textures to bake the textures into the atlas, or replace_used_set to replace it anyway)");
+                  std::to_string(m) + " (" + option_label("transfer_textures", o.spelling) +
+                  " to bake the textures into the atlas, or " + option_label("replace_used_set", o.spelling) +
+                  " to replace it anyway)");
   }
   return o.texcoord_set;
 }
