@@ -14,6 +14,7 @@
 #include "intrinsic/pictures.h"
 #include "intrinsic/pipeline.h"
 #include "intrinsic/texture_transfer.h"
+#include "intrinsic/report.h"
 #include "weight_args.h"
 
 namespace intrinsic::app {

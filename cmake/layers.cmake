@@ -78,7 +78,7 @@ intrinsic_layer(atlas FOLDERS src/atlas HEADERS atlas atlas_files USES optimize 
 intrinsic_layer(texture FOLDERS src/texture HEADERS texture texture_transfer USES atlas)
 intrinsic_layer(generate FOLDERS src/generate HEADERS generate USES io)
 intrinsic_layer(render FOLDERS src/render HEADERS render pictures USES metrics io)
-intrinsic_layer(report FOLDERS src/report HEADERS report USES optimize io)
+intrinsic_layer(report FOLDERS src/report HEADERS report USES texture)
 intrinsic_layer(pipeline FOLDERS src/pipeline HEADERS pipeline edit_session intrinsic
                 USES texture generate render report)
 

@@ -1,4 +1,4 @@
-// The JSON reports of `param` and `metrics` (keys listed in
+// The JSON reports of `param`, `metrics` and `atlas` (keys listed in
 // docs/formats.md "Report"), built from the library's result structs only: what was solved
 // is read from the result, never rebuilt from the command line. The only
 // other inputs are names the results cannot know (file paths).
@@ -11,10 +11,18 @@
 #include "intrinsic/metrics.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
+#include "intrinsic/texture_transfer.h"
+#include "intrinsic/uv_mesh.h"
 
 namespace intrinsic {
 
 nlohmann::json stat_json(const Stat& s);
+// The atlas part of the `metrics` report: charts, utilization, mirrored
+// charts, flipped, collapsed and overlapping triangles, per-chart list.
+nlohmann::json atlas_metrics_json(const UvAtlasMetrics& atlas);
+// The report's "textures" object: {"baked": [...], "notes": [...]}.
+nlohmann::json texture_transfer_json(const TextureTransferReport& report);
+
 // Mesh facts: vertices, faces, boundary_loops, components, validation fixes.
 nlohmann::json mesh_json(const Mesh& mesh);
 // Adds the distortion summary's keys to `report`.

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 
 #include "intrinsic/atlas.h"
 #include "intrinsic/atlas_files.h"
@@ -65,7 +64,5 @@ void check_texture_transfer_input(const TextureTransferOptions& options, bool gl
 TextureTransferReport write_atlas_with_textures(const std::string& path, const MeshData& m, const AtlasResult& r,
                                                 const GltfWriteOptions& gltf, const TextureTransferOptions& textures);
 
-// The report's "textures" object: {"baked": [...], "notes": [...]}.
-nlohmann::json texture_transfer_json(const TextureTransferReport& report);
 
 }  // namespace intrinsic

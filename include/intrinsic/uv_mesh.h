@@ -6,7 +6,6 @@
 
 #include <string>
 
-#include <nlohmann/json.hpp>
 
 #include "intrinsic/mesh.h"
 #include "intrinsic/metrics.h"
@@ -42,8 +41,5 @@ double seam_length(const UvMesh& m);
 // UVs' bounding square when they leave [0,1]^2 (as utilization).
 int small_charts(const UvMesh& m, const UvAtlasMetrics& atlas, int resolution, double min_texels);
 
-// The atlas part of the `metrics` report: charts, utilization, mirrored
-// charts, flipped, collapsed and overlapping triangles, per-chart list.
-nlohmann::json atlas_metrics_json(const UvAtlasMetrics& atlas);
 
 }  // namespace intrinsic

@@ -7,6 +7,7 @@
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"
 #include "intrinsic/texture_transfer.h"
+#include "intrinsic/report.h"
 
 namespace intrinsic::python {
 namespace {

@@ -108,27 +108,4 @@ int small_charts(const UvMesh& m, const UvAtlasMetrics& atlas, int resolution, d
   return n;
 }
 
-nlohmann::json atlas_metrics_json(const UvAtlasMetrics& a) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const UvChart& c : a.charts)
-    list.push_back({{"faces", c.faces}, {"uv_area", c.uv_area}, {"area_3d", c.area_3d},
-                    {"mirrored", c.mirrored}, {"flipped", c.flipped}, {"collapsed", c.collapsed},
-                    {"degenerate", c.degenerate}});
-  return {{"charts", static_cast<int>(a.charts.size()) - a.degenerate_charts},
-          {"degenerate_charts", a.degenerate_charts},
-          {"utilization", a.utilization},
-          {"utilization_of", a.utilization_in_unit_square ? "unit_square" : "bounding_square"},
-          {"utilization_bbox", a.utilization_bbox},
-          {"uv_area", a.uv_area},
-          {"mirrored_charts", a.mirrored_charts},
-          {"mirrored_faces", a.mirrored_faces},
-          {"flipped_triangles", a.flipped_triangles},
-          {"collapsed_triangles", a.collapsed_triangles},
-          {"degenerate_faces", a.degenerate_faces},
-          {"overlapping_triangles", a.overlapping_triangles},
-          {"overlapping_pairs_within_charts", a.overlapping_pairs_within_charts},
-          {"overlapping_pairs_between_charts", a.overlapping_pairs_between_charts},
-          {"chart_list", list}};
-}
-
 }  // namespace intrinsic

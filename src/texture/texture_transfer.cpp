@@ -67,18 +67,4 @@ TextureTransferReport write_atlas_with_textures(const std::string& path, const M
   return write_obj_with_textures(path, m, r, textures);
 }
 
-nlohmann::json texture_transfer_json(const TextureTransferReport& report) {
-  nlohmann::json baked = nlohmann::json::array();
-  for (const BakedTexture& b : report.baked)
-    baked.push_back({{"material", b.material},
-                     {"material_name", b.material_name},
-                     {"slot", b.slot},
-                     {"source", b.source},
-                     {"output", b.output},
-                     {"width", b.width},
-                     {"height", b.height},
-                     {"texels_covered", b.texels_covered}});
-  return {{"baked", baked}, {"notes", report.notes}};
-}
-
 }  // namespace intrinsic
