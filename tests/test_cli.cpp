@@ -53,7 +53,7 @@ TEST(Cli, PlyBinaryOutputAndSurfaceScale) {
   EXPECT_TRUE(read_mesh(dir / "out.ply").has_uv());
 }
 
-struct BadCase {
+struct BadCommandLine {
   const char* name;
   const char* input;   // file contents (OBJ) or nullptr for no file
   const char* args;    // extra arguments
@@ -63,7 +63,7 @@ struct BadCase {
 
 TEST(Cli, ErrorsGiveCodeMessageAndNoOutput) {
   const char* square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n";
-  const BadCase cases[] = {
+  const BadCommandLine cases[] = {
       {"missing file", nullptr, "", 2, "cannot open"},
       {"bad index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "", 2, ":4:"},
       {"repeated vertex", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n", "", 2, "repeats vertex"},
@@ -90,7 +90,7 @@ TEST(Cli, ErrorsGiveCodeMessageAndNoOutput) {
       {"missing boundary file", square, "--boundary {dir}/nothing.txt", 2, "cannot open boundary file"},
       {"residual too large", "GENERATE", "--solver bicgstab --max-residual 1e-300", 3, "residual"},
   };
-  for (const BadCase& c : cases) {
+  for (const BadCommandLine& c : cases) {
     SCOPED_TRACE(c.name);
     TempDir dir;
     const std::string in = dir / "in.obj";

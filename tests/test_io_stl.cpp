@@ -113,7 +113,7 @@ void expect_generated(const MeshData& got, const MeshData& gen) {
 }
 
 // Reads `bytes` as `name` expecting an Input error containing every fragment.
-std::string input_error(const std::string& bytes, const std::string& name, std::vector<std::string> fragments,
+std::string stl_input_error(const std::string& bytes, const std::string& name, std::vector<std::string> fragments,
                         const ReadOptions& opt = {}) {
   try {
     read_mesh_from_memory(bytes, name, opt);
@@ -227,70 +227,70 @@ TEST(StlRead, MalformedAsciiNamesFileAndLine) {
   std::string bad = good;
   const std::size_t at = bad.find("endloop", bad.find("endloop") + 1);
   bad.replace(at, 7, "endlop");
-  input_error(bad, "x.stl", {"x.stl:" + std::to_string(line_of(good, "endloop", 1)) + ":", "'endlop'"});
+  stl_input_error(bad, "x.stl", {"x.stl:" + std::to_string(line_of(good, "endloop", 1)) + ":", "'endlop'"});
   // A non-finite coordinate, and one beyond float32, in the first vertex.
   const std::size_t v0 = good.find("      vertex"), v0_end = good.find('\n', v0);
   std::string nan = good;
   nan.replace(v0, v0_end - v0, "      vertex 0 nan 0");
-  input_error(nan, "x.stl", {"x.stl:4:", "non-finite"});
+  stl_input_error(nan, "x.stl", {"x.stl:4:", "non-finite"});
   std::string big = good;
   big.replace(v0, v0_end - v0, "      vertex 1e39 0 0");
-  input_error(big, "x.stl", {"x.stl:4:", "float32"});
+  stl_input_error(big, "x.stl", {"x.stl:4:", "float32"});
   // Cut inside a facet, and before 'endsolid'.
   const std::string cut = good.substr(0, good.find("outer loop", 300));
-  input_error(cut, "x.stl", {"x.stl:", "truncated"});
-  input_error(good.substr(0, good.rfind("endsolid")), "x.stl",
+  stl_input_error(cut, "x.stl", {"x.stl:", "truncated"});
+  stl_input_error(good.substr(0, good.rfind("endsolid")), "x.stl",
               {"x.stl:" + std::to_string(line_of(good, "endsolid")) + ":", "'endsolid'", "truncated"});
   // A fourth vertex, a missing 'normal', text before 'solid'.
   std::string four = good;
   four.insert(four.find("    endloop"), "      vertex 1 2 3\n");
-  input_error(four, "x.stl", {"x.stl:7:", "'endloop'"});
+  stl_input_error(four, "x.stl", {"x.stl:7:", "'endloop'"});
   std::string nonormal = good;
   nonormal.replace(nonormal.find("facet normal"), 12, "facet");
-  input_error(nonormal, "x.stl", {"x.stl:2:", "'normal'"});
-  input_error("hello " + good, "x.stl", {"not an STL file"});
-  input_error("solid a\nfacet normal 0 0 1\nouter loop\nvertex 1 2 x\n", "x.stl", {"x.stl:4:", "'x'"});
+  stl_input_error(nonormal, "x.stl", {"x.stl:2:", "'normal'"});
+  stl_input_error("hello " + good, "x.stl", {"not an STL file"});
+  stl_input_error("solid a\nfacet normal 0 0 1\nouter loop\nvertex 1 2 x\n", "x.stl", {"x.stl:4:", "'x'"});
 }
 
 TEST(StlRead, MalformedBinaryNamesFacetAndOffset) {
   const MeshData m = torus();
   const std::string good = binary_stl(m);
   const int nf = static_cast<int>(m.F.rows());
-  input_error(good.substr(0, good.size() - 20), "x.stl",
+  stl_input_error(good.substr(0, good.size() - 20), "x.stl",
               {"x.stl: facet " + std::to_string(nf - 1) + " (byte offset " + std::to_string(84 + 50 * (nf - 1)) + ")",
                "truncated"});
-  input_error(good + std::string(7, '\0'), "x.stl", {"x.stl:", "announces " + std::to_string(nf) + " facets"});
+  stl_input_error(good + std::string(7, '\0'), "x.stl", {"x.stl:", "announces " + std::to_string(nf) + " facets"});
   std::string nan = good;
   const float q = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(&nan[84 + 50 * 3 + 12 + 4], &q, 4);
-  input_error(nan, "x.stl", {"x.stl: facet 3 (byte offset 234)", "non-finite"});
+  stl_input_error(nan, "x.stl", {"x.stl: facet 3 (byte offset 234)", "non-finite"});
   std::string inf = binary_stl(m, "solid with infinity");
   const float i = std::numeric_limits<float>::infinity();
   std::memcpy(&inf[84 + 50 * 5 + 12 + 24], &i, 4);
-  input_error(inf, "x.stl", {"x.stl: facet 5 (byte offset 334)", "non-finite"});
+  stl_input_error(inf, "x.stl", {"x.stl: facet 5 (byte offset 334)", "non-finite"});
   // A count larger than the file, with and without a "solid" header.
   std::string more = good;
   more[80] = static_cast<char>(more[80] + 1);
-  input_error(more, "x.stl", {"facet " + std::to_string(nf), "truncated"});
+  stl_input_error(more, "x.stl", {"facet " + std::to_string(nf), "truncated"});
   std::string solid_more = binary_stl(m, "solid x");
   solid_more[80] = static_cast<char>(solid_more[80] + 1);
-  input_error(solid_more, "x.stl", {"truncated", "not ASCII STL either"});
-  input_error(good.substr(0, 80) + std::string(4, '\0'), "x.stl", {"no faces"});
-  input_error(good.substr(0, 60), "x.stl", {"too short"});
+  stl_input_error(solid_more, "x.stl", {"truncated", "not ASCII STL either"});
+  stl_input_error(good.substr(0, 80) + std::string(4, '\0'), "x.stl", {"no faces"});
+  stl_input_error(good.substr(0, 60), "x.stl", {"too short"});
 }
 
 TEST(StlRead, EmptyFilesAndLimits) {
-  input_error("", "x.stl", {"x.stl", "empty"});
-  input_error("solid a\nendsolid a\n", "x.stl", {"x.stl", "no"});
+  stl_input_error("", "x.stl", {"x.stl", "empty"});
+  stl_input_error("solid a\nendsolid a\n", "x.stl", {"x.stl", "no"});
   const MeshData m = torus();
   ReadOptions few_faces;
   few_faces.max_faces = m.F.rows() - 1;
-  input_error(binary_stl(m), "x.stl", {"limit"}, few_faces);
-  input_error(ascii_stl(m), "x.stl", {"limit"}, few_faces);
+  stl_input_error(binary_stl(m), "x.stl", {"limit"}, few_faces);
+  stl_input_error(ascii_stl(m), "x.stl", {"limit"}, few_faces);
   ReadOptions few_vertices;
   few_vertices.max_vertices = m.V.rows() - 1;
-  input_error(binary_stl(m), "x.stl", {"x.stl: facet", "limit"}, few_vertices);
-  input_error(ascii_stl(m), "x.stl", {"x.stl:", "limit"}, few_vertices);
+  stl_input_error(binary_stl(m), "x.stl", {"x.stl: facet", "limit"}, few_vertices);
+  stl_input_error(ascii_stl(m), "x.stl", {"x.stl:", "limit"}, few_vertices);
   ReadOptions exact;
   exact.max_faces = m.F.rows();
   exact.max_vertices = m.V.rows();
@@ -349,12 +349,12 @@ TEST(PlyHeader, MalformedElementAndPropertyLinesAreStillRefused) {
   const std::string rest =
       "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
       "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  input_error(head + "element vertex many\nproperty float x\n" + rest, "b.ply", {"b.ply:4:", "'vertex'"});
-  input_error(head + "element vertex 3\nproperty flot x\n" + rest, "b.ply", {"b.ply:5:", "unknown PLY type 'flot'"});
-  input_error(head + "element vertex 3\nproperty float\n" + rest, "b.ply", {"b.ply:5:", "without a name"});
-  input_error(head + "format binary_middle_endian 1.0\n", "b.ply", {"b.ply:4:", "unknown PLY format"});
+  stl_input_error(head + "element vertex many\nproperty float x\n" + rest, "b.ply", {"b.ply:4:", "'vertex'"});
+  stl_input_error(head + "element vertex 3\nproperty flot x\n" + rest, "b.ply", {"b.ply:5:", "unknown PLY type 'flot'"});
+  stl_input_error(head + "element vertex 3\nproperty float\n" + rest, "b.ply", {"b.ply:5:", "without a name"});
+  stl_input_error(head + "format binary_middle_endian 1.0\n", "b.ply", {"b.ply:4:", "unknown PLY format"});
   // A header that never ends is still reported as such.
-  input_error("ply\nformat ascii 1.0\nsome text\n", "b.ply", {"no 'end_header'"});
+  stl_input_error("ply\nformat ascii 1.0\nsome text\n", "b.ply", {"no 'end_header'"});
 }
 
 TEST(StlCli, AtlasOfAnStlFile) {
