@@ -33,6 +33,7 @@ import numpy as np
 from bpy.props import BoolProperty, FloatProperty, IntProperty, StringProperty
 
 from . import library, texture_bake
+from .atlas_option_props import OPTION_PROPS
 
 
 # The last run's UVs per loop in double precision, per object name (Blender
@@ -182,21 +183,22 @@ class INTRINSIC_OT_atlas(bpy.types.Operator):
     bl_label = "Intrinsic Atlas"
     bl_options = {"REGISTER", "UNDO"}
 
-    max_stretch: FloatProperty(name="Max Stretch", description="Split charts while 5% of their surface is "
-                               "stretched or shrunk by more than this", default=1.08, min=1.0, soft_max=3.0)
-    hard_angle: FloatProperty(name="Hard Angle", description="Edges whose faces turn by more than this are "
-                              "seams (degrees, 0: none; 80 for lightmaps)", default=0.0, min=0.0, max=180.0)
-    padding: FloatProperty(name="Padding", description="Texels between charts", default=2.0, min=0.0)
-    resolution: IntProperty(name="Resolution", description="Texture width the padding is measured in "
-                            "(with a Texel Density: Page Size instead)", default=1024, min=16)
-    texel_density: FloatProperty(name="Texel Density", description="Lightmaps: texels per unit of surface "
-                                 "length for every chart of the selected objects, which share pages of Page Size "
-                                 "texels, page k at U from k to k+1 (UDIM tile 1001+k); 0: off, each object fills "
-                                 "[0,1]^2", default=0.0, min=0.0, soft_max=1024.0)
-    page_size: IntProperty(name="Page Size", description="With a Texel Density: the side of a page in texels "
-                           "(the padding is counted in them)", default=1024, min=16)
-    max_pages: IntProperty(name="Max Pages", description="With a Texel Density: refuse when the charts need more "
-                           "pages than this (0: no limit)", default=0, min=0)
+    # The library's options keep the library's help, default and range
+    # (atlas_option_props.py, generated from its option table); the add-on
+    # adds labels, slider ranges and what a Blender user needs to know more.
+    max_stretch: FloatProperty(name="Max Stretch", soft_max=3.0, **OPTION_PROPS["max_stretch"])
+    hard_angle: FloatProperty(name="Hard Angle", **OPTION_PROPS["hard_angle"])
+    padding: FloatProperty(name="Padding", **OPTION_PROPS["padding"])
+    resolution: IntProperty(name="Resolution", soft_min=16, **OPTION_PROPS["resolution"])
+    texel_density: FloatProperty(name="Texel Density", soft_max=1024.0, **{
+        **OPTION_PROPS["texel_density"],
+        "description": "Lightmaps: texels per unit of surface length for every chart of the selected objects, "
+                       "which share pages of Page Size texels, page k at U from k to k+1 (UDIM tile 1001+k); "
+                       "0: off, each object fills [0,1]^2"})
+    page_size: IntProperty(name="Page Size", soft_min=16, **{
+        **OPTION_PROPS["resolution"],
+        "description": "With a Texel Density: the side of a page in texels (the padding is counted in them)"})
+    max_pages: IntProperty(name="Max Pages", **OPTION_PROPS["max_pages"])
     uv_map: StringProperty(name="UV Map", description="UV map to write (empty: the active one)", default="")
     new_uv_map: BoolProperty(name="New UV Map", description="Write a new UV map (e.g. a lightmap), keeping "
                              "the others", default=False)

@@ -21,6 +21,8 @@
 //      intrinsic::AtlasRequest request;
 //      request.options.charts.max_stretch = 1.08;  // charts within this stretch
 //      request.options.pack.resolution = 2048;     // texels the padding is measured in
+//      // or from keys and values, as the shells give them (atlas_option_table.h):
+//      // request = intrinsic::atlas_request({{"max_stretch", 1.08}}, intrinsic::OptionSpelling::Keyword);
 //      intrinsic::AtlasOutcome out = intrinsic::atlas_file("scene.glb", request);
 //      // out.result: UV, FUV (per corner), charts, utilization, flipped (0), overlaps (0)
 //      intrinsic::write_atlas_file("scene_atlas.glb", out.data, out.result);
@@ -32,11 +34,8 @@
 //      intrinsic::AtlasResult packed = intrinsic::pack_charts(charts, pack_options);
 #pragma once
 
-#include "intrinsic/atlas.h"
-#include "intrinsic/atlas_files.h"
-#include "intrinsic/error.h"
-#include "intrinsic/io.h"
-#include "intrinsic/mesh.h"
-#include "intrinsic/parameterize.h"
+// The entry points; pipeline.h brings the headers of the data they take and
+// give (atlas.h, atlas_files.h, io.h, mesh.h, parameterize.h, error.h).
+#include "intrinsic/atlas_option_table.h"
 #include "intrinsic/parameterizer.h"
 #include "intrinsic/pipeline.h"

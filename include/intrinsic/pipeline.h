@@ -120,9 +120,10 @@ struct AtlasRequest {
   // when the atlas is written (write_atlas_with_textures, texture_transfer.h);
   // checked with the request, before any work.
   TextureTransferOptions textures;
-  // options.pack_only on a glTF input: the TEXCOORD_n set re-packed (-1: 0);
-  // with textures.enabled, the set the atlas replaces.
-  int texcoord_set = -1;
+  // How the atlas is written into a glTF input (write_atlas_with_textures):
+  // gltf.texcoord_set is also, with options.pack_only, the TEXCOORD_n set
+  // re-packed (-1: 0), and with textures.enabled the set the atlas replaces.
+  GltfWriteOptions gltf;
   // Where the atlas will be written, when known: a request that cannot be
   // written there is refused before any work.
   std::string output;

@@ -78,6 +78,10 @@ from ._intrinsic import (  # noqa: F401  (re-exported)
     write_mesh,
 )
 
+# atlas(): one keyword per option of the library's atlas option table,
+# generated from it (scripts/generate_option_code.py).
+from ._atlas_keywords import atlas
+
 __version__ = _intrinsic.__version__
 
 _ERRORS = (
@@ -197,98 +201,3 @@ def optimize_boundary(V: Any, F: Any = None, energy: Union[str, BoundaryEnergy] 
     ``result.report["boundary_optimization"]`` holds the energy history.
     """
     return parameterize(V, F, optimize_boundary=energy, **options)
-
-
-def atlas(
-    V: Any,
-    F: Any = None,
-    *,
-    padding: Optional[float] = None,
-    resolution: Optional[int] = None,
-    max_normal_deviation: Optional[float] = None,
-    min_chart_faces: Optional[int] = None,
-    max_stretch: Optional[float] = None,
-    max_face_stretch: Optional[float] = None,
-    hard_angle: Optional[float] = None,
-    isometric_iterations: Optional[int] = None,
-    max_charts: Optional[int] = None,
-    weld: Optional[float] = None,
-    reorient: Optional[bool] = None,
-    atlas_stretch_budget: Optional[bool] = None,
-    seams: Any = None,
-    face_groups: Any = None,
-    scope: Union[None, str, AtlasScope] = None,
-    boundary: Union[None, str, BoundaryShape] = None,
-    method: Union[None, str, Method] = None,
-    lambda_: Optional[float] = None,
-    mu: Optional[float] = None,
-    optimize_lambda: Union[None, str, LambdaEnergy] = None,
-    optimize_boundary: Union[None, str, BoundaryEnergy] = None,
-    max_vertices: Optional[int] = None,
-    uv_set: Optional[int] = None,
-    replace_used_set: Optional[bool] = None,
-    transfer_textures: Optional[bool] = None,
-    texture_size: Optional[int] = None,
-    texture_padding: Optional[int] = None,
-    instances: Union[None, str, InstanceMode] = None,
-    texels_per_unit: Optional[float] = None,
-    max_pages: Optional[int] = None,
-    allow_missing_images: Optional[bool] = None,
-    pack_only: Optional[bool] = None,
-    keep_overlaps: Optional[bool] = None,
-    uv: Any = None,
-    uv_index: Any = None,
-) -> Atlas:
-    """`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or a mesh file (atlas(path)).
-
-    Any triangle mesh (closed, higher genus, several components, non-manifold bits, zero-area faces) is
-    cut into disk charts, each flattened by the paper's natural conformal map, and packed into [0,1]^2
-    with `padding` texels (of a `resolution`-wide texture) between charts, without flipped or
-    overlapping triangles. Returns an Atlas: uv (k x 2), uv_index (#F x 3, per face corner a row of
-    uv), face_chart (#F, -1 for degenerate faces), V, F (the input, unchanged) and report (the
-    command line's report as a dict). write_atlas(path, atlas) writes the command line's .obj or .glb.
-    As on the command line (an option left out takes the library's default, as `intrinsic atlas`
-    prints with --help): each chart is split while 5% of its surface is stretched or shrunk by more
-    than `max_stretch` (per face max(s1, 1/s2)) or any face by more than `max_face_stretch`, and
-    neighbours are merged within both; `hard_angle` (degrees, 0: none) makes sharper edges seams;
-    `isometric_iterations` refines each natural map toward an isometry; `max_charts` (0: no limit)
-    merges further; `weld` merges vertices closer than that fraction of the bounding box diagonal
-    for the computation only; `seams`, a seams file's path or k x 2 vertex indices, cuts exactly
-    those edges; `reorient=False` keeps the winding of faces listed against their piece (cut there)
-    instead of writing them reversed; `atlas_stretch_budget=False` keeps every chart within
-    `max_stretch` (`--per-chart-stretch`). `face_groups` (#F ints, -1: none) keeps faces of one
-    group in one chart, e.g. the triangles of each polygon of a host that stores one UV per polygon
-    corner; the report's "split_groups" counts groups that could not be kept whole. `scope="per-mesh"`
-    (`--atlas per-mesh`) gives each glTF mesh or OBJ object its own atlas in [0,1]^2.
-    Each chart's map: the natural conformal map by default; `boundary="circle"` or `"square"` fixes
-    the chart's boundary, with `method`/`lambda_`/`mu` weights and optionally `optimize_lambda`
-    ("edge" | "area") or `optimize_boundary` ("edge" | "area" | "dirichlet"), as `parameterize`.
-    How write_atlas writes it: `uv_set` (glTF input: the TEXCOORD_n the atlas goes to, `--uv-set`),
-    `replace_used_set`, and `transfer_textures=True` (`--transfer-textures`, docs/textures.md): the
-    textures reading the replaced set are baked into the new layout, `texture_size` texels a side
-    (0: each source's density), `texture_padding` texels of dilation; `allow_missing_images=True`
-    writes even when an image or material file the input names is missing (`--allow-missing-images`).
-    `texels_per_unit` (`--texels-per-unit`, lightmaps): every chart at that many texels per unit of
-    surface length on pages of `resolution` texels (UDIM: page k at u in [k, k+1]), at most
-    `max_pages` (0: no limit); the report lists "pages", "page_utilization" and "chart_page".
-    `pack_only=True` (`--pack-only`) re-packs the input's own UVs (charts kept, quarter turns, one
-    scale): a file's, or with arrays `uv` (k x 2) and `uv_index` (#F x 3 rows of uv, as an Atlas
-    gives them); `keep_overlaps=True` leaves input charts that overlap each other on each other.
-    `instances` (`--instances`): "shared" (default) charts a mesh several nodes draw once, "unique"
-    gives each instance its own charts (docs/formats.md "Instances").
-    Raises UsageError for bad options and InputError for unreadable or invalid input.
-    """
-    given = dict(padding=padding, resolution=resolution, max_normal_deviation=max_normal_deviation,
-                 min_chart_faces=min_chart_faces, max_stretch=max_stretch, max_face_stretch=max_face_stretch,
-                 hard_angle=hard_angle, isometric_iterations=isometric_iterations, max_charts=max_charts,
-                 weld=weld, reorient=reorient, atlas_stretch_budget=atlas_stretch_budget, seams=seams,
-                 face_groups=face_groups, scope=scope,
-                 boundary=boundary, method=method, optimize_lambda=optimize_lambda,
-                 optimize_boundary=optimize_boundary, max_vertices=max_vertices, mu=mu, uv_set=uv_set,
-                 replace_used_set=replace_used_set, transfer_textures=transfer_textures,
-                 texture_size=texture_size, texture_padding=texture_padding, instances=instances,
-                 allow_missing_images=allow_missing_images, texels_per_unit=texels_per_unit,
-                 max_pages=max_pages, pack_only=pack_only, keep_overlaps=keep_overlaps, uv=uv,
-                 uv_index=uv_index)
-    given["lambda"] = lambda_
-    return _intrinsic.atlas(V, F, **{k: v for k, v in given.items() if v is not None})

@@ -203,27 +203,39 @@ def make_parser() -> argparse.ArgumentParser:
     g.add_argument("--max-residual", type=float, default=S)
     g.add_argument("--max-vertices", type=int, default=S)
     g.add_argument("--binary", action="store_true", help="binary little-endian PLY output")
-    t = p.add_argument_group("atlas options (as `intrinsic atlas`)")
-    t.add_argument("--padding", type=float, default=S)
-    t.add_argument("--resolution", type=int, default=S)
-    t.add_argument("--max-normal-deviation", type=float, default=S)
-    t.add_argument("--min-chart-faces", type=int, default=S)
-    t.add_argument("--max-stretch", type=float, default=S)
-    t.add_argument("--max-face-stretch", type=float, default=S)
-    t.add_argument("--hard-angle", type=float, default=S)
-    t.add_argument("--isometric-iterations", type=int, default=S)
-    t.add_argument("--max-charts", type=int, default=S)
-    t.add_argument("--weld", type=float, default=S)
-    t.add_argument("--keep-winding", dest="reorient", action="store_false", default=S)
-    t.add_argument("--per-chart-stretch", dest="atlas_stretch_budget", action="store_false", default=S)
+    p.atlas_only = add_atlas_options(p.add_argument_group("atlas options (as `intrinsic atlas`)"), S)
     return p
 
 
 BATCH_KEYS = {"input_dir", "output_dir", "command", "scheduler", "workers", "format", "force", "quiet", "binary"}
-ATLAS_KEYS = {"padding", "resolution", "max_normal_deviation", "min_chart_faces", "max_stretch", "max_face_stretch",
-              "hard_angle", "isometric_iterations", "max_charts", "weld",
-              "reorient", "atlas_stretch_budget",
-              "max_vertices"}
+def atlas_table() -> List[Dict[str, Any]]:
+    """The library's atlas options (intrinsic.atlas_option_table) that apply to a batch: all but seams,
+    which name the edges of one mesh."""
+    from intrinsic import _intrinsic
+    return [o for o in _intrinsic.atlas_option_table() if o["key"] != "seams"]
+
+
+def add_atlas_options(group, suppress) -> set:
+    """One flag per atlas option, as the library declares it, except those `param` shares (--method,
+    --boundary, ...), which the param group registered already. Returns the keys added: the options
+    only --command atlas takes."""
+    added = set()
+    for o in atlas_table():
+        kw: Dict[str, Any] = {"dest": o["key"], "default": suppress, "help": o["help"].replace("%", "%%")}
+        if o["type"] == "bool":
+            kw["action"] = "store_false" if o["flag_negates"] else "store_true"
+        elif o["type"] == "int":
+            kw["type"] = int
+        elif o["type"] == "float":
+            kw["type"] = float
+        elif o["type"] == "choice":
+            kw["choices"] = o["choices"]
+        try:
+            group.add_argument(o["flag"], **kw)
+            added.add(o["key"])
+        except argparse.ArgumentError:  # a flag of the param group
+            pass
+    return added
 
 # A small disk (hexagon fan around one interior vertex): the options are tried on
 # it first, so a usage error (--lambda without --method mixed, an unknown value)
@@ -237,8 +249,9 @@ def check_options(parser: argparse.ArgumentParser, command: str, options: Dict[s
     import numpy as np
 
     import intrinsic
+    atlas_keys = {o["key"] for o in atlas_table()}
     for key in options:
-        if (key in ATLAS_KEYS) != (command == "atlas") and key != "max_vertices":
+        if (key in parser.atlas_only and command != "atlas") or (key not in atlas_keys and command == "atlas"):
             parser.error(f"--{key.replace('_', '-')} does not apply to --command {command}")
     solve = intrinsic.atlas if command == "atlas" else intrinsic.parameterize
     try:

@@ -3,6 +3,7 @@
 // the same OBJ bytes.
 #include "common.h"
 #include "intrinsic/atlas_files.h"
+#include "intrinsic/atlas_option_table.h"
 #include "intrinsic/error.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"
@@ -42,29 +43,6 @@ std::vector<SeamEdge> to_seams(const py::handle& obj) {
   return seams;
 }
 
-// The chart map as parameterize() spells it: boundary natural|circle|square,
-// method/lambda/mu (fixed boundaries only), optimize_lambda or optimize_boundary.
-void set_chart_map(ChartMapOptions& m, py::dict& o) {
-  const auto given = [&](const char* key) { return o.contains(key) && !o[key].is_none(); };
-  const py::object boundary = o.attr("pop")("boundary", py::none());
-  if (!boundary.is_none()) m.boundary = to_choice<BoundaryShape>(boundary, "boundary");
-  if (m.boundary == BoundaryShape::Natural &&
-      ((given("method") && to_choice<Method>(o["method"], "method") != Method::Conformal) || given("lambda") ||
-       given("lambda_") || given("lam") || given("mu")))
-    throw_usage("method applies to fixed chart boundaries: add boundary='circle' or 'square'");
-  m.weights = pop_weights(o);
-  const py::object lambda = o.attr("pop")("optimize_lambda", py::none());
-  const py::object energy = o.attr("pop")("optimize_boundary", py::none());
-  if (!lambda.is_none() && !energy.is_none()) throw_usage("optimize_lambda and optimize_boundary: choose one");
-  if (!lambda.is_none()) {
-    m.optimizer = ChartOptimizer::OptimalLambda;
-    m.lambda_energy = to_choice<LambdaEnergy>(lambda, "optimize_lambda");
-  } else if (!energy.is_none()) {
-    m.optimizer = ChartOptimizer::OptimizeBoundary;
-    m.boundary_energy = to_choice<BoundaryEnergy>(energy, "optimize_boundary");
-  }
-}
-
 // face_groups: one int per face (e.g. its polygon), -1 for none; the
 // length and values are checked by atlas() itself.
 std::vector<int> to_face_groups(const py::handle& obj) {
@@ -73,60 +51,35 @@ std::vector<int> to_face_groups(const py::handle& obj) {
   return std::vector<int>(a.data(), a.data() + a.shape(0));
 }
 
-// Range checks are atlas()'s own (Error(Usage)), as for the command line.
-AtlasOptions atlas_options(const py::kwargs& kwargs, ReadOptions& read, SeamsArg& seams, UvArgs& uvs,
-                           AtlasOutput& out) {
-  AtlasOptions o;
-  // The chart map first, spelled as parameterize()'s options.
-  py::dict rest = py::dict(kwargs).attr("copy")();
-  set_chart_map(o.charts.chart_map, rest);
-  for (const auto& [key, value] : rest) {
+// The keywords: the arrays (uv, uv_index, face_groups, seams as vertex
+// pairs) are data; every other keyword is an option of the library's table
+// (atlas_option_table.h), which checks it and makes the request. None
+// leaves an option at its default.
+AtlasRequest atlas_request_of(const py::kwargs& kwargs, SeamsArg& seams, UvArgs& uvs, py::object& face_groups) {
+  GivenOptions given;
+  for (const auto& [key, value] : kwargs) {
     const std::string k = py::str(key);
-    if (k == "padding") o.pack.padding = value.cast<double>();
-    else if (k == "resolution") o.pack.resolution = value.cast<int>();
-    else if (k == "texels_per_unit") o.pack.texels_per_unit = value.cast<double>();
-    else if (k == "max_pages") o.pack.max_pages = value.cast<int>();
-    else if (k == "pack_only") o.pack_only = value.cast<bool>();
-    else if (k == "keep_overlaps") o.keep_overlaps = value.cast<bool>();
-    else if (k == "uv") uvs.uv = py::reinterpret_borrow<py::object>(value);
+    if (k == "uv") uvs.uv = py::reinterpret_borrow<py::object>(value);
     else if (k == "uv_index") uvs.uv_index = py::reinterpret_borrow<py::object>(value);
-    else if (k == "max_normal_deviation") o.charts.max_normal_deviation_deg = value.cast<double>();
-    else if (k == "min_chart_faces") o.charts.min_chart_faces = value.cast<int>();
-    else if (k == "max_stretch") o.charts.max_stretch = value.cast<double>();
-    else if (k == "max_charts") o.charts.max_charts = value.cast<int>();
-    else if (k == "hard_angle") o.charts.hard_angle_deg = value.cast<double>();
-    else if (k == "max_face_stretch") o.charts.max_face_stretch = value.cast<double>();
-    else if (k == "isometric_iterations") o.charts.chart_map.isometric_iterations = value.cast<int>();
-    else if (k == "weld") o.charts.weld = value.cast<double>();
-    else if (k == "reorient") o.charts.reorient = value.cast<bool>();
-    else if (k == "atlas_stretch_budget") o.charts.atlas_stretch_budget = value.cast<bool>();
+    else if (k == "face_groups") face_groups = py::reinterpret_borrow<py::object>(value);
     else if (k == "seams") seams.value = py::reinterpret_borrow<py::object>(value);
-    else if (k == "face_groups") o.charts.face_group = to_face_groups(value);
-    else if (k == "scope") o.scope = to_choice<AtlasScope>(value, "scope");
-    else if (k == "max_vertices") read.max_vertices = value.cast<std::int64_t>();
-    else if (k == "instances") read.instances = to_choice<InstanceMode>(value, "instances");
-    else if (k == "allow_missing_images") out.gltf.allow_missing_images = value.cast<bool>();
-    else if (k == "uv_set") out.gltf.texcoord_set = value.is_none() ? -1 : value.cast<int>();
-    else if (k == "replace_used_set") out.gltf.replace_used_set = value.cast<bool>();
-    else if (k == "transfer_textures") out.textures.enabled = value.cast<bool>();
-    else if (k == "texture_size") out.textures.size = value.cast<int>();
-    else if (k == "texture_padding") out.textures.padding = value.cast<int>();
-    else throw_usage("unknown option '" + k + "'");
+    else if (!value.is_none()) given.emplace_back(k, to_option_value(atlas_option_table(), k, value));
   }
-  if (!seams.value.is_none() && !seams.is_path()) o.charts.seams = to_seams(seams.value);
-  return o;
+  if (seams.is_path()) given.emplace_back("seams", OptionValue(to_path(seams.value)));
+  AtlasRequest request = atlas_request(given, OptionSpelling::Keyword);
+  if (!seams.value.is_none() && !seams.is_path()) request.options.charts.seams = to_seams(seams.value);
+  if (!face_groups.is_none()) request.options.charts.face_group = to_face_groups(face_groups);
+  return request;
 }
 
 AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs& kwargs) {
-  AtlasRequest request;
   SeamsArg seams;
   UvArgs uvs;
+  py::object face_groups = py::none();
   AtlasOutput out;
-  request.options = atlas_options(kwargs, request.read, seams, uvs, out);
-  request.textures = out.textures;
-  request.texcoord_set = out.gltf.texcoord_set;
-  request.read.max_faces = faces_for_vertices(request.read.max_vertices);
-  if (seams.is_path()) request.seams_file = to_path(seams.value);
+  const AtlasRequest request = atlas_request_of(kwargs, seams, uvs, face_groups);
+  out.gltf = request.gltf;
+  out.textures = request.textures;
   const bool from_file = F.is_none();
   const std::string path = from_file ? to_path(V) : "";
   MeshData data;
@@ -181,18 +134,18 @@ void register_atlas(py::module_& m) {
                std::to_string(static_cast<int>(100 * a.result.utilization + 0.5)) + "%>";
       });
   m.def("atlas", &run_atlas, py::arg("V"), py::arg("F") = py::none(),
-        "atlas(V, F=None, *, padding=2, resolution=1024, max_normal_deviation=60, min_chart_faces=20,\n"
-        "      max_stretch=1.08, max_face_stretch=2, hard_angle=0, isometric_iterations=10, max_charts=0, weld=1e-7, reorient=True, atlas_stretch_budget=True, seams=None, face_groups=None, scope=\"whole\",\n"
-        "      boundary='natural', method='conformal', lambda_=None, mu=None, optimize_lambda=None,\n"
-        "      optimize_boundary=None, max_vertices=50000000, uv_set=None, replace_used_set=False,\n"
-        "      transfer_textures=False, texture_size=2048, texture_padding=4, instances='shared',\n"
-        "      allow_missing_images=False) -> Atlas\n\n"
-        "`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or on a mesh file (atlas(path)):\n"
-        "any triangle mesh (closed, higher genus, several components, non-manifold bits) cut into disk\n"
-        "charts, each flattened by the natural conformal map, packed into [0,1]^2 without flips or\n"
-        "overlaps. Options as the command line's; seams is a seams file's path or k x 2 vertex\n"
-        "indices (edges to cut). The GIL is released while it runs. Raises\n"
-        "UsageError / InputError as the command line exits 1 / 2.");
+        "atlas(V, F=None, **options) -> Atlas\n\n"
+        "`intrinsic atlas` on arrays (V n x 3 float64, F m x 3 int32) or on a mesh file (atlas(path)).\n"
+        "options: the keywords of atlas_option_table() (intrinsic.atlas lists them with their\n"
+        "defaults), and the arrays seams (k x 2 vertex indices, or a seams file's path), face_groups,\n"
+        "uv and uv_index. The GIL is released while it runs. Raises UsageError / InputError as the\n"
+        "command line exits 1 / 2.");
+  m.def("atlas_option_table", [] { return table_to_python(atlas_option_table()); },
+        "atlas_option_table() -> list of dict\n\n"
+        "The atlas job's options as the library declares them, in --help's order: per option its\n"
+        "key (the keyword), flag (the command line's), flag_negates, aliases, type (bool, int,\n"
+        "float, choice, path), group, help, min and max (None: no bound), choices and default (None:\n"
+        "unset unless given).");
   m.def(
       "write_atlas",
       [](const py::object& path, const AtlasOutput& a) -> py::object {

@@ -17,6 +17,7 @@
 #include "intrinsic/boundary_editor.h"
 #include "intrinsic/intrinsic.h"
 #include "intrinsic/pictures.h"
+#include "intrinsic/option_table.h"
 #include "intrinsic/pipeline.h"
 
 namespace intrinsic::python {
@@ -46,6 +47,15 @@ std::vector<FixedVertex> to_fixed(const py::handle& obj, const char* name);
 py::list from_fixed(const std::vector<FixedVertex>& fixed);
 // A JSON document as Python objects (through the json module: exact numbers).
 py::object to_python(const nlohmann::json& j);
+
+// A keyword's value as the option `key` of `table` takes it (a Choice as
+// its name or the bound enum value, a Path as str or os.PathLike);
+// Error(Usage) for an unknown key or a value of another type.
+OptionValue to_option_value(const std::vector<OptionSpec>& table, const std::string& key, const py::handle& value);
+// A table as Python data: one dict per option (key, flag, flag_negates,
+// aliases, type, group, help, min, max, choices, default), for the wrapper's
+// signature, the batch runner's flags and the add-on's properties.
+py::list table_to_python(const std::vector<OptionSpec>& table);
 
 // A choice keyword: a name (the table's parse, `keyword` in the message) or
 // the bound enum value (intrinsic.Method.CONFORMAL).

@@ -1,9 +1,11 @@
 // Python keyword options -> the library's typed requests (pipeline.h):
-// parameterize(V, F, **options) and Parameterizer(...) fill a ParamRequest,
-// atlas() an AtlasRequest's chart map. Choices go through the name tables
+// parameterize(V, F, **options) and Parameterizer(...) fill a ParamRequest;
+// atlas()'s keywords are values for the library's option table
+// (to_option_value, atlas_option_table.h). Choices go through the name tables
 // (intrinsic/choice.h) with the keyword as the label, so a bad value reads
 // "method: 'foo' is not one of conformal, ...", and the library's own checks
 // name keywords (OptionSpelling::Keyword), never command-line flags.
+#include <cmath>
 #include <iostream>
 
 #include "common.h"
@@ -147,6 +149,77 @@ ParamRequest to_request(const py::dict& options, bool optimizers) {
   check_no_options_left(o);
   check_param_request(r);
   return r;
+}
+
+}  // namespace intrinsic::python
+
+namespace intrinsic::python {
+namespace {
+
+const char* type_word(OptionType t) {
+  switch (t) {
+    case OptionType::Bool: return "bool";
+    case OptionType::Int: return "int";
+    case OptionType::Real: return "float";
+    case OptionType::Choice: return "choice";
+    case OptionType::Path: return "path";
+  }
+  return "?";
+}
+
+py::object value_to_python(const OptionValue& v) {
+  if (const bool* b = std::get_if<bool>(&v)) return py::bool_(*b);
+  if (const std::int64_t* i = std::get_if<std::int64_t>(&v)) return py::int_(*i);
+  if (const double* d = std::get_if<double>(&v)) return py::float_(*d);
+  return py::str(std::get<std::string>(v));
+}
+
+py::object bound_to_python(double x) { return std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::none()); }
+
+}  // namespace
+
+OptionValue to_option_value(const std::vector<OptionSpec>& table, const std::string& key, const py::handle& value) {
+  const OptionSpec* s = find_option(table, key);
+  if (!s) throw_usage("unknown option '" + key + "'");
+  try {
+    switch (s->type) {
+      case OptionType::Bool: return value.cast<bool>();
+      case OptionType::Int:
+        if (py::isinstance<py::bool_>(value)) break;
+        return value.cast<std::int64_t>();
+      case OptionType::Real:
+        if (py::isinstance<py::bool_>(value)) break;
+        return value.cast<double>();
+      case OptionType::Choice:
+        // An enum value (intrinsic.AtlasScope.PER_MESH) gives its name.
+        if (!py::isinstance<py::str>(value) && py::hasattr(value, "option")) return value.attr("option").cast<std::string>();
+        return value.cast<std::string>();
+      case OptionType::Path: return to_path(value);
+    }
+  } catch (const py::cast_error&) {
+  }
+  throw_usage(key + ": expected " + (s->type == OptionType::Choice ? "one of its names" : type_word(s->type)) +
+              ", got " + py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+}
+
+py::list table_to_python(const std::vector<OptionSpec>& table) {
+  py::list out;
+  for (const OptionSpec& s : table) {
+    py::dict d;
+    d["key"] = s.key;
+    d["flag"] = s.flag;
+    d["flag_negates"] = s.flag_negates;
+    d["aliases"] = s.aliases;
+    d["type"] = type_word(s.type);
+    d["group"] = s.group;
+    d["help"] = s.help;
+    d["min"] = bound_to_python(s.min);
+    d["max"] = bound_to_python(s.max);
+    d["choices"] = s.choices;
+    d["default"] = s.default_value ? value_to_python(*s.default_value) : py::object(py::none());
+    out.append(d);
+  }
+  return out;
 }
 
 }  // namespace intrinsic::python

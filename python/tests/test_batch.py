@@ -152,7 +152,9 @@ def test_atlas_batch_glb_with_chart_options(folder, tmp_path):
 
 
 @pytest.mark.parametrize("args,needle", [
-    (["--command", "atlas", "--method", "authalic"], "--method does not apply to --command atlas"),
+    (["--command", "atlas", "--spacing", "uniform"], "--spacing does not apply to --command atlas"),
+    # atlas takes the chart map's options as intrinsic atlas does, checked by the library
+    (["--command", "atlas", "--method", "authalic"], "method applies to fixed chart boundaries"),
     (["--padding", "3"], "--padding does not apply to --command param"),
     (["--command", "atlas", "--format", "ply"], "atlas writes .obj"),
     (["--no-such-option"], "unrecognized arguments"),

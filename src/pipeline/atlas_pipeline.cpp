@@ -19,7 +19,7 @@ AtlasOutcome run(MeshData data, const AtlasRequest& request, Clock::time_point t
   out.options = request.options;
   if (!request.seams_file.empty()) out.options.charts.seams = read_seams_file(request.seams_file, out.data);
   if (out.options.pack_only && out.data.gltf)
-    read_gltf_texcoords(out.data, request.texcoord_set < 0 ? 0 : request.texcoord_set);
+    read_gltf_texcoords(out.data, request.gltf.texcoord_set < 0 ? 0 : request.gltf.texcoord_set);
   out.read_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   out.result = atlas(out.data, out.options);
   return out;
@@ -31,7 +31,7 @@ AtlasOutcome atlas_file(const std::string& path, const AtlasRequest& request) {
   if (request.textures.enabled) check_texture_transfer(request.textures);
   const std::string ext = mesh_extension(path);
   check_texture_transfer_input(request.textures, ext == ".gltf" || ext == ".glb", request.output,
-                               request.texcoord_set);
+                               request.gltf.texcoord_set);
   const auto t0 = Clock::now();
   return run(read_mesh(path, request.read), request, t0);
 }

@@ -1,0 +1,64 @@
+// The declaration of a job's options as every shell spells them: the command
+// line's flag, Python's keyword and the report's key, the type, the accepted
+// range, the default and one help text. Each job declares its options once,
+// in one table (atlas_option_table.h); the CLI registers its flags from it,
+// the Python module its keywords, the .pyi and the batch runner their
+// signatures and the Blender add-on its properties, so a new option is
+// written once (docs/layout.md "Options").
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "intrinsic/choice.h"
+
+namespace intrinsic {
+
+enum class OptionType { Bool, Int, Real, Choice, Path };
+
+// A value as a shell gives it: a Choice as its name, a Path as text.
+using OptionValue = std::variant<bool, std::int64_t, double, std::string>;
+
+struct OptionSpec {
+  std::string key;                   // Python keyword and report key ("max_stretch")
+  std::string flag;                  // the command line's flag ("--max-stretch")
+  bool flag_negates = false;         // the flag sets the key false ("--keep-winding" for reorient)
+  std::vector<std::string> aliases;  // other keywords Python takes ("lambda_" for "lambda")
+  OptionType type = OptionType::Real;
+  std::string group;                 // where --help lists it ("Packing", ...)
+  std::string help;
+  double min = -std::numeric_limits<double>::infinity();  // Int and Real: the accepted range
+  double max = std::numeric_limits<double>::infinity();
+  std::vector<std::string> choices;  // Choice: the names
+  std::optional<OptionValue> default_value;  // none: unset unless given
+};
+
+// The options a user gave, by key, in the order given.
+using GivenOptions = std::vector<std::pair<std::string, OptionValue>>;
+
+// How a spec's option is named in `spelling` (its flag, or its key).
+inline const std::string& option_name(const OptionSpec& spec, OptionSpelling spelling) {
+  return spelling == OptionSpelling::Flag ? spec.flag : spec.key;
+}
+
+// `value` as `spec`'s type: an Int where a Real is expected is taken as a
+// number; anything else of the wrong type, a number outside [min, max] or a
+// name outside the choices is Error(Usage) naming the option as `spelling`
+// spells it.
+OptionValue checked_option_value(const OptionSpec& spec, const OptionValue& value, OptionSpelling spelling);
+
+// Whether `key` is the spec's key or one of its aliases.
+bool option_matches(const OptionSpec& spec, const std::string& key);
+
+// The spec whose key or alias is `key`, or null.
+const OptionSpec* find_option(const std::vector<OptionSpec>& table, const std::string& key);
+
+// A value as text, as --help shows a default ("2", "1.08", "true", "whole").
+std::string option_value_text(const OptionValue& value);
+
+}  // namespace intrinsic
