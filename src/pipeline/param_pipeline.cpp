@@ -167,22 +167,6 @@ void check_param_request(const ParamRequest& r) {
     throw_usage(label("iterations") + ": must be >= 0, got " + std::to_string(r.boundary_optimization.max_iterations));
 }
 
-WeightOptions weight_options(Method method, std::optional<double> lambda, std::optional<double> mu,
-                             OptionSpelling spelling) {
-  const auto label = [&](std::string_view key) { return option_label(key, spelling); };
-  WeightOptions w;
-  w.method = method;
-  if ((lambda || mu) && method != Method::Mixed)
-    throw_usage(label("lambda") + " and " + label("mu") + " apply to " + label("method") + " mixed only");
-  if (method == Method::Mixed) {
-    if (!lambda && !mu) throw_usage(label("method") + " mixed needs " + label("lambda") + " and/or " + label("mu"));
-    w.lambda = lambda.value_or(0.0);
-    w.mu = mu.value_or(0.0);
-    if (w.lambda == 0 && w.mu == 0) throw_usage(label("lambda") + " and " + label("mu") + " cannot both be zero");
-  }
-  return w;
-}
-
 ParamOutcome parameterize_file(const std::string& path, const ParamRequest& request) {
   check_param_request(request);
   const auto t0 = Clock::now();

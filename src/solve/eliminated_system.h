@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "weights/assemble.h"
+#include "solve/partition.h"
 #include "solve/linear_solver.h"
 
 namespace intrinsic::detail {

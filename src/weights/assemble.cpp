@@ -1,7 +1,5 @@
-// Assembly of the weight matrix from per-face contributions, and the split
-// that eliminates fixed vertices (docs/maths.md §2.3: boundary rows are moved to
-// the right-hand side rather than kept as identity rows, so the conformal
-// block stays symmetric).
+// Assembly of the weight matrix from per-face contributions (its split into
+// free and fixed blocks is solve/partition.h).
 //
 // Both go straight into compressed column storage: the pattern of K is the
 // vertex adjacency plus the diagonal, built from the faces by a counting
@@ -15,22 +13,11 @@
 
 #include "util/parallel_for.h"
 #include "util/vertex_adjacency.h"
+#include "solve/partition.h"
 #include "weights/assemble_stages.h"
 
 namespace intrinsic {
 namespace {
-
-// Compressed-column matrix from its three arrays.
-SparseMatrix make_csc(int rows, int cols, const std::vector<int>& begin, std::vector<int>&& index,
-                      std::vector<double>&& value) {
-  SparseMatrix M(rows, cols);
-  const int nnz = begin[cols];
-  M.resizeNonZeros(nnz);
-  std::copy(begin.begin(), begin.end(), M.outerIndexPtr());
-  std::copy(index.begin(), index.begin() + nnz, M.innerIndexPtr());
-  std::copy(value.begin(), value.begin() + nnz, M.valuePtr());
-  return M;
-}
 
 // Adds the contributions of faces [f0, f1) to the values of K (pattern in
 // begin/row, diagonal positions in diag).
@@ -103,52 +90,5 @@ void assemble_weight_values(const MatrixX3d& V, const MatrixX3i& F, const Weight
 }
 
 }  // namespace detail
-
-Partition partition(int num_vertices, const std::vector<char>& is_fixed, const std::vector<char>& is_used) {
-  Partition p;
-  p.free_index.assign(num_vertices, -1);
-  p.fixed_index.assign(num_vertices, -1);
-  for (int v = 0; v < num_vertices; ++v) {
-    if (!is_used[v]) continue;
-    if (is_fixed[v]) {
-      p.fixed_index[v] = static_cast<int>(p.fixed_vertices.size());
-      p.fixed_vertices.push_back(v);
-    } else {
-      p.free_index[v] = static_cast<int>(p.free_vertices.size());
-      p.free_vertices.push_back(v);
-    }
-  }
-  return p;
-}
-
-void split_matrix(const SparseMatrix& K, const Partition& p, SparseMatrix& K_II, SparseMatrix& K_IB) {
-  // Free and fixed indices increase with the vertex index, so each column's
-  // rows stay sorted when copied in order.
-  const int nf = static_cast<int>(p.free_vertices.size()), nb = static_cast<int>(p.fixed_vertices.size());
-  auto extract = [&](const std::vector<int>& columns, SparseMatrix& out) {
-    const int cols = static_cast<int>(columns.size());
-    std::vector<int> begin(cols + 1, 0);
-    for (int c = 0; c < cols; ++c) {
-      int count = 0;
-      for (SparseMatrix::InnerIterator it(K, columns[c]); it; ++it) count += p.free_index[it.row()] >= 0;
-      begin[c + 1] = begin[c] + count;
-    }
-    std::vector<int> row(begin[cols]);
-    std::vector<double> value(begin[cols]);
-    for (int c = 0; c < cols; ++c) {
-      int k = begin[c];
-      for (SparseMatrix::InnerIterator it(K, columns[c]); it; ++it) {
-        const int r = p.free_index[it.row()];
-        if (r < 0) continue;
-        row[k] = r;
-        value[k++] = it.value();
-      }
-    }
-    out = make_csc(nf, cols, begin, std::move(row), std::move(value));
-  };
-  extract(p.free_vertices, K_II);
-  extract(p.fixed_vertices, K_IB);
-  (void)nb;
-}
 
 }  // namespace intrinsic

@@ -1,5 +1,7 @@
-// Pins written as text, "VERTEX:U,V" (`--pin 12:0.5,0` on the command line,
-// pins=["12:0.5,0"] in Python and in batch runs): pipeline.h parse_pin.
+// The request pieces that every shell writes as text or loose values
+// (pipeline.h): pins as "VERTEX:U,V" (`--pin 12:0.5,0` on the command line,
+// pins=["12:0.5,0"] in Python and in batch runs), and the weight blend from
+// a method and the lambda and mu a user gave.
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -31,6 +33,22 @@ FixedVertex parse_pin(const std::string& text, OptionSpelling spelling) {
   };
   if (!number(colon + 1, comma, p.uv.x()) || !number(comma + 1, text.size(), p.uv.y())) return bad();
   return p;
+}
+
+WeightOptions weight_options(Method method, std::optional<double> lambda, std::optional<double> mu,
+                             OptionSpelling spelling) {
+  const auto label = [&](std::string_view key) { return option_label(key, spelling); };
+  WeightOptions w;
+  w.method = method;
+  if ((lambda || mu) && method != Method::Mixed)
+    throw_usage(label("lambda") + " and " + label("mu") + " apply to " + label("method") + " mixed only");
+  if (method == Method::Mixed) {
+    if (!lambda && !mu) throw_usage(label("method") + " mixed needs " + label("lambda") + " and/or " + label("mu"));
+    w.lambda = lambda.value_or(0.0);
+    w.mu = mu.value_or(0.0);
+    if (w.lambda == 0 && w.mu == 0) throw_usage(label("lambda") + " and " + label("mu") + " cannot both be zero");
+  }
+  return w;
 }
 
 }  // namespace intrinsic
