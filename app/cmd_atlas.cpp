@@ -4,6 +4,7 @@
 // UV and faces `f v/vt` (seams only through the per-corner texture
 // coordinates), and the report.
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "intrinsic/atlas_files.h"
@@ -36,8 +37,8 @@ int run_atlas(const AtlasArgs& a) {
   const auto t1 = std::chrono::steady_clock::now();
   const TextureTransferReport baked =
       write_atlas_with_textures(a.output, o.data, o.result, request.gltf, request.textures);
-  nlohmann::json j = atlas_report_json(o, a.output);
-  if (request.textures.enabled) j["textures"] = texture_transfer_json(baked);
+  nlohmann::json j = nlohmann::json::parse(atlas_report(o, a.output));
+  if (request.textures.enabled) j["textures"] = nlohmann::json::parse(texture_transfer_report(baked));
   // What writing added beside the output, or could not find (only when
   // there is any: the report is otherwise the library's, as Python gives it).
   if (!baked.files.empty()) j["files_beside"] = baked.files;

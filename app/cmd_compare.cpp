@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "intrinsic/error.h"
@@ -103,7 +104,7 @@ Panel compare_panel(const CompareArgs& a, const Mesh& mesh, const std::string& n
               fixed(d.angle_distortion.mean, 3) + "\nangle max " + fixed(d.angle_distortion.max, 2) + "\narea mean " +
               fixed(d.area_distortion.mean, 3) + "\n" + fixed(ms, 0) + " ms";
   p.figures = {{"method", name}, {"solver", solvers_name(r.solvers)}, {"time_ms", ms}};
-  add_distortion(p.figures, d);
+  p.figures.update(nlohmann::json::parse(distortion_report(d)));
   return p;
 }
 
@@ -134,7 +135,7 @@ int run_compare(const CompareArgs& a) {
   std::vector<std::pair<std::string, std::string>> files = {
       {a.output, encode_png(compose_panels(panels, captions, columns))}};
   if (!a.report.empty()) {
-    nlohmann::json report = mesh_json(mesh);
+    nlohmann::json report = nlohmann::json::parse(mesh_report(mesh));
     report["boundary"] = a.boundary;
     report["methods"] = results;
     report["timings_ms"] = {{"total", elapsed_ms(t0)}};

@@ -5,6 +5,7 @@
 // output i equals `intrinsic param --boundary BASE+MOVE_i`.
 #include <filesystem>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "intrinsic/boundary_editor.h"
@@ -112,15 +113,15 @@ struct EditTimes {
 // editor's figures and one entry per move.
 nlohmann::json edit_report(const EditArgs& a, const Mesh& mesh, const ParamResult& base, const Parameterizer& p,
                            const BoundaryEditor& editor, const nlohmann::json& updates, const EditTimes& t) {
-  nlohmann::json report = mesh_json(mesh);
+  nlohmann::json report = nlohmann::json::parse(mesh_report(mesh));
   report["command"] = "edit";
-  add_solution(report, base, a.boundary);
+  report.update(nlohmann::json::parse(solution_report(base, a.boundary)));
   report["boundary"] = a.boundary;
   report["basis"] = a.basis;
   report["responses"] = editor.responses();
   report["basis_bytes"] = editor.basis_bytes();
   report["factorizations"] = p.factorizations();
-  if (!a.constraints.empty()) report["constraints"] = constraints_json(p.residuals(editor.uv()));
+  if (!a.constraints.empty()) report["constraints"] = nlohmann::json::parse(constraints_report(p.residuals(editor.uv())));
   report["updates"] = updates;
   report["timings_ms"] = {{"read", t.read}, {"factor", t.factor}, {"precompute", editor.precompute_ms()}};
   return report;
@@ -168,7 +169,7 @@ int run_edit(const EditArgs& a) {
     if (!a.report.empty()) {
       nlohmann::json report = edit_report(a, mesh, base, parameterizer, editor, updates, times);
       report["timings_ms"]["total"] = elapsed_ms(t0);
-      write_report(a.report, report);
+      write_file_atomically(a.report, report.dump(2) + "\n");
     }
   } catch (...) {
     for (size_t i = 0; i < written; ++i) std::filesystem::remove(outputs[i]);  // no partial set of outputs

@@ -1,5 +1,6 @@
 // `intrinsic metrics`: the distortion report for any mesh that has UVs.
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "intrinsic/error.h"
@@ -18,7 +19,7 @@ constexpr int kSmallChartTexels = 16;
 // The mesh's topology (boundary loops, components) when the UV-indexed mesh
 // is a valid manifold mesh; otherwise (a triangle soup, a non-manifold or
 // degenerate face) the reason, and the atlas figures still follow.
-nlohmann::json mesh_report(const UvMesh& uv, const MeshData& data) {
+nlohmann::json uv_mesh_report(const UvMesh& uv, const MeshData& data) {
   MeshData by_tc;
   by_tc.V = uv.V;
   by_tc.F = uv.F;
@@ -29,7 +30,7 @@ nlohmann::json mesh_report(const UvMesh& uv, const MeshData& data) {
   nlohmann::json report;
   try {
     // Orientation is kept as listed so flipped triangles are reported, not repaired.
-    report = mesh_json(make_mesh(by_tc, vo));
+    report = nlohmann::json::parse(mesh_report(make_mesh(by_tc, vo)));
   } catch (const Error& e) {
     if (e.kind() != ErrorKind::Input) throw;
     report = {{"input", data.path}, {"faces", uv.F.rows()}, {"not_a_manifold_mesh", e.what()}};
@@ -69,21 +70,21 @@ void register_metrics(CLI::App& app, Runner& run) {
       const MeshData data = read_mesh(args->input, ro);
       // Distortion is per face, so the UV of a corner is what matters.
       const UvMesh uv = split_by_texcoord(data);
-      nlohmann::json report = mesh_report(uv, data);
+      nlohmann::json report = uv_mesh_report(uv, data);
       // Charts, flips per chart and overlaps work on any per-corner UVs,
       // soups and non-manifold meshes included.
       const UvAtlasMetrics atlas = uv_atlas_metrics(uv.V, uv.F, uv.UV);
-      report["atlas"] = atlas_metrics_json(atlas);
+      report["atlas"] = nlohmann::json::parse(atlas_metrics_report(atlas));
       report["atlas"]["seam_length"] = seam_length(uv);
       report["atlas"]["small_charts"] = small_charts(uv, atlas, args->resolution, kSmallChartTexels);
       report["atlas"]["small_chart_texels"] = kSmallChartTexels;
       report["atlas"]["resolution"] = args->resolution;
       const MatrixX2d unmirrored = unmirrored_uv(uv, atlas);
-      add_distortion(report, summarize_distortion(uv.V, uv.F, unmirrored));
-      report["stretch"] = stretch_json(summarize_stretch(uv.V, uv.F, unmirrored));
+      report.update(nlohmann::json::parse(distortion_report(summarize_distortion(uv.V, uv.F, unmirrored))));
+      report["stretch"] = nlohmann::json::parse(stretch_report(summarize_stretch(uv.V, uv.F, unmirrored)));
       report["timings_ms"] = {{"total", elapsed_ms(t0)}};
       if (args->report.empty()) std::cout << report.dump(2) << "\n";
-      else write_report(args->report, report);
+      else write_file_atomically(args->report, report.dump(2) + "\n");
       return 0;
     };
   });

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "choice_option.h"
 #include "command.h"
@@ -159,7 +160,7 @@ int run_param(const ParamArgs& a) {
     throw;
   }
   const double render_ms = elapsed_ms(t_pic);
-  nlohmann::json report = param_report_json(request, o, a.output);
+  nlohmann::json report = nlohmann::json::parse(param_report(request, o, a.output));
   report["timings_ms"]["render"] = render_ms;
   report["timings_ms"]["write"] = o.write_ms;
   report["timings_ms"]["total"] = elapsed_ms(t0);

@@ -1,5 +1,6 @@
 // `intrinsic render`: a picture of a mesh that already has UVs.
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "command.h"
 #include "intrinsic/error.h"
@@ -56,7 +57,7 @@ nlohmann::json render_report(const RenderArgs& a, PictureMode mode, const UvMesh
                    : mode == PictureMode::Angle ? "angle_distortion"
                                                 : "area_distortion";
     r["colour_range"] = {{"lo", p.range.lo}, {"hi", p.range.hi}, {"log", p.range.log_scale}};
-    r["values"] = stat_json(mode_stat(mode, d.summary));
+    r["values"] = nlohmann::json::parse(stat_report(mode_stat(mode, d.summary)));
     r["flipped_triangles"] = d.summary.flipped_triangles;
     r["collapsed_triangles"] = d.summary.collapsed_triangles;
   }

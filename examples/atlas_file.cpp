@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
 #include "intrinsic/pipeline.h"
@@ -25,7 +27,7 @@ int main(int argc, char** argv) {
     const intrinsic::AtlasOutcome atlas = intrinsic::atlas_file(input, request);
     intrinsic::write_atlas_file(output, atlas.data, atlas.result);
     if (!report.empty()) {
-      nlohmann::json j = intrinsic::atlas_report_json(atlas, output);
+      nlohmann::json j = nlohmann::json::parse(intrinsic::atlas_report(atlas, output));
       j["timings_ms"]["total"] =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       intrinsic::write_file_atomically(report, j.dump(2) + "\n");

@@ -16,8 +16,6 @@
 #include <string_view>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "intrinsic/atlas.h"
 #include "intrinsic/atlas_files.h"
 #include "intrinsic/boundary_optimization.h"
@@ -107,8 +105,8 @@ Constraints resolved_constraints(const ParamRequest& request, const MatrixX3i& f
 // "output" is `output` (null when empty), "input" the mesh's path (null
 // when empty); timings_ms holds read, validate, assemble, factor and solve,
 // to which a caller adds its own stages (render, write, total).
-nlohmann::json param_report_json(const ParamRequest& request, const ParamOutcome& outcome,
-                                 const std::string& output);
+// As JSON text (the shells add their keys with their own JSON reader).
+std::string param_report(const ParamRequest& request, const ParamOutcome& outcome, const std::string& output);
 
 // --- atlas (`intrinsic atlas`) -------------------------------------------
 
@@ -143,6 +141,7 @@ AtlasOutcome atlas_data(MeshData data, const AtlasRequest& request);
 // "input" is the data's path and "output" `output` (null when empty);
 // timings_ms holds read, clean, segment, flatten, merge and pack, to which a
 // caller adds its own (write, total).
-nlohmann::json atlas_report_json(const AtlasOutcome& outcome, const std::string& output);
+// As JSON text.
+std::string atlas_report(const AtlasOutcome& outcome, const std::string& output);
 
 }  // namespace intrinsic

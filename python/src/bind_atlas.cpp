@@ -100,7 +100,7 @@ AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs
     py::gil_scoped_release release;
     o = from_file ? atlas_file(path, request) : atlas_data(std::move(data), request);
   }
-  nlohmann::json report = atlas_report_json(o, "");
+  nlohmann::json report = nlohmann::json::parse(atlas_report(o, ""));
   const AtlasTimings& t = o.result.timings;
   report["timings_ms"] = {{"clean", t.clean_ms},     {"segment", t.segment_ms}, {"flatten", t.flatten_ms},
                           {"merge", t.merge_ms},     {"pack", t.pack_ms},       {"total", t.total_ms}};
@@ -157,7 +157,7 @@ void register_atlas(py::module_& m) {
           baked = write_atlas_with_textures(p, a.data, a.result, a.gltf, a.textures);
         }
         if (!a.textures.enabled) return py::none();
-        return to_python(texture_transfer_json(baked));
+        return to_python(nlohmann::json::parse(texture_transfer_report(baked)));
       },
       py::arg("path"), py::arg("atlas"),
       "write_atlas(path, atlas)\n\nWrites the file `intrinsic atlas -o path` writes (same bytes): .obj (the\n"

@@ -60,7 +60,7 @@ struct Outcome {
 // replaced by `timings` when given, plus the total.
 Outcome outcome(const ParamRequest& request, ParamOutcome&& o, const nlohmann::json& timings,
                 Clock::time_point t0) {
-  Outcome out{o.map.UV, o.map.residual, o.distortion.flipped_triangles, param_report_json(request, o, ""), nullptr};
+  Outcome out{o.map.UV, o.map.residual, o.distortion.flipped_triangles, nlohmann::json::parse(param_report(request, o, "")), nullptr};
   if (!timings.is_null()) {
     nlohmann::json t = timings;
     for (const char* k : {"assemble", "factor", "solve"}) t[k] = out.report["timings_ms"][k];

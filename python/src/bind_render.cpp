@@ -23,10 +23,10 @@ py::dict metrics(const py::object& V, const py::object& F, const py::object& uv)
     vo.allow_several_components = true;
     vo.allow_closed = true;
     const Mesh mesh = make_mesh(data, vo);
-    report = mesh_json(mesh);
+    report = nlohmann::json::parse(mesh_report(mesh));
     report.erase("input");
-    add_distortion(report, summarize_distortion(data.V, data.F, UV));
-    report["stretch"] = stretch_json(summarize_stretch(data.V, data.F, UV));
+    report.update(nlohmann::json::parse(distortion_report(summarize_distortion(data.V, data.F, UV))));
+    report["stretch"] = nlohmann::json::parse(stretch_report(summarize_stretch(data.V, data.F, UV)));
   }
   return to_python(report);
 }

@@ -4,10 +4,11 @@
 // and values.
 #include <cmath>
 
-#include "intrinsic/intrinsic.h"
+#include <nlohmann/json.hpp>
+
 #include "intrinsic/gltf.h"
 #include "intrinsic/pipeline.h"
-#include "intrinsic/report.h"
+#include "report/report_json.h"
 
 namespace intrinsic {
 namespace {
@@ -51,7 +52,7 @@ nlohmann::json cleaning_json(const AtlasCleaning& c) {
 
 }  // namespace
 
-nlohmann::json param_report_json(const ParamRequest& request, const ParamOutcome& o, const std::string& output) {
+std::string param_report(const ParamRequest& request, const ParamOutcome& o, const std::string& output) {
   const Mesh& mesh = o.mesh;
   nlohmann::json report = mesh_json(mesh);
   report["input"] = path_or_null(mesh.path);
@@ -72,10 +73,10 @@ nlohmann::json param_report_json(const ParamRequest& request, const ParamOutcome
   const StageTimings& t = o.map.timings;
   report["timings_ms"] = {{"read", o.read_ms},         {"validate", o.validate_ms}, {"assemble", t.assemble_ms},
                           {"factor", t.factor_ms},     {"solve", t.solve_ms}};
-  return report;
+  return report.dump();
 }
 
-nlohmann::json atlas_report_json(const AtlasOutcome& o, const std::string& output) {
+std::string atlas_report(const AtlasOutcome& o, const std::string& output) {
   const AtlasOptions& opt = o.options;
   const AtlasResult& r = o.result;
   nlohmann::json j;
@@ -130,7 +131,7 @@ nlohmann::json atlas_report_json(const AtlasOutcome& o, const std::string& outpu
   const AtlasTimings& t = r.timings;
   j["timings_ms"] = {{"read", o.read_ms},     {"clean", t.clean_ms}, {"segment", t.segment_ms},
                      {"flatten", t.flatten_ms}, {"merge", t.merge_ms}, {"pack", t.pack_ms}};
-  return j;
+  return j.dump();
 }
 
 }  // namespace intrinsic

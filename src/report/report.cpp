@@ -1,4 +1,6 @@
-// JSON report construction and writing (docs/formats.md "Report").
+// JSON report construction (docs/formats.md "Report").
+#include "report/report_json.h"
+
 #include "intrinsic/report.h"
 
 #include "intrinsic/io.h"
@@ -86,10 +88,6 @@ nlohmann::json constraints_json(const std::vector<ConstraintResidual>& residuals
                    {"uv", {r.value.x(), r.value.y()}},
                    {"residual", r.residual}});
   return out;
-}
-
-void write_report(const std::string& path, const nlohmann::json& report) {
-  write_file_atomically(path, report.dump(2) + "\n");
 }
 
 std::string boundary_label(BoundaryShape shape, const std::string& boundary_file) {
@@ -192,6 +190,28 @@ nlohmann::json texture_transfer_json(const TextureTransferReport& report) {
                      {"height", b.height},
                      {"texels_covered", b.texels_covered}});
   return {{"baked", baked}, {"notes", report.notes}};
+}
+
+// The public parts as text (intrinsic/report.h).
+std::string stat_report(const Stat& s) { return stat_json(s).dump(); }
+std::string atlas_metrics_report(const UvAtlasMetrics& atlas) { return atlas_metrics_json(atlas).dump(); }
+std::string texture_transfer_report(const TextureTransferReport& report) {
+  return texture_transfer_json(report).dump();
+}
+std::string mesh_report(const Mesh& mesh) { return mesh_json(mesh).dump(); }
+std::string distortion_report(const DistortionSummary& d) {
+  nlohmann::json j = nlohmann::json::object();
+  add_distortion(j, d);
+  return j.dump();
+}
+std::string stretch_report(const StretchSummary& s) { return stretch_json(s).dump(); }
+std::string constraints_report(const std::vector<ConstraintResidual>& residuals) {
+  return constraints_json(residuals).dump();
+}
+std::string solution_report(const ParamResult& r, const std::string& boundary_file) {
+  nlohmann::json j = nlohmann::json::object();
+  add_solution(j, r, boundary_file);
+  return j.dump();
 }
 
 }  // namespace intrinsic
