@@ -19,6 +19,7 @@ def atlas(
     transfer_textures: Optional[bool] = None,
     texture_size: Optional[int] = None,
     texture_padding: Optional[int] = None,
+    max_vertices: Optional[int] = None,
     boundary: Union[None, str, BoundaryShape] = None,
     method: Union[None, str, Method] = None,
     lambda_: Optional[float] = None,
@@ -42,7 +43,6 @@ def atlas(
     max_charts: Optional[int] = None,
     weld: Optional[float] = None,
     reorient: Optional[bool] = None,
-    max_vertices: Optional[int] = None,
     face_groups: Any = None,
     uv: Any = None,
     uv_index: Any = None,
@@ -79,6 +79,7 @@ def atlas(
     texture in texels (0: each source's own texel density)
     texture_padding (--texture-padding; default 4): --transfer-textures: texels of dilation
     around every chart (-1: fill the whole image)
+    max_vertices (--max-vertices; default 50000000): Refuse inputs with more vertices
     boundary (--boundary; default 'natural'): Each chart's map: natural (the natural conformal
     map, default) or a fixed circle or square boundary with --method's weights
     method (--method; default 'conformal'): conformal | authalic | mixed | tutte | floater
@@ -126,7 +127,6 @@ def atlas(
     reorient (default True; False is --keep-winding): Keep the winding of faces listed against
     their piece's orientation and cut there (default: write them reversed, so charts may span
     them)
-    max_vertices (--max-vertices; default 50000000): Refuse inputs with more vertices
     face_groups: #F ints, -1 for none: faces of one group stay in one chart (e.g. the triangles
     of a polygon)
     uv: with pack_only: the arrays' own UVs, k x 2 (as an Atlas's uv)
@@ -141,6 +141,7 @@ def atlas(
         'transfer_textures': transfer_textures,
         'texture_size': texture_size,
         'texture_padding': texture_padding,
+        'max_vertices': max_vertices,
         'boundary': boundary,
         'method': method,
         'lambda': lambda_,
@@ -164,7 +165,6 @@ def atlas(
         'max_charts': max_charts,
         'weld': weld,
         'reorient': reorient,
-        'max_vertices': max_vertices,
         'face_groups': face_groups,
         'uv': uv,
         'uv_index': uv_index,

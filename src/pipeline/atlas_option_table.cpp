@@ -150,6 +150,8 @@ void add_file_rows(std::vector<Row>& t) {
                                 "--transfer-textures: texels of dilation around every chart (-1: fill the whole image)",
                                 -1, 1024),
                            [](Draft& d) -> int& { return d.request.textures.padding; }));
+  t.push_back(integer<std::int64_t>(spec("max_vertices", kFiles, "Refuse inputs with more vertices", 1),
+                                    [](Draft& d) -> std::int64_t& { return d.request.read.max_vertices; }));
 }
 
 // Each chart's map, as `param` spells it.
@@ -259,8 +261,6 @@ void add_chart_rows(std::vector<Row>& t) {
                                      "there (default: write them reversed, so charts may span them)"),
                                 [](Draft& d) -> bool& { return opt(d).charts.reorient; }),
                         "--keep-winding", true));
-  t.push_back(integer<std::int64_t>(spec("max_vertices", kFiles, "Refuse inputs with more vertices", 1),
-                                    [](Draft& d) -> std::int64_t& { return d.request.read.max_vertices; }));
 }
 
 const std::vector<Row>& rows() {
