@@ -49,7 +49,7 @@ function(intrinsic_layer name)
 
   add_library(intrinsic_${name} OBJECT ${sources})
   set_target_properties(intrinsic_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON
-                        UNITY_BUILD ${INTRINSIC_UNITY_BUILD} UNITY_BUILD_BATCH_SIZE 8)
+                        UNITY_BUILD ${INTRINSIC_UNITY_BUILD} UNITY_BUILD_BATCH_SIZE ${INTRINSIC_UNITY_BATCH})
   target_link_libraries(intrinsic_${name} PRIVATE intrinsic_layer_settings)
   foreach(used ${L_USES})
     add_dependencies(intrinsic_${name} intrinsic_${used})

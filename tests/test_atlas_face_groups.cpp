@@ -46,11 +46,6 @@ std::vector<int> quad_groups(const MatrixX3i& F) {
   return group;
 }
 
-double uv_area(const MatrixX2d& UV, const MatrixX3i& FUV, int f) {
-  const Eigen::Vector2d a = UV.row(FUV(f, 0)), b = UV.row(FUV(f, 1)), c = UV.row(FUV(f, 2));
-  return 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-}
-
 // Per group, every input vertex its faces share has one UV.
 void expect_one_uv_per_group_vertex(const AtlasResult& r, const std::vector<int>& group) {
   std::map<std::pair<int, int>, Eigen::Vector2d> seen;  // (group, vertex) -> UV
@@ -95,7 +90,7 @@ TEST(AtlasFaceGroups, QuadsStayInOneChart) {
     for (int f = 0; f < m.F.rows(); ++f) charts_of[group[f]].insert(r.face_chart[f]);
     for (const auto& [gid, cs] : charts_of) EXPECT_EQ(cs.size(), 1u) << "group " << gid;
     expect_one_uv_per_group_vertex(r, group);
-    for (int f = 0; f < r.F.rows(); ++f) EXPECT_GT(uv_area(r.UV, r.FUV, f), 0) << "face " << f;
+    for (int f = 0; f < r.F.rows(); ++f) EXPECT_GT(test::signed_uv_area(r.UV, r.FUV, f), 0) << "face " << f;
     const std::vector<char> overlap = overlapping_uv_triangles(r.FUV, r.UV);
     EXPECT_EQ(std::count(overlap.begin(), overlap.end(), 1), 0);
   }

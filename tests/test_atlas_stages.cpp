@@ -30,12 +30,6 @@ MeshData torus() {
   return generate_torus(g);
 }
 
-// Signed UV area of face f (its corners in F's order).
-double uv_area(const MatrixX2d& UV, const MatrixX3i& FUV, int f) {
-  const Eigen::Vector2d a = UV.row(FUV(f, 0)), b = UV.row(FUV(f, 1)), c = UV.row(FUV(f, 2));
-  return 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-}
-
 double area_3d(const MeshData& m, int f) {
   const Eigen::Vector3d a = m.V.row(m.F(f, 0)), b = m.V.row(m.F(f, 1)), c = m.V.row(m.F(f, 2));
   return 0.5 * (b - a).cross(c - a).norm();
@@ -91,7 +85,7 @@ TEST(AtlasStages, PackingScalesAllChartsAlike) {
   for (int f = 0; f < m.F.rows(); ++f) {
     const int k = charts.face_chart[f];
     if (k < 0) continue;
-    const double a = uv_area(charts.UV, charts.FUV, f);
+    const double a = test::signed_uv_area(charts.UV, charts.FUV, f);
     EXPECT_GT(a, 0) << "face " << f;
     chart_uv[k] += a, chart_3d[k] += area_3d(m, f);
   }
@@ -100,9 +94,9 @@ TEST(AtlasStages, PackingScalesAllChartsAlike) {
   double ratio = 0;
   for (int f = 0; f < m.F.rows(); ++f) {
     if (charts.face_chart[f] < 0) continue;
-    const double a = uv_area(charts.UV, charts.FUV, f);
+    const double a = test::signed_uv_area(charts.UV, charts.FUV, f);
     if (a < 1e-12) continue;
-    const double q = uv_area(r.UV, r.FUV, f) / a;
+    const double q = test::signed_uv_area(r.UV, r.FUV, f) / a;
     if (ratio == 0) ratio = q;
     EXPECT_NEAR(q, ratio, 1e-6 * ratio) << "face " << f;
   }

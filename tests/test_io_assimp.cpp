@@ -465,7 +465,7 @@ TEST_F(AssimpRoundTrip, GarbageAndTruncationsNeverCrash) {
 // A few of Debian's assimp-testmodels (scripts/install-deps.sh): real
 // exports of other tools, each read and atlased; the atlas must pass its own
 // checks and the metrics' independent ones (no fold, no overlap).
-namespace samples {
+namespace assimp_samples {
 
 const std::string kDir = "/usr/share/assimp/models/";
 
@@ -493,7 +493,7 @@ TEST(AssimpSamples, RealFilesAtlasWithoutFoldsOrOverlaps) {
   }
 }
 
-}  // namespace samples
+}  // namespace assimp_samples
 
 }  // namespace
 }  // namespace intrinsic

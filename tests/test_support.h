@@ -94,6 +94,12 @@ inline MatrixX3d rigid_motion(const MatrixX3d& V) {
   return W;
 }
 
+// Signed UV area of face f, its corners in FUV's order.
+inline double signed_uv_area(const MatrixX2d& UV, const MatrixX3i& FUV, int f) {
+  const Eigen::Vector2d a = UV.row(FUV(f, 0)), b = UV.row(FUV(f, 1)), c = UV.row(FUV(f, 2));
+  return 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+}
+
 inline double diameter(const MatrixX2d& UV) {
   return (UV.colwise().maxCoeff() - UV.colwise().minCoeff()).norm();
 }

@@ -7,16 +7,9 @@
 #include <numeric>
 
 #include "atlas/atlas_internal.h"
+#include "util/union_find.h"
 
 namespace intrinsic::detail {
-namespace {
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-
-}  // namespace
 
 ChartMesh chart_mesh(const MeshData& input, const CleanMesh& clean, const std::vector<int>& faces,
                      std::vector<int> cuts) {

@@ -14,15 +14,11 @@
 #include <unordered_map>
 
 #include "atlas/atlas_internal.h"
+#include "util/union_find.h"
 #include "intrinsic/error.h"
 
 namespace intrinsic::detail {
 namespace {
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
 
 void check_input(const MeshData& in) {
   const std::string where = in.path.empty() ? "" : in.path + ": ";
