@@ -29,11 +29,11 @@ if [ "${INTRINSIC_SKIP_SANITIZERS:-0}" != 1 ]; then
   # -g1 (line tables, enough for the sanitizers' stack traces) instead of -g:
   # the same code, about a quarter less compile time (20 s -> 14 s for
   # tests/test_atlas_stages.cpp), which the CI budget needs.
-  # The library, the CLI and the tests in unity batches of eight
-  # (INTRINSIC_UNITY_BUILD): each source costs about a third of the time it
-  # does alone, which the CI budget needs; the Release build above compiles
-  # every source alone (so each stays valid on its own, and ccache keeps its
-  # objects for python_pip_install).
+  # The library, the CLI and the tests in unity batches of sixteen sources
+  # (INTRINSIC_UNITY_BUILD, INTRINSIC_UNITY_BATCH): the headers are parsed
+  # once per batch instead of once per source, which the CI budget needs;
+  # the Release build above compiles every source alone (so each stays valid
+  # on its own, and ccache keeps its objects for python_pip_install).
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
     -DINTRINSIC_SANITIZE=ON -DINTRINSIC_BUILD_BENCH=OFF -DINTRINSIC_UNITY_BUILD=ON
   cmake --build build-asan -j"$JOBS"

@@ -11,6 +11,7 @@
 // with a simple boundary is injective, so the chart does not overlap itself.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "atlas/atlas_internal.h"
 #include "intrinsic/error.h"
@@ -205,6 +206,25 @@ void refine(const Mesh& mesh, const ChartMapOptions& map, double degenerate_rati
 // the area-weighted mean and root mean square of Sander's per-face L2, and
 // per face the stretch max(s1, 1/s2) with its 95th percentile and maximum
 // (docs/maths.md §9.7).
+// Local vertices at one 3D point (a pinch, where two fans of the chart meet)
+// that the map put a rounding apart get one UV: the packer's transforms then
+// keep them on one point, instead of rounding one corner into the other's
+// triangle (2CylinderEngine). Farther apart than 1e-9 of the chart's size,
+// they are left for the exact overlap test.
+void join_pinched_corners(const MatrixX3d& V, MatrixX2d& UV) {
+  if (V.rows() != UV.rows() || UV.rows() == 0) return;
+  std::vector<int> order(static_cast<size_t>(V.rows()));
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::make_tuple(V(a, 0), V(a, 1), V(a, 2)) < std::make_tuple(V(b, 0), V(b, 1), V(b, 2));
+  });
+  const double size = (UV.colwise().maxCoeff() - UV.colwise().minCoeff()).norm();
+  for (size_t i = 1; i < order.size(); ++i) {
+    const int a = order[i - 1], b = order[i];
+    if (V.row(a) == V.row(b) && (UV.row(a) - UV.row(b)).norm() <= 1e-9 * size) UV.row(b) = UV.row(a);
+  }
+}
+
 void summarize_stretch(const Mesh& mesh, FlatChart& chart) {
   const FaceDistortion d = face_distortion(mesh.V, mesh.F, chart.UV);
   AtlasChart& s = chart.summary;
@@ -277,13 +297,15 @@ ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double d
   if (folds(mesh, chart.UV, degenerate_ratio, s.flipped)) return ChartStatus::Flipped;
   if (boundary_crosses(t.boundary_loops, chart.UV)) return ChartStatus::BoundaryCrossing;
   if (nf > 1 && map.boundary == BoundaryShape::Natural && map.isometric_iterations > 0) refine(mesh, map, degenerate_ratio, chart);
-  // With holes, the exact test of every pair of triangles as well: a messy
-  // export's flat face can fold over itself in 3D (2CylinderEngine), and
-  // the map of a flat chart reproduces that fold.
-  if (t.boundary_loops.size() > 1) {
-    const std::vector<char> overlapping = overlapping_uv_triangles(mesh.F, chart.UV);
-    if (std::find(overlapping.begin(), overlapping.end(), 1) != overlapping.end()) return ChartStatus::BoundaryCrossing;
-  }
+  // The exact test of every pair of triangles as well (near linear in the
+  // faces, little beside the solve): a messy export's flat face can fold
+  // over itself in 3D (2CylinderEngine), which the map of a flat chart
+  // reproduces, and a boundary that passes twice through one point (a
+  // vertex where two fans of the chart meet) comes out as two corners a
+  // rounding apart, one of them inside the other's triangle.
+  join_pinched_corners(chart.mesh.data.V, chart.UV);
+  const std::vector<char> overlapping = overlapping_uv_triangles(mesh.F, chart.UV);
+  if (std::find(overlapping.begin(), overlapping.end(), 1) != overlapping.end()) return ChartStatus::BoundaryCrossing;
   summarize_stretch(mesh, chart);
   chart.box_fill = chart_box(chart).fill;
   return ChartStatus::Valid;
