@@ -210,19 +210,23 @@ void refine(const Mesh& mesh, const ChartMapOptions& map, double degenerate_rati
 // that the map put a rounding apart get one UV: the packer's transforms then
 // keep them on one point, instead of rounding one corner into the other's
 // triangle (2CylinderEngine). Farther apart than 1e-9 of the chart's size,
-// they are left for the exact overlap test.
-void join_pinched_corners(const MatrixX3d& V, MatrixX2d& UV) {
-  if (V.rows() != UV.rows() || UV.rows() == 0) return;
+// they are left for the exact overlap test. Whether the chart has a pinch.
+bool join_pinched_corners(const MatrixX3d& V, MatrixX2d& UV) {
+  if (V.rows() != UV.rows() || UV.rows() == 0) return false;
   std::vector<int> order(static_cast<size_t>(V.rows()));
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   std::sort(order.begin(), order.end(), [&](int a, int b) {
     return std::make_tuple(V(a, 0), V(a, 1), V(a, 2)) < std::make_tuple(V(b, 0), V(b, 1), V(b, 2));
   });
   const double size = (UV.colwise().maxCoeff() - UV.colwise().minCoeff()).norm();
+  bool pinched = false;
   for (size_t i = 1; i < order.size(); ++i) {
     const int a = order[i - 1], b = order[i];
-    if (V.row(a) == V.row(b) && (UV.row(a) - UV.row(b)).norm() <= 1e-9 * size) UV.row(b) = UV.row(a);
+    if (V.row(a) != V.row(b)) continue;
+    pinched = true;
+    if ((UV.row(a) - UV.row(b)).norm() <= 1e-9 * size) UV.row(b) = UV.row(a);
   }
+  return pinched;
 }
 
 void summarize_stretch(const Mesh& mesh, FlatChart& chart) {
@@ -297,15 +301,17 @@ ChartStatus flatten_chart(FlatChart& chart, const ChartMapOptions& map, double d
   if (folds(mesh, chart.UV, degenerate_ratio, s.flipped)) return ChartStatus::Flipped;
   if (boundary_crosses(t.boundary_loops, chart.UV)) return ChartStatus::BoundaryCrossing;
   if (nf > 1 && map.boundary == BoundaryShape::Natural && map.isometric_iterations > 0) refine(mesh, map, degenerate_ratio, chart);
-  // The exact test of every pair of triangles as well (near linear in the
-  // faces, little beside the solve): a messy export's flat face can fold
-  // over itself in 3D (2CylinderEngine), which the map of a flat chart
-  // reproduces, and a boundary that passes twice through one point (a
-  // vertex where two fans of the chart meet) comes out as two corners a
-  // rounding apart, one of them inside the other's triangle.
-  join_pinched_corners(chart.mesh.data.V, chart.UV);
-  const std::vector<char> overlapping = overlapping_uv_triangles(mesh.F, chart.UV);
-  if (std::find(overlapping.begin(), overlapping.end(), 1) != overlapping.end()) return ChartStatus::BoundaryCrossing;
+  // With holes or a pinch, the exact test of every pair of triangles as
+  // well: a messy export's flat face can fold over itself in 3D
+  // (2CylinderEngine), which the map of a flat chart reproduces, and a
+  // boundary that passes twice through one point leaves two corners there
+  // that must not lie inside each other's triangles. (Elsewhere the fold and
+  // boundary tests above suffice, and the test would cost every chart tried.)
+  const bool pinched = join_pinched_corners(chart.mesh.data.V, chart.UV);
+  if (t.boundary_loops.size() > 1 || pinched) {
+    const std::vector<char> overlapping = overlapping_uv_triangles(mesh.F, chart.UV);
+    if (std::find(overlapping.begin(), overlapping.end(), 1) != overlapping.end()) return ChartStatus::BoundaryCrossing;
+  }
   summarize_stretch(mesh, chart);
   chart.box_fill = chart_box(chart).fill;
   return ChartStatus::Valid;
