@@ -13,7 +13,8 @@
 #include "intrinsic/io.h"
 #include "choice_option.h"
 #include "intrinsic/report.h"
-#include "weight_args.h"
+#include "intrinsic/param_option_table.h"
+#include "table_options.h"
 
 namespace intrinsic::app {
 namespace {
@@ -21,9 +22,9 @@ namespace {
 struct EditArgs {
   std::string input, output, boundary, report, constraints;
   std::vector<std::string> moves;
-  std::shared_ptr<WeightArgs> weights = std::make_shared<WeightArgs>();
-  std::string basis = choice_name(BasisMode::Lazy), holes = choice_name(HoleRule::Fill),
-              solver = choice_name(SolverKind::Auto);
+  // --method, --lambda, --mu and --solver, as `param` takes them (param_option_table.h).
+  std::shared_ptr<GivenOptions> given = std::make_shared<GivenOptions>();
+  std::string basis = choice_name(BasisMode::Lazy), holes = choice_name(HoleRule::Fill);
   double memory_budget_gib = 2.0;
   int resolve_above = 64;
   bool binary = false, quiet = false;
@@ -41,10 +42,8 @@ std::string numbered(const std::string& path, size_t i, size_t count) {
 
 ParamOptions edit_options(const EditArgs& a) {
   if (!(a.memory_budget_gib > 0)) throw_usage("--memory-budget must be positive");
-  ParamOptions options;
-  options.weights = a.weights->options();
+  ParamOptions options = param_request(*a.given, OptionSpelling::Flag).options;
   options.holes = parse_choice<HoleRule>(a.holes, "--holes");
-  options.solver = parse_solver(a.solver, "--solver");
   options.boundary = BoundaryShape::Given;
   return options;
 }
@@ -197,12 +196,11 @@ void register_edit(CLI::App& app, Runner& run) {
   cmd->add_option("--resolve-above", a->resolve_above,
                   "Re-solve with the kept factorization when more vertices than this move at once")
       ->capture_default_str();
-  add_weight_options(*cmd, a->weights);
+  add_table_options(cmd, select_options(param_option_table(), {"method", "lambda", "mu", "solver"}), a->given);
   cmd->add_option("--holes", a->holes, "Holes without given positions: fill | free")
       ->check(CLI::IsMember({choice_name(HoleRule::Fill), choice_name(HoleRule::Free)}))
       ->capture_default_str();
   cmd->add_option("--constraints", a->constraints, "JSON file of point and line constraints, kept during the moves");
-  cmd->add_option("--solver", a->solver, "auto | cholmod | umfpack | eigen-llt | eigen-lu")->capture_default_str();
   cmd->add_option("--report", a->report, "Write the JSON report (precompute and update times) to this file");
   cmd->add_flag("--binary", a->binary, "Binary PLY output");
   cmd->add_option("--max-vertices", a->max_vertices, "Refuse inputs with more vertices")->capture_default_str();

@@ -41,27 +41,63 @@ CLI::Option* add_value(CLI::App* cmd, const OptionSpec& s, const std::shared_ptr
       s.flag, [given, key](const T& v) { given->emplace_back(key, OptionValue(v)); }, s.help);
 }
 
+// Every occurrence of a repeated option, one value each ("--pin 1:0,0 in.obj"
+// leaves the input alone).
+CLI::Option* add_repeated(CLI::App* cmd, const OptionSpec& s, const std::shared_ptr<GivenOptions>& given) {
+  const std::string key = s.key;
+  return cmd
+      ->add_option_function<std::vector<std::string>>(
+          s.flag,
+          [given, key](const std::vector<std::string>& values) {
+            for (const std::string& v : values) given->emplace_back(key, OptionValue(v));
+          },
+          s.help)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+// Two numbers as LO,HI.
+CLI::Option* add_pair(CLI::App* cmd, const OptionSpec& s, const std::shared_ptr<GivenOptions>& given) {
+  const std::string key = s.key;
+  return cmd
+      ->add_option_function<std::vector<double>>(
+          s.flag, [given, key](const std::vector<double>& v) { given->emplace_back(key, OptionValue(RealPair{v[0], v[1]})); },
+          s.help)
+      ->delimiter(',')
+      ->expected(2);
+}
+
+CLI::Option* add_one(CLI::App* cmd, const OptionSpec& s, const std::shared_ptr<GivenOptions>& given) {
+  CLI::Option* o = nullptr;
+  if (s.type == OptionType::Bool) {
+    const std::string key = s.key;
+    const bool value = !s.flag_negates;
+    return cmd->add_flag_callback(s.flag, [given, key, value] { given->emplace_back(key, OptionValue(value)); }, s.help);
+  } else if (s.type == OptionType::Int) {
+    o = add_value<std::int64_t>(cmd, s, given);
+    add_range<std::int64_t>(o, s);
+  } else if (s.type == OptionType::Real) {
+    o = add_value<double>(cmd, s, given);
+    add_range<double>(o, s);
+  } else if (s.type == OptionType::RealPair) {
+    o = add_pair(cmd, s, given);
+  } else if (s.repeated) {
+    o = add_repeated(cmd, s, given);
+  } else {
+    o = add_value<std::string>(cmd, s, given);
+    if (s.type == OptionType::Choice) o->check(choices_check(s.choices));
+  }
+  if (!s.value_name.empty()) o->type_name(s.value_name);
+  if (s.default_value) o->default_str(option_value_text(*s.default_value));
+  return o;
+}
+
 }  // namespace
 
 void add_table_options(CLI::App* cmd, const std::vector<OptionSpec>& table,
                        const std::shared_ptr<GivenOptions>& given) {
   for (const OptionSpec& s : table) {
-    CLI::Option* o = nullptr;
-    if (s.type == OptionType::Bool) {
-      const std::string key = s.key;
-      const bool value = !s.flag_negates;
-      o = cmd->add_flag_callback(s.flag, [given, key, value] { given->emplace_back(key, OptionValue(value)); }, s.help);
-    } else if (s.type == OptionType::Int) {
-      o = add_value<std::int64_t>(cmd, s, given);
-      add_range<std::int64_t>(o, s);
-    } else if (s.type == OptionType::Real) {
-      o = add_value<double>(cmd, s, given);
-      add_range<double>(o, s);
-    } else {
-      o = add_value<std::string>(cmd, s, given);
-      if (s.type == OptionType::Choice) o->check(choices_check(s.choices));
-    }
-    if (s.type != OptionType::Bool && s.default_value) o->default_str(option_value_text(*s.default_value));
+    CLI::Option* o = add_one(cmd, s, given);
     o->group(s.group);
   }
 }

@@ -79,7 +79,7 @@ intrinsic_layer(texture FOLDERS src/texture HEADERS texture texture_transfer USE
 intrinsic_layer(generate FOLDERS src/generate HEADERS generate USES io)
 intrinsic_layer(render FOLDERS src/render HEADERS render pictures USES metrics io)
 intrinsic_layer(report FOLDERS src/report HEADERS report USES texture)
-intrinsic_layer(pipeline FOLDERS src/pipeline HEADERS pipeline atlas_option_table edit_session intrinsic
+intrinsic_layer(pipeline FOLDERS src/pipeline HEADERS pipeline atlas_option_table param_option_table edit_session intrinsic
                 USES texture generate render report)
 
 # The table the check reads: each layer's folders, headers and what it may include.

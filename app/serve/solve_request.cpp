@@ -8,7 +8,7 @@
 #include "intrinsic/io.h"
 #include "intrinsic/error.h"
 #include "intrinsic/intrinsic.h"
-#include "weight_args.h"
+#include "intrinsic/param_option_table.h"
 
 namespace intrinsic::app {
 namespace {
@@ -49,14 +49,14 @@ std::vector<FixedVertex> vertex_positions(const json& j, const std::string& key,
   return out;
 }
 
-// The command line's consistency checks (and messages) for the blend.
+// The blend, checked as `param` checks it (param_option_table.h), its
+// messages naming the request's keys.
 WeightOptions read_weights(const json& body) {
-  WeightArgs w;
-  if (body.contains("method")) w.method = text(body["method"], "method");
-  parse_choice<Method>(w.method, "method");  // Error(Usage) for an unknown method
-  if (body.contains("lambda")) w.lambda = finite_number(body["lambda"], "lambda");
-  if (body.contains("mu")) w.mu = finite_number(body["mu"], "mu");
-  return w.options();
+  GivenOptions given;
+  if (body.contains("method")) given.emplace_back("method", text(body["method"], "method"));
+  for (const char* key : {"lambda", "mu"})
+    if (body.contains(key)) given.emplace_back(key, finite_number(body[key], key));
+  return param_request(given, OptionSpelling::Keyword).options.weights;
 }
 
 // Nesting deeper than any valid request is refused before parsing, so no

@@ -14,6 +14,10 @@
 //      intrinsic::ParamResult r = map.solve();               // r.UV: one row per vertex
 //      // map.set_boundary_shape(...), set_constraints(...): solve again, no refactoring
 //      intrinsic::write_mesh("patch_uv.obj", mesh.V, mesh.F, r.UV);
+//      // or the whole job (`intrinsic param`) from keys and values, as the
+//      // shells give them (param_option_table.h, pipeline.h):
+//      // intrinsic::ParamOutcome out = intrinsic::parameterize_file("patch.obj",
+//      //     intrinsic::param_request({{"boundary", std::string("natural")}}, intrinsic::OptionSpelling::Keyword));
 //
 // 2. An atlas of any asset, read and written with everything it carries
 //    (pipeline.h: what `intrinsic atlas` runs):
@@ -37,5 +41,6 @@
 // The entry points; pipeline.h brings the headers of the data they take and
 // give (atlas.h, atlas_files.h, io.h, mesh.h, parameterize.h, error.h).
 #include "intrinsic/atlas_option_table.h"
+#include "intrinsic/param_option_table.h"
 #include "intrinsic/parameterizer.h"
 #include "intrinsic/pipeline.h"

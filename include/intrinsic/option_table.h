@@ -7,6 +7,7 @@
 // written once (docs/layout.md "Options").
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -19,10 +20,16 @@
 
 namespace intrinsic {
 
-enum class OptionType { Bool, Int, Real, Choice, Path };
+// Text is free text the job parses itself (a pin's "V:U,V"); ChoiceOrPath
+// is one of the choices or else a file's path (param's --boundary: circle,
+// square, natural or a file of positions); RealPair is two numbers (an
+// interval, "LO,HI" on the command line).
+enum class OptionType { Bool, Int, Real, Choice, Path, Text, ChoiceOrPath, RealPair };
 
-// A value as a shell gives it: a Choice as its name, a Path as text.
-using OptionValue = std::variant<bool, std::int64_t, double, std::string>;
+using RealPair = std::array<double, 2>;
+
+// A value as a shell gives it: a Choice as its name, a Path or Text as text.
+using OptionValue = std::variant<bool, std::int64_t, double, std::string, RealPair>;
 
 struct OptionSpec {
   std::string key;                   // Python keyword and report key ("max_stretch")
@@ -34,7 +41,9 @@ struct OptionSpec {
   std::string help;
   double min = -std::numeric_limits<double>::infinity();  // Int and Real: the accepted range
   double max = std::numeric_limits<double>::infinity();
-  std::vector<std::string> choices;  // Choice: the names
+  std::vector<std::string> choices;  // Choice, ChoiceOrPath: the names
+  bool repeated = false;             // may be given many times, each value kept (--pin, once per pin)
+  std::string value_name;            // how --help shows the value ("V:U,V"), when its type says too little
   std::optional<OptionValue> default_value;  // none: unset unless given
 };
 
@@ -48,7 +57,8 @@ inline const std::string& option_name(const OptionSpec& spec, OptionSpelling spe
 
 // `value` as `spec`'s type: an Int where a Real is expected is taken as a
 // number; anything else of the wrong type, a number outside [min, max] or a
-// name outside the choices is Error(Usage) naming the option as `spelling`
+// name outside the choices (of a Choice; a ChoiceOrPath takes any other
+// text as a path) is Error(Usage) naming the option as `spelling`
 // spells it.
 OptionValue checked_option_value(const OptionSpec& spec, const OptionValue& value, OptionSpelling spelling);
 
@@ -58,7 +68,12 @@ bool option_matches(const OptionSpec& spec, const std::string& key);
 // The spec whose key or alias is `key`, or null.
 const OptionSpec* find_option(const std::vector<OptionSpec>& table, const std::string& key);
 
-// A value as text, as --help shows a default ("2", "1.08", "true", "whole").
+// The specs of `table` whose keys are in `keys`, in the table's order (a
+// command that takes a few of a job's options: `edit` takes param's blend).
+std::vector<OptionSpec> select_options(const std::vector<OptionSpec>& table, const std::vector<std::string>& keys);
+
+// A value as text, as --help shows a default ("2", "1.08", "true", "whole",
+// "0,1").
 std::string option_value_text(const OptionValue& value);
 
 }  // namespace intrinsic

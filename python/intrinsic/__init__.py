@@ -31,8 +31,7 @@ C-contiguous arrays. The GIL is released while reading, validating,
 assembling, factoring and solving, so threads run in parallel.
 """
 
-from os import PathLike
-from typing import Any, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Tuple, Union
 
 from . import _intrinsic
 from ._intrinsic import (  # noqa: F401  (re-exported)
@@ -78,9 +77,10 @@ from ._intrinsic import (  # noqa: F401  (re-exported)
     write_mesh,
 )
 
-# atlas(): one keyword per option of the library's atlas option table,
-# generated from it (scripts/generate_option_code.py).
+# atlas() and parameterize(): one keyword per option of the library's atlas
+# and param option tables, generated from them (scripts/generate_option_code.py).
 from ._atlas_keywords import atlas
+from ._param_keywords import parameterize
 
 __version__ = _intrinsic.__version__
 
@@ -99,84 +99,6 @@ __all__ = [
     "optimize_boundary", "parameterize", "read_mesh", "render", "write_atlas", "write_mesh", "atlas",
     "transfer_texture", "compute_tangents",
 ]
-
-Path = Union[str, PathLike]
-
-
-def parameterize(
-    V: Any,
-    F: Any = None,
-    *,
-    method: Union[str, Method] = "conformal",
-    boundary: Union[Path, BoundaryShape] = "circle",
-    lam: Optional[float] = None,
-    lambda_: Optional[float] = None,
-    mu: Optional[float] = None,
-    spacing: Union[str, Spacing] = "arclength",
-    scale: Union[str, ScaleMode] = "unit",
-    holes: Union[str, HoleRule] = "fill",
-    largest_component: bool = False,
-    solver: Union[str, SolverKind] = "auto",
-    pins: Optional[Sequence[Union[str, Tuple[int, float, float]]]] = None,
-    max_residual: float = 1e-8,
-    constraints: Union[None, Dict[str, Any], Path] = None,
-    max_vertices: int = 50_000_000,
-    optimize_lambda: Union[None, str, LambdaEnergy] = None,
-    lambda_range: Tuple[float, float] = (0.0, 1.0),
-    optimize_boundary: Union[None, str, BoundaryEnergy] = None,
-    iterations: int = 200,
-    tolerance: float = 1e-6,
-    gradient: Union[str, GradientRoute] = "adjoint",
-    descent: Union[str, Descent] = "lbfgs",
-    verbose: bool = False,
-    **kwargs: Any,
-) -> Result:
-    """Parameterize a mesh: ``intrinsic param`` without the files.
-
-    ``V, F``: float64 n x 3 positions and int32 m x 3 faces, or ``V`` a mesh
-    file path and ``F`` None (read exactly as the command line reads it; the
-    report's ``input`` is then the path). Several components become charts
-    laid out side by side, as on the command line.
-
-    The keywords are the command line's long options with dashes as
-    underscores (docs/cli.md); a choice is its string or the enum member
-    (``method=intrinsic.Method.AUTHALIC`` is ``method="authalic"``):
-
-    - ``method``: conformal | authalic | mixed | tutte | floater.
-    - ``lam`` / ``lambda_`` (``lambda`` is a Python keyword; ``**{"lambda": x}``
-      works too) and ``mu``: coefficients of ``mixed`` (--lambda, --mu).
-    - ``boundary``: circle | square | natural | a boundary file path.
-    - ``spacing`` (arclength | uniform), ``scale`` (unit | surface),
-      ``holes`` (fill | free | natural), ``largest_component``.
-    - ``solver``: auto | cholmod | umfpack | eigen-llt | eigen-lu | cg | bicgstab | supernodal-lu | supernodal-cholesky.
-    - ``pins``: natural boundary, ``[(vertex, u, v), ...]`` or ``["V:U,V", ...]``.
-    - ``max_residual``: NumericalError above this relative residual.
-    - ``constraints``: a dict shaped like the JSON constraint file
-      (``{"points": [...], "lines": [...]}``; messages then name it
-      ``constraints``) or the path of such a file.
-    - ``optimize_lambda`` (edge | area) with ``lambda_range``;
-      ``optimize_boundary`` (edge | area | dirichlet) with ``iterations``,
-      ``tolerance``, ``gradient``, ``descent``; ``verbose`` prints the boundary
-      optimization's progress lines on standard error.
-
-    Returns a :class:`Result`: ``uv`` (n x 2), ``residual``,
-    ``flipped_triangles``, ``timings`` and ``report`` (the dict the command
-    line's ``--report`` writes, built by the same code; ``output`` is None).
-    Raises UsageError, InputError, NumericalError with the command line's
-    messages.
-    """
-    options: Dict[str, Any] = dict(
-        method=method, boundary=boundary, mu=mu, spacing=spacing, scale=scale, holes=holes,
-        largest_component=largest_component, solver=solver, pins=pins, max_residual=max_residual,
-        constraints=constraints, max_vertices=max_vertices, optimize_lambda=optimize_lambda,
-        lambda_range=tuple(lambda_range), optimize_boundary=optimize_boundary, iterations=iterations,
-        tolerance=tolerance, gradient=gradient, descent=descent, verbose=verbose)
-    if lam is not None:
-        options["lam"] = lam
-    if lambda_ is not None:
-        options["lambda_"] = lambda_
-    options.update(kwargs)  # "lambda", or unknown keys (UsageError)
-    return _intrinsic.parameterize(V, F, **options)
 
 
 def optimal_lambda(V: Any, F: Any = None, energy: Union[str, LambdaEnergy] = "edge",

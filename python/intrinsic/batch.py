@@ -180,34 +180,17 @@ def make_parser() -> argparse.ArgumentParser:
                    help="output format (default obj; ply with --binary; atlas: obj or glb)")
     p.add_argument("--force", action="store_true", help="redo files whose output is already complete")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress on standard error")
-    g = p.add_argument_group("param options (as `intrinsic param`, docs/cli.md)")
+    g = p.add_argument_group("param options (as `intrinsic param`, docs/param-options.md)")
     S = argparse.SUPPRESS  # only options given are passed: the library's defaults apply
-    g.add_argument("--method", default=S)
-    g.add_argument("--lambda", dest="lambda", type=float, default=S)
-    g.add_argument("--mu", type=float, default=S)
-    g.add_argument("--boundary", default=S)
-    g.add_argument("--pin", dest="pins", action="append", metavar="V:U,V", default=S)
-    g.add_argument("--spacing", default=S)
-    g.add_argument("--scale", default=S)
-    g.add_argument("--holes", default=S)
-    g.add_argument("--largest-component", action="store_true", default=S)
-    g.add_argument("--solver", default=S)
-    g.add_argument("--constraints", metavar="FILE.json", default=S)
-    g.add_argument("--optimize-lambda", default=S)
-    g.add_argument("--lambda-range", type=pair, metavar="LO,HI", default=S)
-    g.add_argument("--optimize-boundary", default=S)
-    g.add_argument("--iterations", type=int, default=S)
-    g.add_argument("--tolerance", type=float, default=S)
-    g.add_argument("--gradient", default=S)
-    g.add_argument("--descent", default=S)
-    g.add_argument("--max-residual", type=float, default=S)
-    g.add_argument("--max-vertices", type=int, default=S)
+    add_table_flags(g, param_table(), S)
     g.add_argument("--binary", action="store_true", help="binary little-endian PLY output")
-    p.atlas_only = add_atlas_options(p.add_argument_group("atlas options (as `intrinsic atlas`)"), S)
+    p.atlas_only = add_table_flags(p.add_argument_group("atlas options (as `intrinsic atlas`)"), atlas_table(), S)
     return p
 
 
 BATCH_KEYS = {"input_dir", "output_dir", "command", "scheduler", "workers", "format", "force", "quiet", "binary"}
+
+
 def atlas_table() -> List[Dict[str, Any]]:
     """The library's atlas options (intrinsic.atlas_option_table) that apply to a batch: all but seams,
     which name the edges of one mesh."""
@@ -215,21 +198,32 @@ def atlas_table() -> List[Dict[str, Any]]:
     return [o for o in _intrinsic.atlas_option_table() if o["key"] != "seams"]
 
 
-def add_atlas_options(group, suppress) -> set:
-    """One flag per atlas option, as the library declares it, except those `param` shares (--method,
-    --boundary, ...), which the param group registered already. Returns the keys added: the options
-    only --command atlas takes."""
+def param_table() -> List[Dict[str, Any]]:
+    """The library's param options (intrinsic.param_option_table): every one applies to a batch."""
+    from intrinsic import _intrinsic
+    return _intrinsic.param_option_table()
+
+
+def add_table_flags(group, table: List[Dict[str, Any]], suppress) -> set:
+    """One flag per option of a library table, as the library declares it, except flags the parser has
+    already (the atlas options `param` shares: --method, --boundary, ...). Returns the keys added."""
     added = set()
-    for o in atlas_table():
+    for o in table:
         kw: Dict[str, Any] = {"dest": o["key"], "default": suppress, "help": o["help"].replace("%", "%%")}
+        if o["value_name"]:
+            kw["metavar"] = o["value_name"]
         if o["type"] == "bool":
             kw["action"] = "store_false" if o["flag_negates"] else "store_true"
         elif o["type"] == "int":
             kw["type"] = int
         elif o["type"] == "float":
             kw["type"] = float
+        elif o["type"] == "pair":
+            kw["type"] = pair
         elif o["type"] == "choice":
             kw["choices"] = o["choices"]
+        if o["repeated"]:
+            kw["action"] = "append"
         try:
             group.add_argument(o["flag"], **kw)
             added.add(o["key"])

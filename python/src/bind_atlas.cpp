@@ -144,8 +144,8 @@ void register_atlas(py::module_& m) {
         "atlas_option_table() -> list of dict\n\n"
         "The atlas job's options as the library declares them, in --help's order: per option its\n"
         "key (the keyword), flag (the command line's), flag_negates, aliases, type (bool, int,\n"
-        "float, choice, path), group, help, min and max (None: no bound), choices and default (None:\n"
-        "unset unless given).");
+        "float, choice, path, str, choice or path, pair), group, help, min and max (None: no bound),\n"
+        "choices, repeated (given once per value), value_name and default (None: unset unless given).");
   m.def(
       "write_atlas",
       [](const py::object& path, const AtlasOutput& a) -> py::object {

@@ -12,6 +12,7 @@
 #include "intrinsic/error.h"
 #include "intrinsic/io.h"
 #include "intrinsic/metrics.h"
+#include "intrinsic/param_option_table.h"
 #include "intrinsic/parameterizer.h"
 
 namespace intrinsic::python {
@@ -257,7 +258,11 @@ void register_param(py::module_& m) {
   m.def("parameterize", &parameterize, py::arg("V"), py::arg("F") = py::none(),
         "parameterize(V, F=None, **options) -> Result\n\n"
         "`intrinsic param` on arrays (or on a file: parameterize(path)). The package's parameterize()\n"
-        "documents every option; they are the command line's long options with dashes as underscores.");
+        "documents every option; they are the keys of param_option_table(), plus verbose.");
+  m.def("param_option_table", [] { return table_to_python(param_option_table()); },
+        "param_option_table() -> list of dict\n\n"
+        "The param job's options as the library declares them, in --help's order (the dicts of\n"
+        "atlas_option_table()); the group Optimizers holds those a Parameterizer does not take.");
   register_parameterizer(m);
   register_editor(m);
 }

@@ -53,7 +53,8 @@ py::object to_python(const nlohmann::json& j);
 // Error(Usage) for an unknown key or a value of another type.
 OptionValue to_option_value(const std::vector<OptionSpec>& table, const std::string& key, const py::handle& value);
 // A table as Python data: one dict per option (key, flag, flag_negates,
-// aliases, type, group, help, min, max, choices, default), for the wrapper's
+// aliases, type, group, help, min, max, choices, repeated, value_name,
+// default), for the wrapper's
 // signature, the batch runner's flags and the add-on's properties.
 py::list table_to_python(const std::vector<OptionSpec>& table);
 
@@ -70,14 +71,11 @@ E to_choice(const py::handle& value, const char* keyword) {
   }
 }
 
-// The keyword options of parameterize() (the CLI's long options, dashes as
-// underscores) -> the library's request; Error(Usage) naming the keyword.
-// `optimizers` false refuses the optimize_* options (Parameterizer).
+// The keyword options of parameterize() (the keys of param_option_table(),
+// plus verbose) -> the library's request; Error(Usage) naming the keyword.
+// `optimizers` false refuses the options of the table's group "Optimizers"
+// (Parameterizer).
 ParamRequest to_request(const py::dict& options, bool optimizers);
-// Pops method, lambda (lambda_, lam) and mu from `options`; checked.
-WeightOptions pop_weights(py::dict& options);
-// Error(Usage) "unknown option 'k'" when a keyword is left.
-void check_no_options_left(const py::dict& options);
 
 void register_errors(py::module_& m);
 void register_texture(py::module_& m);

@@ -108,7 +108,7 @@ def test_usage_errors_name_keywords():
     with pytest.raises(intrinsic.UsageError,
                        match=r"^method: 'foo' is not one of conformal, authalic, mixed, tutte, floater$"):
         intrinsic.parameterize(V, F, method="foo")
-    with pytest.raises(intrinsic.UsageError, match=r"^iterations: must be >= 0, got -1$"):
+    with pytest.raises(intrinsic.UsageError, match=r"^iterations: -1 is not at least 0$"):
         intrinsic.parameterize(V, F, optimize_boundary="edge", iterations=-1)
 
 

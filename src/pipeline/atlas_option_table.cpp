@@ -2,16 +2,13 @@
 // (atlas_option_table.h); docs/cli.md "intrinsic atlas" explains them.
 #include "intrinsic/atlas_option_table.h"
 
-#include <algorithm>
-#include <functional>
-#include <limits>
-
-#include "intrinsic/error.h"
+#include "option_rows.h"
 
 namespace intrinsic {
 namespace {
 
-constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+using option_rows::kNoLimit;
+using option_rows::spec;
 
 // The request being built, with the chart map's choices that are combined
 // only once every option is in (weights, optimizer).
@@ -23,86 +20,8 @@ struct Draft {
   std::optional<BoundaryEnergy> optimize_boundary;
 };
 
-struct Row {
-  OptionSpec spec;
-  std::function<void(Draft&, const OptionValue&)> set;
-};
-
-template <class T>
-using Field = T& (*)(Draft&);
-
-OptionSpec spec(const char* key, const char* group, const char* help, double min = -kNoLimit,
-                double max = kNoLimit) {
-  OptionSpec s;
-  s.key = key;
-  s.flag = option_label(key, OptionSpelling::Flag);
-  s.group = group;
-  s.help = help;
-  s.min = min;
-  s.max = max;
-  return s;
-}
-
-Row with_flag(Row row, const char* flag, bool negates = false) {
-  row.spec.flag = flag;
-  row.spec.flag_negates = negates;
-  return row;
-}
-
-Row real(OptionSpec s, Field<double> f) {
-  Draft d;
-  s.type = OptionType::Real;
-  s.default_value = f(d);
-  return {s, [f](Draft& d, const OptionValue& v) { f(d) = std::get<double>(v); }};
-}
-
-template <class I>
-Row integer(OptionSpec s, Field<I> f) {
-  Draft d;
-  s.type = OptionType::Int;
-  s.default_value = static_cast<std::int64_t>(f(d));
-  return {s, [f](Draft& d, const OptionValue& v) { f(d) = static_cast<I>(std::get<std::int64_t>(v)); }};
-}
-
-// An Int that is unset (-1 in the request) unless given.
-Row optional_integer(OptionSpec s, Field<int> f) {
-  Row r = integer<int>(s, f);
-  r.spec.default_value.reset();
-  return r;
-}
-
-Row boolean(OptionSpec s, Field<bool> f) {
-  Draft d;
-  s.type = OptionType::Bool;
-  s.default_value = f(d);
-  return {s, [f](Draft& d, const OptionValue& v) { f(d) = std::get<bool>(v); }};
-}
-
-Row path(OptionSpec s, Field<std::string> f) {
-  s.type = OptionType::Path;
-  return {s, [f](Draft& d, const OptionValue& v) { f(d) = std::get<std::string>(v); }};
-}
-
-template <class E>
-Row choice(OptionSpec s, Field<E> f) {
-  Draft d;
-  s.type = OptionType::Choice;
-  s.choices = choice_names<E>();
-  s.default_value = choice_name(f(d));
-  return {s, [f](Draft& d, const OptionValue& v) { f(d) = parse_choice<E>(std::get<std::string>(v), ""); }};
-}
-
-template <class E>
-Row optional_choice(OptionSpec s, Field<std::optional<E>> f) {
-  s.type = OptionType::Choice;
-  s.choices = choice_names<E>();
-  return {s, [f](Draft& d, const OptionValue& v) { f(d) = parse_choice<E>(std::get<std::string>(v), ""); }};
-}
-
-Row optional_real(OptionSpec s, Field<std::optional<double>> f) {
-  s.type = OptionType::Real;
-  return {s, [f](Draft& d, const OptionValue& v) { f(d) = std::get<double>(v); }};
-}
+using Rows = option_rows::RowsOf<Draft>;
+using Row = Rows::R;
 
 AtlasOptions& opt(Draft& d) { return d.request.options; }
 
@@ -113,150 +32,150 @@ const char* const kCharts = "Charts";
 
 // What goes in and comes out: scene instances, the glTF set, texture transfer.
 void add_file_rows(std::vector<Row>& t) {
-  t.push_back(with_flag(
-      choice<AtlasScope>(spec("scope", kFiles,
+  t.push_back(Rows::with_flag(
+      Rows::choice<AtlasScope>(spec("scope", kFiles,
                               "whole: one atlas for the whole input (default, e.g. a lightmap); per-mesh: each glTF "
                               "mesh or OBJ object `o` gets its own atlas filling [0,1]^2"),
                          [](Draft& d) -> AtlasScope& { return opt(d).scope; }),
       "--atlas"));
-  t.push_back(choice<InstanceMode>(
+  t.push_back(Rows::choice<InstanceMode>(
       spec("instances", kFiles,
            "A mesh several nodes draw (glTF, FBX, Collada...): shared (default: one chart layout, every node keeps "
            "pointing at it) or unique (each instance its own charts, the mesh copied per node)"),
       [](Draft& d) -> InstanceMode& { return d.request.read.instances; }));
-  t.push_back(boolean(spec("allow_missing_images", kFiles,
+  t.push_back(Rows::boolean(spec("allow_missing_images", kFiles,
                            "Write the output even when an image or material file the input names cannot be found "
                            "(its reference is kept as it was and listed in the report's missing_images)"),
                       [](Draft& d) -> bool& { return d.request.gltf.allow_missing_images; }));
-  t.push_back(optional_integer(
+  t.push_back(Rows::optional_integer(
       spec("uv_set", kFiles,
            "glTF input: the TEXCOORD_n set the atlas goes to (default: the next free set of each primitive)", 0, 31),
       [](Draft& d) -> int& { return d.request.gltf.texcoord_set; }));
-  t.push_back(boolean(spec("replace_used_set", kFiles,
+  t.push_back(Rows::boolean(spec("replace_used_set", kFiles,
                            "glTF input: allow --uv-set to replace a set that the material's textures read (they will "
                            "no longer match: see --transfer-textures)"),
                       [](Draft& d) -> bool& { return d.request.gltf.replace_used_set; }));
-  t.push_back(boolean(
+  t.push_back(Rows::boolean(
       spec("transfer_textures", kFiles,
            "Bake every texture that reads the replaced set into the new layout (glTF: with --uv-set N, images "
            "embedded, TANGENT written for normal maps; OBJ: map_Kd/map_Ks/map_Bump of the mtllib, PNGs and a new "
            ".mtl beside the output)"),
       [](Draft& d) -> bool& { return d.request.textures.enabled; }));
-  t.push_back(integer<int>(
+  t.push_back(Rows::integer<int>(
       spec("texture_size", kFiles,
            "--transfer-textures: side of each baked texture in texels (0: each source's own texel density)", 0, 16384),
       [](Draft& d) -> int& { return d.request.textures.size; }));
-  t.push_back(integer<int>(spec("texture_padding", kFiles,
+  t.push_back(Rows::integer<int>(spec("texture_padding", kFiles,
                                 "--transfer-textures: texels of dilation around every chart (-1: fill the whole image)",
                                 -1, 1024),
                            [](Draft& d) -> int& { return d.request.textures.padding; }));
-  t.push_back(integer<std::int64_t>(spec("max_vertices", kFiles, "Refuse inputs with more vertices", 1),
+  t.push_back(Rows::integer<std::int64_t>(spec("max_vertices", kFiles, "Refuse inputs with more vertices", 1),
                                     [](Draft& d) -> std::int64_t& { return d.request.read.max_vertices; }));
 }
 
 // Each chart's map, as `param` spells it.
 void add_map_rows(std::vector<Row>& t) {
-  t.push_back(choice<BoundaryShape>(
+  t.push_back(Rows::choice<BoundaryShape>(
       spec("boundary", kMap,
            "Each chart's map: natural (the natural conformal map, default) or a fixed circle or square boundary "
            "with --method's weights"),
       [](Draft& d) -> BoundaryShape& { return opt(d).charts.chart_map.boundary; }));
-  t.push_back(choice<Method>(spec("method", kMap, "conformal | authalic | mixed | tutte | floater"),
+  t.push_back(Rows::choice<Method>(spec("method", kMap, "conformal | authalic | mixed | tutte | floater"),
                              [](Draft& d) -> Method& { return d.method; }));
-  Row lambda = optional_real(spec("lambda", kMap, "Weight of the conformal energy (mixed)"),
+  Row lambda = Rows::optional_real(spec("lambda", kMap, "Weight of the conformal energy (mixed)"),
                              [](Draft& d) -> std::optional<double>& { return d.lambda; });
   lambda.spec.aliases = {"lambda_", "lam"};
   t.push_back(lambda);
-  t.push_back(optional_real(spec("mu", kMap, "Weight of the authalic energy (mixed)"),
+  t.push_back(Rows::optional_real(spec("mu", kMap, "Weight of the authalic energy (mixed)"),
                             [](Draft& d) -> std::optional<double>& { return d.mu; }));
-  t.push_back(optional_choice<LambdaEnergy>(
+  t.push_back(Rows::optional_choice<LambdaEnergy>(
       spec("optimize_lambda", kMap,
            "Per chart, the mixed map at the optimal lambda for this energy (edge | area); fixed boundaries"),
       [](Draft& d) -> std::optional<LambdaEnergy>& { return d.optimize_lambda; }));
-  t.push_back(optional_choice<BoundaryEnergy>(
+  t.push_back(Rows::optional_choice<BoundaryEnergy>(
       spec("optimize_boundary", kMap, "Per chart, optimize the fixed boundary for this energy (edge | area | dirichlet)"),
       [](Draft& d) -> std::optional<BoundaryEnergy>& { return d.optimize_boundary; }));
 }
 
 // Padding, page size, lightmap density and pages, re-packing existing UVs.
 void add_pack_rows(std::vector<Row>& t) {
-  t.push_back(real(spec("padding", kPack, "Texels between charts", 0.0),
+  t.push_back(Rows::real(spec("padding", kPack, "Texels between charts", 0.0),
                    [](Draft& d) -> double& { return opt(d).pack.padding; }));
-  t.push_back(real(spec("texels_per_unit", kPack,
+  t.push_back(Rows::real(spec("texels_per_unit", kPack,
                         "Lightmaps: every chart at this many texels per unit of surface length, on pages of "
                         "--resolution texels (UDIM tiles 1001, 1002, ...: page k at u in [k, k+1]; 0: one page, "
                         "charts scaled to fill it)",
                         0.0, 1e12),
                    [](Draft& d) -> double& { return opt(d).pack.texels_per_unit; }));
-  t.push_back(boolean(spec("pack_only", kPack,
+  t.push_back(Rows::boolean(spec("pack_only", kPack,
                            "Re-pack the input's own UVs (OBJ vt, PLY u v, glTF TEXCOORD_<--uv-set, default 0>): its "
                            "charts keep their shape, turned only by quarter turns, one common scale, moved into a "
                            "layout without overlaps"),
                       [](Draft& d) -> bool& { return opt(d).pack_only; }));
-  t.push_back(boolean(spec("keep_overlaps", kPack,
+  t.push_back(Rows::boolean(spec("keep_overlaps", kPack,
                            "--pack-only: input charts that overlap each other (mirrored halves sharing texels) stay "
                            "on each other (default: separated)"),
                       [](Draft& d) -> bool& { return opt(d).keep_overlaps; }));
-  t.push_back(integer<int>(spec("max_pages", kPack,
+  t.push_back(Rows::integer<int>(spec("max_pages", kPack,
                                 "--texels-per-unit: refuse (exit 2, nothing written) when more pages are needed (0: "
                                 "no limit)",
                                 0),
                            [](Draft& d) -> int& { return opt(d).pack.max_pages; }));
-  t.push_back(integer<int>(spec("resolution", kPack, "Texture (page) width the padding is measured in", 1, 1 << 20),
+  t.push_back(Rows::integer<int>(spec("resolution", kPack, "Texture (page) width the padding is measured in", 1, 1 << 20),
                            [](Draft& d) -> int& { return opt(d).pack.resolution; }));
 }
 
 // Where charts are cut and how far they may stretch.
 void add_chart_rows(std::vector<Row>& t) {
-  t.push_back(real(spec("max_normal_deviation", kCharts, "Degrees between a face normal and its chart's mean normal",
+  t.push_back(Rows::real(spec("max_normal_deviation", kCharts, "Degrees between a face normal and its chart's mean normal",
                         1.0, 180.0),
                    [](Draft& d) -> double& { return opt(d).charts.max_normal_deviation_deg; }));
-  t.push_back(real(spec("hard_angle", kCharts,
+  t.push_back(Rows::real(spec("hard_angle", kCharts,
                         "Always cut edges whose faces' normals turn by more than this many degrees (0: none)", 0.0,
                         179.999),
                    [](Draft& d) -> double& { return opt(d).charts.hard_angle_deg; }));
-  t.push_back(integer<int>(spec("min_chart_faces", kCharts,
+  t.push_back(Rows::integer<int>(spec("min_chart_faces", kCharts,
                                 "Charts with fewer faces may merge into a neighbour up to its own stretch (0: no "
                                 "merging)",
                                 0),
                            [](Draft& d) -> int& { return opt(d).charts.min_chart_faces; }));
-  t.push_back(path(spec("seams", kCharts,
+  t.push_back(Rows::path(spec("seams", kCharts,
                         "Cut exactly these edges (one 'i j' per line, 0-based vertex indices); charts are the pieces "
                         "between them, split only where validity needs"),
                    [](Draft& d) -> std::string& { return d.request.seams_file; }));
-  t.push_back(real(spec("max_stretch", kCharts,
+  t.push_back(Rows::real(spec("max_stretch", kCharts,
                         "Split charts above, and merge neighbouring charts while the union stays within, this "
                         "stretch: 95% of each chart's surface stretched or shrunk by at most this factor (max(s1, "
                         "1/s2))",
                         1.0, 100.0),
                    [](Draft& d) -> double& { return opt(d).charts.max_stretch; }));
-  t.push_back(real(spec("max_face_stretch", kCharts,
+  t.push_back(Rows::real(spec("max_face_stretch", kCharts,
                         "No face of a chart stretched or shrunk more than this (max(s1, 1/s2) at the atlas's texel "
                         "density)",
                         1.0, 1e6),
                    [](Draft& d) -> double& { return opt(d).charts.max_face_stretch; }));
-  t.push_back(integer<int>(spec("isometric_iterations", kCharts,
+  t.push_back(Rows::integer<int>(spec("isometric_iterations", kCharts,
                                 "Local/global steps refining each chart's natural conformal map toward an isometry "
                                 "(0: none)",
                                 0, 1000),
                            [](Draft& d) -> int& { return opt(d).charts.chart_map.isometric_iterations; }));
-  t.push_back(with_flag(boolean(spec("atlas_stretch_budget", kCharts,
+  t.push_back(Rows::with_flag(Rows::boolean(spec("atlas_stretch_budget", kCharts,
                                      "Keep every merged chart within --max-stretch (default: unions under 1% of the "
                                      "surface may merge past it while the whole atlas's 95th percentile stays "
                                      "within it)"),
                                 [](Draft& d) -> bool& { return opt(d).charts.atlas_stretch_budget; }),
                         "--per-chart-stretch", true));
-  t.push_back(integer<int>(spec("max_charts", kCharts,
+  t.push_back(Rows::integer<int>(spec("max_charts", kCharts,
                                 "Merge further (past both stretch bounds, never past validity) down to this many "
                                 "charts (0: no limit)",
                                 0),
                            [](Draft& d) -> int& { return opt(d).charts.max_charts; }));
-  t.push_back(real(spec("weld", kCharts,
+  t.push_back(Rows::real(spec("weld", kCharts,
                         "Weld vertices closer than EPS times the bounding box diagonal, for the computation only "
                         "(coincident corners of unwelded exports; 0: off); the output keeps the input's vertices",
                         0.0, 0.999999),
                    [](Draft& d) -> double& { return opt(d).charts.weld; }));
-  t.push_back(with_flag(boolean(spec("reorient", kCharts,
+  t.push_back(Rows::with_flag(Rows::boolean(spec("reorient", kCharts,
                                      "Keep the winding of faces listed against their piece's orientation and cut "
                                      "there (default: write them reversed, so charts may span them)"),
                                 [](Draft& d) -> bool& { return opt(d).charts.reorient; }),
@@ -277,7 +196,7 @@ const std::vector<Row>& rows() {
 
 // The chart map's options, combined as `param` combines them.
 void finish_chart_map(Draft& d, const std::vector<std::string>& keys, OptionSpelling spelling) {
-  const auto given = [&](const char* key) { return std::find(keys.begin(), keys.end(), key) != keys.end(); };
+  const auto given = [&](const char* key) { return option_rows::was_given(keys, key); };
   const auto label = [&](const char* key) { return option_label(key, spelling); };
   ChartMapOptions& m = d.request.options.charts.chart_map;
   if (m.boundary == BoundaryShape::Natural &&
@@ -299,27 +218,13 @@ void finish_chart_map(Draft& d, const std::vector<std::string>& keys, OptionSpel
 }  // namespace
 
 const std::vector<OptionSpec>& atlas_option_table() {
-  static const std::vector<OptionSpec> specs = [] {
-    std::vector<OptionSpec> s;
-    for (const Row& r : rows()) s.push_back(r.spec);
-    return s;
-  }();
+  static const std::vector<OptionSpec> specs = option_rows::specs_of(rows());
   return specs;
 }
 
 AtlasRequest atlas_request(const GivenOptions& given, OptionSpelling spelling) {
   Draft d;
-  std::vector<std::string> keys;
-  for (const auto& [key, value] : given) {
-    const Row* row = nullptr;
-    for (const Row& r : rows())
-      if (option_matches(r.spec, key)) row = &r;
-    if (!row) throw_usage("unknown option '" + key + "'");
-    const std::string& name = option_name(row->spec, spelling);
-    if (std::find(keys.begin(), keys.end(), row->spec.key) != keys.end()) throw_usage(name + ": given twice");
-    keys.push_back(row->spec.key);
-    row->set(d, checked_option_value(row->spec, value, spelling));
-  }
+  const std::vector<std::string> keys = option_rows::apply_given(rows(), given, spelling, d);
   finish_chart_map(d, keys, spelling);
   d.request.read.max_faces = faces_for_vertices(d.request.read.max_vertices);
   d.request.textures.spelling = spelling;

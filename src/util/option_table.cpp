@@ -18,6 +18,9 @@ const char* type_name(OptionType t) {
     case OptionType::Real: return "a number";
     case OptionType::Choice: return "a name";
     case OptionType::Path: return "a path";
+    case OptionType::Text: return "text";
+    case OptionType::ChoiceOrPath: return "a name or a path";
+    case OptionType::RealPair: return "two numbers";
   }
   return "?";
 }
@@ -35,6 +38,20 @@ std::string list_text(const std::vector<std::string>& names) {
   return out;
 }
 
+bool value_fits(OptionType type, const OptionValue& v) {
+  switch (type) {
+    case OptionType::Bool: return std::holds_alternative<bool>(v);
+    case OptionType::Int: return std::holds_alternative<std::int64_t>(v);
+    case OptionType::Real: return std::holds_alternative<double>(v);
+    case OptionType::RealPair: return std::holds_alternative<RealPair>(v);
+    case OptionType::Choice:
+    case OptionType::Path:
+    case OptionType::Text:
+    case OptionType::ChoiceOrPath: return std::holds_alternative<std::string>(v);
+  }
+  return false;
+}
+
 }  // namespace
 
 OptionValue checked_option_value(const OptionSpec& spec, const OptionValue& value, OptionSpelling spelling) {
@@ -42,17 +59,17 @@ OptionValue checked_option_value(const OptionSpec& spec, const OptionValue& valu
   OptionValue v = value;
   if (spec.type == OptionType::Real && std::holds_alternative<std::int64_t>(v))
     v = static_cast<double>(std::get<std::int64_t>(v));
-  const bool fits = (spec.type == OptionType::Bool && std::holds_alternative<bool>(v)) ||
-                    (spec.type == OptionType::Int && std::holds_alternative<std::int64_t>(v)) ||
-                    (spec.type == OptionType::Real && std::holds_alternative<double>(v)) ||
-                    ((spec.type == OptionType::Choice || spec.type == OptionType::Path) &&
-                     std::holds_alternative<std::string>(v));
-  if (!fits) throw_usage(name + ": expected " + type_name(spec.type) + ", got " + option_value_text(value));
+  if (!value_fits(spec.type, v))
+    throw_usage(name + ": expected " + type_name(spec.type) + ", got " + option_value_text(value));
   if (spec.type == OptionType::Int || spec.type == OptionType::Real) {
     const double x = spec.type == OptionType::Int ? static_cast<double>(std::get<std::int64_t>(v)) : std::get<double>(v);
     if (!(x >= spec.min && x <= spec.max))
       throw_usage(name + ": " + option_value_text(v) + " is not " + range_text(spec));
   }
+  if (spec.type == OptionType::RealPair)
+    for (const double x : std::get<RealPair>(v))
+      if (!(x >= spec.min && x <= spec.max))
+        throw_usage(name + ": " + option_value_text(v) + " is not " + range_text(spec));
   if (spec.type == OptionType::Choice) {
     const std::string& text = std::get<std::string>(v);
     bool known = false;
@@ -72,12 +89,20 @@ const OptionSpec* find_option(const std::vector<OptionSpec>& table, const std::s
   return nullptr;
 }
 
+std::vector<OptionSpec> select_options(const std::vector<OptionSpec>& table, const std::vector<std::string>& keys) {
+  std::vector<OptionSpec> out;
+  for (const OptionSpec& s : table)
+    if (std::find(keys.begin(), keys.end(), s.key) != keys.end()) out.push_back(s);
+  return out;
+}
+
 std::string option_value_text(const OptionValue& value) {
   if (const bool* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
   if (const std::int64_t* i = std::get_if<std::int64_t>(&value)) return std::to_string(*i);
   if (const std::string* s = std::get_if<std::string>(&value)) return *s;
   std::ostringstream out;
-  out << std::get<double>(value);
+  if (const RealPair* p = std::get_if<RealPair>(&value)) out << (*p)[0] << "," << (*p)[1];
+  else out << std::get<double>(value);
   return out.str();
 }
 
