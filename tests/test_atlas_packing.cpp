@@ -232,9 +232,7 @@ TEST(AtlasPackingLayout, EqualSquaresReachTheGridUtilization) {
     for (int i = 0; i < 16; ++i) charts.push_back(square_chart(1.0));
     PackOptions o;
     o.padding = padding;
-    int overlapping = -1;
-    const double u = pack_flat_charts(charts, o, overlapping);
-    EXPECT_EQ(overlapping, 0);
+    const double u = pack_flat_charts(charts, o);
     EXPECT_LE(u, best * (1 + 1e-9));
     EXPECT_GE(u, best * 0.98) << "padding " << padding;
   }
@@ -253,9 +251,8 @@ TEST(AtlasPackingLayout, OneSimilarityPerChartOneScaleDeterministic) {
   }
   std::vector<FlatChart> a = input, b = input;
   PackOptions o;
-  int overlapping = 0;
-  const double ua = pack_flat_charts(a, o, overlapping);
-  const double ub = pack_flat_charts(b, o, overlapping);
+  const double ua = pack_flat_charts(a, o);
+  const double ub = pack_flat_charts(b, o);
   EXPECT_EQ(ua, ub);
   double scale = 0;
   for (size_t c = 0; c < input.size(); ++c) {

@@ -281,7 +281,10 @@ struct AtlasResult {
   // counts once (docs/maths.md §9.6; bench/atlas_compare.py measures xatlas so).
   double seam_length = 0;
   int flipped = 0;         // non-degenerate faces with signed UV area <= 0 in their chart's orientation (0 by construction)
-  int overlapping = 0;     // charts whose texel masks meet another's (0 by construction of the packer)
+  // Pairs of faces whose UV triangles' interiors meet (in one chart or two),
+  // counted exactly on the layout: 0, except input charts kept on each
+  // other on request (AtlasOptions::keep_overlaps).
+  int overlapping = 0;
   AtlasCleaning cleaning;
   AtlasTimings timings;
 };

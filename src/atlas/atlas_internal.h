@@ -181,8 +181,7 @@ struct PageLayout {
   std::vector<double> page_utilization;
   std::vector<int> shrunk;  // charts scaled down to fit one page
 };
-double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping,
-                        PageLayout* pages = nullptr);
+double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, PageLayout* pages = nullptr);
 
 // The input's own texture coordinates as charts for pack_charts
 // (repack_uvs.cpp): faces connected through shared UV rows (MeshData::FTC)

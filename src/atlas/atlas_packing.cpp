@@ -156,9 +156,7 @@ double pack_on_pages(std::vector<FlatChart>& charts, const PackOptions& o, PageL
 
 }  // namespace
 
-double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, int& overlapping,
-                        PageLayout* pages) {
-  overlapping = 0;
+double pack_flat_charts(std::vector<FlatChart>& charts, const PackOptions& options, PageLayout* pages) {
   if (charts.empty()) return 0;
   if (options.texels_per_unit > 0) {
     PageLayout unused;
