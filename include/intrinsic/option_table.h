@@ -72,6 +72,11 @@ const OptionSpec* find_option(const std::vector<OptionSpec>& table, const std::s
 // command that takes a few of a job's options: `edit` takes param's blend).
 std::vector<OptionSpec> select_options(const std::vector<OptionSpec>& table, const std::vector<std::string>& keys);
 
+// The type's short name, as the tables' readers (the Python module's dicts,
+// the generated docs) show it: "bool", "int", "float", "choice", "path",
+// "str", "choice or path", "pair".
+const char* option_type_name(OptionType type);
+
 // A value as text, as --help shows a default ("2", "1.08", "true", "whole",
 // "0,1").
 std::string option_value_text(const OptionValue& value);

@@ -69,20 +69,6 @@ ParamRequest to_request(const py::dict& options, bool optimizers) {
 
 namespace {
 
-const char* type_word(OptionType t) {
-  switch (t) {
-    case OptionType::Bool: return "bool";
-    case OptionType::Int: return "int";
-    case OptionType::Real: return "float";
-    case OptionType::Choice: return "choice";
-    case OptionType::Path: return "path";
-    case OptionType::Text: return "str";
-    case OptionType::ChoiceOrPath: return "choice or path";
-    case OptionType::RealPair: return "pair";
-  }
-  return "?";
-}
-
 py::object value_to_python(const OptionValue& v) {
   if (const bool* b = std::get_if<bool>(&v)) return py::bool_(*b);
   if (const std::int64_t* i = std::get_if<std::int64_t>(&v)) return py::int_(*i);
@@ -125,7 +111,7 @@ OptionValue to_option_value(const std::vector<OptionSpec>& table, const std::str
   }
   throw_usage(key + ": expected " + (s->type == OptionType::Choice       ? "one of its names"
                : s->type == OptionType::RealPair ? "(lo, hi)"
-                                                 : type_word(s->type)) +
+                                                 : option_type_name(s->type)) +
               ", got " + py::str(py::type::of(value).attr("__name__")).cast<std::string>());
 }
 
@@ -137,7 +123,7 @@ py::list table_to_python(const std::vector<OptionSpec>& table) {
     d["flag"] = s.flag;
     d["flag_negates"] = s.flag_negates;
     d["aliases"] = s.aliases;
-    d["type"] = type_word(s.type);
+    d["type"] = option_type_name(s.type);
     d["group"] = s.group;
     d["help"] = s.help;
     d["min"] = bound_to_python(s.min);

@@ -80,14 +80,7 @@ void add_map_rows(std::vector<Row>& t) {
            "Each chart's map: natural (the natural conformal map, default) or a fixed circle or square boundary "
            "with --method's weights"),
       [](Draft& d) -> BoundaryShape& { return opt(d).charts.chart_map.boundary; }));
-  t.push_back(Rows::choice<Method>(spec("method", kMap, "conformal | authalic | mixed | tutte | floater"),
-                             [](Draft& d) -> Method& { return d.method; }));
-  Row lambda = Rows::optional_real(spec("lambda", kMap, "Weight of the conformal energy (mixed)"),
-                             [](Draft& d) -> std::optional<double>& { return d.lambda; });
-  lambda.spec.aliases = {"lambda_", "lam"};
-  t.push_back(lambda);
-  t.push_back(Rows::optional_real(spec("mu", kMap, "Weight of the authalic energy (mixed)"),
-                            [](Draft& d) -> std::optional<double>& { return d.mu; }));
+  Rows::add_blend_rows(t, kMap);
   t.push_back(Rows::optional_choice<LambdaEnergy>(
       spec("optimize_lambda", kMap,
            "Per chart, the mixed map at the optimal lambda for this energy (edge | area); fixed boundaries"),

@@ -14,6 +14,7 @@
 
 #include "intrinsic/error.h"
 #include "intrinsic/option_table.h"
+#include "intrinsic/weights.h"
 
 namespace intrinsic::option_rows {
 
@@ -127,6 +128,19 @@ struct RowsOf {
     s.choices = choice_names<E>();
     s.default_value = default_of(f);
     return {s, [f](Draft& d, const OptionValue& v) { f(d) = std::get<std::string>(v); }};
+  }
+
+  // The blend's rows (method, lambda, mu), which the jobs spell alike; the
+  // Draft holds them as `method`, `lambda` and `mu` until every option is in.
+  static void add_blend_rows(std::vector<R>& t, const char* group) {
+    t.push_back(choice<Method>(spec("method", group, "conformal | authalic | mixed | tutte | floater"),
+                               [](Draft& d) -> Method& { return d.method; }));
+    R lambda = optional_real(spec("lambda", group, "Weight of the conformal energy (mixed)"),
+                             [](Draft& d) -> std::optional<double>& { return d.lambda; });
+    lambda.spec.aliases = {"lambda_", "lam"};
+    t.push_back(lambda);
+    t.push_back(optional_real(spec("mu", group, "Weight of the authalic energy (mixed)"),
+                              [](Draft& d) -> std::optional<double>& { return d.mu; }));
   }
 
   template <class E>

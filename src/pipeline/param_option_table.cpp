@@ -34,14 +34,7 @@ ParamOptions& opt(Draft& d) { return d.request.options; }
 
 // The weights, the boundary and how it is laid out.
 void add_map_rows(std::vector<Row>& t) {
-  t.push_back(Rows::choice<Method>(spec("method", kMap, "conformal | authalic | mixed | tutte | floater"),
-                                   [](Draft& d) -> Method& { return d.method; }));
-  Row lambda = Rows::optional_real(spec("lambda", kMap, "Weight of the conformal energy (mixed)"),
-                                   [](Draft& d) -> std::optional<double>& { return d.lambda; });
-  lambda.spec.aliases = {"lambda_", "lam"};
-  t.push_back(lambda);
-  t.push_back(Rows::optional_real(spec("mu", kMap, "Weight of the authalic energy (mixed)"),
-                                  [](Draft& d) -> std::optional<double>& { return d.mu; }));
+  Rows::add_blend_rows(t, kMap);
   Row boundary = Rows::choice_or_path<BoundaryShape>(
       spec("boundary", kMap,
            "circle | square | natural (natural conformal map, no fixed boundary; conformal only) | FILE with lines "

@@ -11,7 +11,8 @@
 namespace intrinsic {
 namespace {
 
-const char* type_name(OptionType t) {
+// The type in a message: "expected a number, got ...".
+const char* type_words(OptionType t) {
   switch (t) {
     case OptionType::Bool: return "true or false";
     case OptionType::Int: return "an integer";
@@ -60,7 +61,7 @@ OptionValue checked_option_value(const OptionSpec& spec, const OptionValue& valu
   if (spec.type == OptionType::Real && std::holds_alternative<std::int64_t>(v))
     v = static_cast<double>(std::get<std::int64_t>(v));
   if (!value_fits(spec.type, v))
-    throw_usage(name + ": expected " + type_name(spec.type) + ", got " + option_value_text(value));
+    throw_usage(name + ": expected " + type_words(spec.type) + ", got " + option_value_text(value));
   if (spec.type == OptionType::Int || spec.type == OptionType::Real) {
     const double x = spec.type == OptionType::Int ? static_cast<double>(std::get<std::int64_t>(v)) : std::get<double>(v);
     if (!(x >= spec.min && x <= spec.max))
@@ -87,6 +88,20 @@ const OptionSpec* find_option(const std::vector<OptionSpec>& table, const std::s
   for (const OptionSpec& s : table)
     if (option_matches(s, key)) return &s;
   return nullptr;
+}
+
+const char* option_type_name(OptionType type) {
+  switch (type) {
+    case OptionType::Bool: return "bool";
+    case OptionType::Int: return "int";
+    case OptionType::Real: return "float";
+    case OptionType::Choice: return "choice";
+    case OptionType::Path: return "path";
+    case OptionType::Text: return "str";
+    case OptionType::ChoiceOrPath: return "choice or path";
+    case OptionType::RealPair: return "pair";
+  }
+  return "?";
 }
 
 std::vector<OptionSpec> select_options(const std::vector<OptionSpec>& table, const std::vector<std::string>& keys) {
