@@ -156,6 +156,14 @@ TEST(GltfPerMesh, ObjObjectsAndRefusal) {
     EXPECT_EQ(e.kind(), ErrorKind::Usage);
     EXPECT_NE(std::string(e.what()).find("no meshes to tell apart"), std::string::npos) << e.what();
   }
+  // Nor has the geometry alone: the objects are the file's document.
+  try {
+    atlas(data, o);
+    ADD_FAILURE() << "not refused";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Usage);
+    EXPECT_NE(std::string(e.what()).find("no meshes to tell apart"), std::string::npos) << e.what();
+  }
   // The command line's --atlas.
   const test::CliResult c = test::run_cli("atlas " + (dir / "two.obj") + " -o " + (dir / "out.obj") + " -q --atlas per-mesh", dir);
   EXPECT_EQ(c.code, 0) << c.err;

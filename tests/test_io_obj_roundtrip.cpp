@@ -210,9 +210,17 @@ TEST(ObjRoundTrip, ReaderKeepsWhatTheFileCarried) {
   EXPECT_TRUE(m.has_uv());
   EXPECT_TRUE(m.had_texcoords);
   EXPECT_FALSE(x.empty());
+  EXPECT_FALSE(file.document.gltf);
   // Three materials, each name once in the table although red is used twice.
   EXPECT_EQ(x.materials.names, (std::vector<std::string>{"red", "green", "blue"}));
   EXPECT_EQ(x.groups.names, (std::vector<std::string>{"north cap", "", "belt #2"}));
+  // The geometry alone is the same mesh.
+  const MeshData alone = read_mesh_from_memory(o.text, "sphere.obj");
+  EXPECT_EQ(alone.V, m.V);
+  EXPECT_EQ(alone.F, m.F);
+  EXPECT_EQ(alone.TC, m.TC);
+  EXPECT_EQ(alone.FTC, m.FTC);
+  EXPECT_EQ(alone.face_line, m.face_line);
 }
 
 TEST(ObjRoundTrip, LibraryAtlasGivesEverythingBack) {
