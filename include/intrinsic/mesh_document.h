@@ -6,10 +6,10 @@
 // An OBJ's extras are its normals, material libraries and, per face, its
 // material, group, object and smoothing group, as a small index into a table
 // of names (nothing per face is allocated when the file has none of it);
-// every triangle of a polygon inherits the polygon's. A glTF document (or an
-// asset assimp reads, through glTF) fills the same from its own data, so an
-// OBJ output keeps them, and keeps the whole document, so that a glTF output
-// is that document with the atlas added (intrinsic/gltf.h).
+// every triangle of a polygon inherits the polygon's. A glTF input (or an
+// asset assimp reads, through glTF) fills the same from its document, so
+// that an OBJ output keeps them; the whole document is kept too, so that a
+// glTF output is that document with the atlas added (intrinsic/gltf.h).
 #pragma once
 
 #include <memory>
