@@ -36,7 +36,7 @@ int run_atlas(const AtlasArgs& a) {
   const AtlasOutcome o = atlas_file(a.input, request);
   const auto t1 = std::chrono::steady_clock::now();
   const TextureTransferReport baked =
-      write_atlas_with_textures(a.output, o.data, o.result, request.gltf, request.textures);
+      write_atlas_with_textures(a.output, o.input, o.result, request.gltf, request.textures);
   nlohmann::json j = nlohmann::json::parse(atlas_report(o, a.output));
   if (request.textures.enabled) j["textures"] = nlohmann::json::parse(texture_transfer_report(baked));
   // What writing added beside the output, or could not find (only when
@@ -52,7 +52,7 @@ int run_atlas(const AtlasArgs& a) {
   for (const std::string& m : baked.missing_images)
     std::cerr << "intrinsic: warning: " << a.output << " names '" << m << "', which was not found (--allow-missing-images)\n";
   if (!a.quiet)
-    std::cout << a.output << ": " << o.data.V.rows() << " vertices, " << r.components << " components, "
+    std::cout << a.output << ": " << o.input.mesh.V.rows() << " vertices, " << r.components << " components, "
               << r.charts.size() << " charts, "
               << (r.pages > 1 ? std::to_string(r.pages) + " pages, " : std::string())
               << "utilization " << static_cast<int>(100 * r.utilization + 0.5) << "%, "

@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 namespace {
 
 TextureTransferReport run(const std::string& in, const std::string& out, int size, AtlasResult* atlas_out = nullptr) {
-  const MeshData m = read_mesh(in);
+  const MeshFile m = read_mesh_file(in);
   const AtlasResult r = atlas(m, AtlasOptions{});
   GltfWriteOptions g;
   g.texcoord_set = 0;
@@ -76,7 +76,7 @@ int picture(const std::string& path) {
   o.cells = 16, o.chart_cells = 1, o.texture_size = 1024;
   const TexturedAsset a = generate_textured_asset(o);
   write_textured_asset((dir / "in.obj").string(), a);
-  const MeshData m = read_mesh((dir / "in.obj").string());
+  const MeshFile m = read_mesh_file((dir / "in.obj").string());
   const AtlasResult r = atlas(m, AtlasOptions{});
   TextureTransferOptions t;
   t.enabled = true, t.size = 1024;
@@ -93,7 +93,7 @@ int picture(const std::string& path) {
   const Image img = compose_panels(
       {draw((dir / "in.obj").string(), a.texture, side), draw((dir / "out.obj").string(), baked, side),
        panel(a.texture, side), panel(baked, side)},
-      {"before: " + std::to_string(m.F.rows()) + " faces, 1,536 tiny charts", "after: re-atlased, texture baked",
+      {"before: " + std::to_string(m.mesh.F.rows()) + " faces, 1,536 tiny charts", "after: re-atlased, texture baked",
        "old texture layout", "new texture layout (" + std::to_string(r.charts.size()) + " charts)"},
       2);
   write_file_atomically(path, encode_png(img));

@@ -68,7 +68,7 @@ endfunction()
 intrinsic_layer(util FOLDERS src/util HEADERS error choice option_table mesh_data)
 intrinsic_layer(mesh FOLDERS src/mesh src/boundary src/constraints HEADERS mesh topology boundary constraints
                 USES util)
-intrinsic_layer(io FOLDERS src/io HEADERS io gltf image USES mesh)
+intrinsic_layer(io FOLDERS src/io HEADERS io gltf image mesh_document USES mesh)
 intrinsic_layer(solve FOLDERS src/weights src/solve HEADERS weights solver_kind USES mesh)
 intrinsic_layer(metrics FOLDERS src/metrics HEADERS metrics uv_mesh USES mesh)
 intrinsic_layer(core FOLDERS src/core HEADERS parameterize parameterizer charts boundary_editor

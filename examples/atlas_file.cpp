@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
     intrinsic::AtlasRequest request;  // the command line's defaults
     request.read.max_faces = intrinsic::faces_for_vertices(request.read.max_vertices);
     const intrinsic::AtlasOutcome atlas = intrinsic::atlas_file(input, request);
-    intrinsic::write_atlas_file(output, atlas.data, atlas.result);
+    intrinsic::write_atlas_file(output, atlas.input, atlas.result);
     if (!report.empty()) {
       nlohmann::json j = nlohmann::json::parse(intrinsic::atlas_report(atlas, output));
       j["timings_ms"]["total"] =

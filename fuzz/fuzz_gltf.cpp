@@ -1,5 +1,5 @@
 // Fuzzes glTF reading (.gltf JSON and .glb, detected from the bytes) through
-// read_mesh_from_memory and, for every document it accepts, writing it back
+// read_mesh_file_from_memory and, for every document it accepts, writing it back
 // with a stand-in atlas (one coordinate per corner) as .glb, so the vertex
 // splitting and attribute copying see the same hostile accessors.
 #include <cstdlib>
@@ -24,8 +24,9 @@ const std::string& output_path() {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace intrinsic;
   return fuzz::expect_only_error([&] {
-    const MeshData m =
-        read_mesh_from_memory(std::string(reinterpret_cast<const char*>(data), size), "fuzz.gltf", fuzz::small_limits());
+    const MeshFile file = read_mesh_file_from_memory(std::string(reinterpret_cast<const char*>(data), size),
+                                                     "fuzz.gltf", fuzz::small_limits());
+    const MeshData& m = file.mesh;
     AtlasResult r;
     r.F = m.F;
     r.FUV.resize(m.F.rows(), 3);
@@ -40,6 +41,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     GltfWriteOptions o;
     if (size % 3 == 1) o.texcoord_set = 0;
     if (size % 3 == 2) o.texcoord_set = 1, o.replace_used_set = size % 2 == 0;
-    write_gltf_atlas(output_path(), m, r, o);
+    write_gltf_atlas(output_path(), file, r, o);
   });
 }

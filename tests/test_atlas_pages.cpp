@@ -163,11 +163,11 @@ TEST(AtlasPages, InstancedSceneAtOneDensity) {
   req.options.pack.texels_per_unit = 24;
   req.options.pack.resolution = 512;
   const AtlasOutcome o = atlas_file(dir / "scene.gltf", req);
-  const int n = static_cast<int>(o.data.F.rows()) / 2;
-  ASSERT_EQ(2 * n, o.data.F.rows());
+  const int n = static_cast<int>(o.input.mesh.F.rows()) / 2;
+  ASSERT_EQ(2 * n, o.input.mesh.F.rows());
   expect_pages_clean(o.result);
-  EXPECT_NEAR(median_density(o.data, o.result, 0, n, 512), 24, 1.2);
-  EXPECT_NEAR(median_density(o.data, o.result, n, 2 * n, 512), 24, 1.2);
+  EXPECT_NEAR(median_density(o.input.mesh, o.result, 0, n, 512), 24, 1.2);
+  EXPECT_NEAR(median_density(o.input.mesh, o.result, n, 2 * n, 512), 24, 1.2);
 }
 
 }  // namespace

@@ -175,7 +175,7 @@ TEST(AtlasRepack, GltfSetRepackedInPlace) {
   req.options.pack_only = true;
   const AtlasOutcome o = atlas_file(dir / "a.glb", req);
   EXPECT_EQ(o.result.charts.size(), 6u * 2 * 2);
-  expect_similar_charts(o.data, o.result, 1e-9);
+  expect_similar_charts(o.input.mesh, o.result, 1e-9);
   EXPECT_EQ(overlaps(o.result), 0);
 }
 

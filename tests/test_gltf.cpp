@@ -1,5 +1,5 @@
 // glTF 2.0 documents in and out (docs/formats.md "glTF"). Documents are built
-// here by hand (JSON + one binary buffer), read through read_mesh, given an
+// here by hand (JSON + one binary buffer), read through read_mesh_file, given an
 // atlas, written back, and the output read with tinygltf's own loader: every
 // output corner must carry, byte for byte, the attributes of the input corner
 // it came from plus the atlas coordinate of that corner; everything outside
@@ -39,15 +39,16 @@ TEST(Gltf, RoundTripKeepsEveryAttributePerCorner) {
   test::TempDir dir;
   test::write_text(dir / "in.gltf", a.doc.gltf());
   expect_valid(dir / "in.gltf");
-  const MeshData data = read_mesh(dir / "in.gltf");
-  ASSERT_TRUE(data.gltf);
+  const MeshFile file = read_mesh_file(dir / "in.gltf");
+  const MeshData& data = file.mesh;
+  ASSERT_TRUE(file.document.gltf);
   ASSERT_EQ(data.F.rows(), a.m.F.rows());
   ASSERT_EQ(data.F, a.m.F);
   const std::vector<float> input_positions = positions(a.m);
   const AtlasResult r = atlas(data);
   for (const std::string out : {"out.glb", "out.gltf"}) {
     SCOPED_TRACE(out);
-    write_atlas_file(dir / out, data, r);
+    write_atlas_file(dir / out, file, r);
     expect_valid(dir / out);
     const tinygltf::Model m = load(dir / out);
     ASSERT_EQ(m.meshes.size(), 1u);
@@ -116,13 +117,14 @@ TEST(Gltf, ReorientedFacesKeepTheirWinding) {
   for (int f = 0; f < disk.F.rows(); f += 5) std::swap(disk.F(f, 1), disk.F(f, 2));
   test::TempDir dir;
   test::write_text(dir / "in.glb", simple_doc(disk).glb());
-  const MeshData data = read_mesh(dir / "in.glb");
+  const MeshFile file = read_mesh_file(dir / "in.glb");
+  const MeshData& data = file.mesh;
   ASSERT_EQ(data.F, disk.F);
   const AtlasResult r = atlas(data);
   int reversed = 0;
   for (int f = 0; f < r.F.rows(); ++f) reversed += r.F.row(f) != data.F.row(f);
   ASSERT_GT(reversed, 0);  // the case is what it means to be
-  write_atlas_file(dir / "out.glb", data, r);
+  write_atlas_file(dir / "out.glb", file, r);
   expect_valid(dir / "out.glb");
   const tinygltf::Model m = load(dir / "out.glb");
   const tinygltf::Primitive& p = m.meshes.at(0).primitives.at(0);
@@ -165,14 +167,15 @@ TEST(Gltf, InstancedMeshSizedByItsFirstInstance) {
     d.j["scenes"] = json::array({{{"nodes", {0, 1, 2}}}});
     test::TempDir dir;
     test::write_text(dir / "in.glb", d.glb());
-    const MeshData data = read_mesh(dir / "in.glb");
+    const MeshFile file = read_mesh_file(dir / "in.glb");
+    const MeshData& data = file.mesh;
     const int nf = static_cast<int>(disk.F.rows());
     ASSERT_EQ(data.F.rows(), 2 * nf);  // the mesh once, not per instance
     for (int v = 0; v < disk.V.rows(); ++v)
       EXPECT_NEAR((data.V.row(v) - first * disk.V.row(v)).norm(), 0, 1e-6);
     const AtlasResult r = atlas(data);
     EXPECT_NEAR(uv_area(r, 0, nf) / uv_area(r, nf, 2 * nf), first * first, 0.05 * first * first);
-    write_atlas_file(dir / "out.glb", data, r);
+    write_atlas_file(dir / "out.glb", file, r);
     expect_valid(dir / "out.glb");
     const tinygltf::Model m = load(dir / "out.glb");
     ASSERT_EQ(m.nodes.size(), 3u);
@@ -185,25 +188,25 @@ TEST(Gltf, InstancedMeshSizedByItsFirstInstance) {
 
 // Strips and fans (glTF 2.0 spec 3.7.2.1) read as the list of the same
 // triangles, written out by hand.
-MeshData read_indexed(int mode, const std::vector<std::uint16_t>& idx, const std::string& file) {
+MeshFile read_indexed(int mode, const std::vector<std::uint16_t>& idx, const std::string& file) {
   Doc d;
   const std::vector<float> p = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0, 1, 2.5f, 0};
   const int pa = d.add(p, 5126, "VEC3", 6, 34962, min_max(p, json::object()));
   const int ia = d.add(idx, 5123, "SCALAR", static_cast<int>(idx.size()), 34963);
   d.j["meshes"] = json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", pa}}}, {"indices", ia}, {"mode", mode}}})}}});
   test::write_text(file, d.gltf());
-  return read_mesh(file);
+  return read_mesh_file(file);
 }
 
 TEST(Gltf, StripsAndFansAreTheirTriangles) {
   test::TempDir dir;
-  const MeshData strip = read_indexed(5, {0, 1, 2, 3, 4, 5}, dir / "strip.gltf");
-  const MeshData list = read_indexed(4, {0, 1, 2, 2, 1, 3, 2, 3, 4, 4, 3, 5}, dir / "list.gltf");
-  ASSERT_EQ(strip.F.rows(), 4);
-  EXPECT_EQ(strip.F, list.F);
-  EXPECT_EQ(strip.V, list.V);
-  const MeshData fan = read_indexed(6, {0, 1, 3, 2}, dir / "fan.gltf");
-  const MeshData fan_list = read_indexed(4, {1, 3, 0, 3, 2, 0}, dir / "fanlist.gltf");
+  const MeshFile strip = read_indexed(5, {0, 1, 2, 3, 4, 5}, dir / "strip.gltf");
+  const MeshData list = read_indexed(4, {0, 1, 2, 2, 1, 3, 2, 3, 4, 4, 3, 5}, dir / "list.gltf").mesh;
+  ASSERT_EQ(strip.mesh.F.rows(), 4);
+  EXPECT_EQ(strip.mesh.F, list.F);
+  EXPECT_EQ(strip.mesh.V, list.V);
+  const MeshData fan = read_indexed(6, {0, 1, 3, 2}, dir / "fan.gltf").mesh;
+  const MeshData fan_list = read_indexed(4, {1, 3, 0, 3, 2, 0}, dir / "fanlist.gltf").mesh;
   EXPECT_EQ(fan.F, fan_list.F);
   // Written back as lists that the validator accepts.
   const AtlasResult r = atlas(strip);
@@ -265,7 +268,8 @@ TEST(Gltf, NormalizedIntegerPositions) {
   test::TempDir dir;
   test::write_text(dir / "q.glb", d.glb());
   expect_valid(dir / "q.glb");
-  const MeshData m = read_mesh(dir / "q.glb");
+  const MeshFile file = read_mesh_file(dir / "q.glb");
+  const MeshData& m = file.mesh;
   ASSERT_EQ(m.V.rows(), 6);
   EXPECT_DOUBLE_EQ(m.V(1, 0), 2.0);
   EXPECT_DOUBLE_EQ(m.V(2, 1), 2 * 32768.0 / 65535.0);
@@ -273,14 +277,14 @@ TEST(Gltf, NormalizedIntegerPositions) {
   EXPECT_DOUBLE_EQ(m.V(5, 0), 2.0);
   EXPECT_DOUBLE_EQ(m.V(5, 1), 2 * 16384.0 / 32767.0);
   // Where each merged vertex and face came from.
-  const GltfProvenance from = gltf_provenance(m);
+  const GltfProvenance from = gltf_provenance(file);
   EXPECT_EQ(from.vertex_mesh, std::vector<int>(6, 0));
   EXPECT_EQ(from.vertex_primitive, (std::vector<int>{0, 0, 0, 1, 1, 1}));
   EXPECT_EQ(from.vertex_index, (std::vector<int>{0, 1, 2, 0, 1, 2}));
   EXPECT_EQ(from.face_primitive, (std::vector<int>{0, 1}));
   EXPECT_EQ(from.face_mesh, (std::vector<int>{0, 0}));
   const AtlasResult r = atlas(m);
-  write_atlas_file(dir / "q_out.glb", m, r);
+  write_atlas_file(dir / "q_out.glb", file, r);
   expect_valid(dir / "q_out.glb", true);
   // The positions stay quantized (and the extension declared); the atlas is
   // a float set.
@@ -302,7 +306,7 @@ TEST(Gltf, ReplacingASetATextureReadsIsRefused) {
   RichAsset a = rich_asset();
   test::TempDir dir;
   test::write_text(dir / "in.glb", a.doc.glb());
-  const MeshData data = read_mesh(dir / "in.glb");
+  const MeshFile data = read_mesh_file(dir / "in.glb");
   const AtlasResult r = atlas(data);
   GltfWriteOptions o;
   o.texcoord_set = 0;
@@ -351,7 +355,7 @@ TEST(Gltf, ExternalBufferAndPlainGltfOutput) {
   const MeshData m = read_mesh(dir / "e.gltf");
   EXPECT_EQ(m.F, disk.F);
   const AtlasResult r = atlas(disk);
-  write_atlas_file(dir / "plain.gltf", disk, r);
+  write_atlas_file(dir / "plain.gltf", MeshFile{disk}, r);
   expect_valid(dir / "plain.gltf");
   EXPECT_EQ(read_mesh(dir / "plain.gltf").F.rows(), disk.F.rows());
 }
@@ -492,7 +496,8 @@ TEST(GltfSamples, AtlasWrittenBackIntoSampleModels) {
                               "simple_skin/simple_skin.gltf", "cameras/Cameras.gltf",
                               "2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "draco/2CylinderEngine.gltf"}) {
     SCOPED_TRACE(f);
-    const MeshData data = read_mesh(kDir + f);
+    const MeshFile file = read_mesh_file(kDir + f);
+    const MeshData& data = file.mesh;
     const AtlasResult r = atlas(data);
     // No fold and no overlap by `metrics`' count on the faces as written (the
     // engine has vertices where two fans of one chart meet: their corners
@@ -501,7 +506,7 @@ TEST(GltfSamples, AtlasWrittenBackIntoSampleModels) {
     EXPECT_EQ(um.flipped_triangles, 0);
     EXPECT_EQ(um.overlapping_triangles, 0);
     const std::string out = dir / ("out" + std::to_string(k++) + (f.back() == 'b' ? ".glb" : ".gltf"));
-    write_atlas_file(out, data, r);
+    write_atlas_file(out, file, r);
     expect_valid(out);
     if (f.compare(0, 6, "draco/") == 0) {
       // Decoded and written uncompressed: as many triangles as the

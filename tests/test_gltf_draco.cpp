@@ -98,11 +98,12 @@ TEST(GltfDraco, DecodedAtlasedAndWrittenUncompressed) {
   test::TempDir dir;
   test::write_text(dir / "in.glb", d.doc.glb());
   expect_valid(dir / "in.glb");
-  const MeshData data = read_mesh(dir / "in.glb");
+  const MeshFile file = read_mesh_file(dir / "in.glb");
+  const MeshData& data = file.mesh;
   ASSERT_EQ(data.F.rows(), d.source.F.rows());
   EXPECT_EQ(triangles(data), triangles(d.source));  // no quantization: exact as floats
   const AtlasResult r = atlas(data);
-  const GltfWriteResult w = write_gltf_atlas(dir / "out.glb", data, r);
+  const GltfWriteResult w = write_gltf_atlas(dir / "out.glb", file, r);
   EXPECT_TRUE(w.pruned);
   expect_valid(dir / "out.glb", true);
   const tinygltf::Model m = load(dir / "out.glb");

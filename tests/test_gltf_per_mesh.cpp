@@ -87,11 +87,12 @@ Eigen::AlignedBox2d mesh_box(const AtlasResult& r, const std::vector<int>& face_
 TEST(GltfPerMesh, EachMeshFillsItsOwnSquare) {
   test::TempDir dir;
   test::write_text(dir / "two.glb", two_meshes().glb());
-  const MeshData data = read_mesh(dir / "two.glb");
-  const std::vector<int> face_mesh = gltf_provenance(data).face_mesh;
+  const MeshFile file = read_mesh_file(dir / "two.glb");
+  const MeshData& data = file.mesh;
+  const std::vector<int> face_mesh = gltf_provenance(file).face_mesh;
   AtlasOptions o;
   o.scope = AtlasScope::PerMesh;
-  const AtlasResult r = atlas(data, o);
+  const AtlasResult r = atlas(file, o);
   ASSERT_EQ(r.F.rows(), data.F.rows());
   for (int f = 0; f < r.F.rows(); ++f)  // the input's faces, each in the input's place
     for (int k = 0; k < 3; ++k) EXPECT_NE((data.F.row(f).array() == r.F(f, k)).count(), 0) << f;
@@ -106,7 +107,7 @@ TEST(GltfPerMesh, EachMeshFillsItsOwnSquare) {
   EXPECT_EQ(r.overlapping, 0);
   // The meshes do share the square: each mesh's own atlas, not one.
   EXPECT_GT(overlaps(r, [&](int f, int g) { return !same_mesh(f, g); }), 0);
-  const GltfWriteResult w = write_gltf_atlas(dir / "out.glb", data, r);
+  const GltfWriteResult w = write_gltf_atlas(dir / "out.glb", file, r);
   EXPECT_TRUE(w.pruned);
   expect_valid(dir / "out.glb", true);
   // The whole-file atlas (the default): no chart overlaps any other, across
@@ -133,10 +134,11 @@ TEST(GltfPerMesh, ObjObjectsAndRefusal) {
   }
   test::TempDir dir;
   test::write_text(dir / "two.obj", obj);
-  const MeshData data = read_mesh(dir / "two.obj");
+  const MeshFile file = read_mesh_file(dir / "two.obj");
+  const MeshData& data = file.mesh;
   AtlasOptions o;
   o.scope = AtlasScope::PerMesh;
-  const AtlasResult r = atlas(data, o);
+  const AtlasResult r = atlas(file, o);
   std::vector<int> face_mesh(static_cast<std::size_t>(data.F.rows()));
   for (int f = 0; f < data.F.rows(); ++f) face_mesh[static_cast<std::size_t>(f)] = f < disk.F.rows() ? 0 : 1;
   for (int mesh = 0; mesh < 2; ++mesh) EXPECT_GT(mesh_box(r, face_mesh, mesh).sizes().maxCoeff(), 0.9) << mesh;
@@ -148,7 +150,15 @@ TEST(GltfPerMesh, ObjObjectsAndRefusal) {
     off += "3 " + std::to_string(disk.F(f, 0)) + " " + std::to_string(disk.F(f, 1)) + " " + std::to_string(disk.F(f, 2)) + "\n";
   test::write_text(dir / "disk.off", off);
   try {
-    atlas(read_mesh(dir / "disk.off"), o);
+    atlas(read_mesh_file(dir / "disk.off"), o);
+    ADD_FAILURE() << "not refused";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Usage);
+    EXPECT_NE(std::string(e.what()).find("no meshes to tell apart"), std::string::npos) << e.what();
+  }
+  // Nor has the geometry alone: the objects are the file's document.
+  try {
+    atlas(data, o);
     ADD_FAILURE() << "not refused";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::Usage);

@@ -76,7 +76,7 @@ TEST(GltfPrune, RoundTripGrowsOnlyByTheNewSet) {
   const MeshData disk = generate_flat_disk(g);
   test::TempDir dir;
   test::write_text(dir / "in.glb", simple_doc(disk).glb());
-  const MeshData data = read_mesh(dir / "in.glb");
+  const MeshFile data = read_mesh_file(dir / "in.glb");
   const AtlasResult r = atlas(data);
   const std::size_t n = split_vertices(r);
   const GltfWriteResult w = write_gltf_atlas(dir / "out.glb", data, r);
@@ -96,7 +96,7 @@ TEST(GltfPrune, RoundTripGrowsOnlyByTheNewSet) {
   EXPECT_EQ(out.j["bufferViews"].size(), 3u);
   if (n == static_cast<std::size_t>(disk.V.rows())) EXPECT_LE(out.bin.size(), in.bin.size() + 8 * n + 3 * 3);
   // The atlas written into its own set again: the same size, not more.
-  const MeshData again = read_mesh(dir / "out.glb");
+  const MeshFile again = read_mesh_file(dir / "out.glb");
   GltfWriteOptions o;
   o.texcoord_set = 0;
   write_gltf_atlas(dir / "again.glb", again, atlas(again), o);
@@ -123,7 +123,7 @@ TEST(GltfPrune, EveryKeptObjectKeepsItsBytes) {
   test::TempDir dir;
   test::write_text(dir / "in.glb", d.glb());
   expect_valid(dir / "in.glb");
-  const MeshData data = read_mesh(dir / "in.glb");
+  const MeshFile data = read_mesh_file(dir / "in.glb");
   const GltfWriteResult w = write_gltf_atlas(dir / "out.glb", data, atlas(data));
   ASSERT_TRUE(w.pruned);
   // 6 attributes, indices, 2 target attributes, and the animation's old output.
@@ -155,7 +155,7 @@ TEST(GltfPrune, UnknownExtensionKeepsEverything) {
   a.doc.j["nodes"][0]["extensions"] = {{"EXT_example_refs", {{"accessor", 3}}}};
   test::TempDir dir;
   test::write_text(dir / "in.glb", a.doc.glb());
-  const MeshData data = read_mesh(dir / "in.glb");
+  const MeshFile data = read_mesh_file(dir / "in.glb");
   const GltfWriteResult w = write_gltf_atlas(dir / "out.glb", data, atlas(data));
   EXPECT_FALSE(w.pruned);
   EXPECT_NE(w.note.find("EXT_example_refs"), std::string::npos) << w.note;
@@ -170,7 +170,7 @@ TEST(GltfPrune, UnknownExtensionKeepsEverything) {
   o.prune = false;
   RichAsset plain = rich_asset();
   test::write_text(dir / "plain.glb", plain.doc.glb());
-  const MeshData pd = read_mesh(dir / "plain.glb");
+  const MeshFile pd = read_mesh_file(dir / "plain.glb");
   const GltfWriteResult kept = write_gltf_atlas(dir / "kept.glb", pd, atlas(pd), o);
   EXPECT_FALSE(kept.pruned);
   EXPECT_TRUE(kept.note.empty());

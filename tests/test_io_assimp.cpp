@@ -245,7 +245,9 @@ TEST_F(AssimpRoundTrip, EveryExportReadsBackAsTheSameSurface) {
     Assimp::Exporter exporter;
     ASSERT_EQ(exporter.Export((e.baked ? baked : scene).get(), e.format, path), aiReturn_SUCCESS)
         << exporter.GetErrorString();
-    const MeshData got = read_mesh(path);
+    const MeshFile got_file = read_mesh_file(path);
+    const MeshData& got = got_file.mesh;
+    const FaceLabels& materials = got_file.document.obj.materials;
     // Each source mesh keeps its own vertices (as glTF primitives do; the
     // atlas welds them), every one where the node tree puts a model vertex,
     // and together they cover every model vertex.
@@ -267,17 +269,17 @@ TEST_F(AssimpRoundTrip, EveryExportReadsBackAsTheSameSurface) {
     // writer writes no material and its reader names both meshes after
     // their frame, so the file cannot tell the halves apart; there every
     // face must have the one material assimp makes up.
-    ASSERT_FALSE(got.materials.empty());
+    ASSERT_FALSE(materials.empty());
     for (int f = 0; f < got.F.rows(); ++f) {
-      const std::string* name = got.materials.of(f);
+      const std::string* name = materials.of(f);
       ASSERT_NE(name, nullptr) << "face " << f;
       const int k = model_->material[static_cast<std::size_t>(fmap[static_cast<std::size_t>(f)])];
       if (!e.materials) continue;
       EXPECT_NE(name->find(kMaterials[k]), std::string::npos) << "face " << f << ": " << *name;
       EXPECT_EQ(name->find(kMaterials[1 - k]), std::string::npos) << "face " << f << ": " << *name;
     }
-    if (!e.materials) EXPECT_EQ(got.materials.names.size(), 1u);
-    else EXPECT_EQ(got.materials.names.size(), 2u);
+    if (!e.materials) EXPECT_EQ(materials.names.size(), 1u);
+    else EXPECT_EQ(materials.names.size(), 2u);
     // The same charts: as many, and the same faces in each. The atlas's
     // greedy stages depend on the order of vertices and faces, which each
     // format stores its own way, so the reference is the model in the read
@@ -302,19 +304,20 @@ TEST_F(AssimpRoundTrip, AtlasOfAnFbxWrittenAsObjKeepsMaterials) {
   Assimp::Exporter exporter;
   ASSERT_EQ(exporter.Export(scene.get(), "fbxa", fbx), aiReturn_SUCCESS) << exporter.GetErrorString();
   const AtlasOutcome out = atlas_file(fbx, AtlasRequest{});
-  write_atlas_file(dir_ / "atlas.obj", out.data, out.result);
-  write_atlas_file(dir_ / "atlas.glb", out.data, out.result);
-  const MeshData obj = read_mesh(dir_ / "atlas.obj");
-  ASSERT_EQ(obj.F.rows(), out.data.F.rows());
-  ASSERT_TRUE(obj.has_uv());
-  for (int f = 0; f < obj.F.rows(); ++f) {
-    ASSERT_NE(obj.materials.of(f), nullptr) << "face " << f;
-    EXPECT_EQ(*obj.materials.of(f), *out.data.materials.of(f)) << "face " << f;
-    ASSERT_NE(obj.objects.of(f), nullptr) << "face " << f;
-    EXPECT_EQ(*obj.objects.of(f), *out.data.objects.of(f)) << "face " << f;
+  write_atlas_file(dir_ / "atlas.obj", out.input, out.result);
+  write_atlas_file(dir_ / "atlas.glb", out.input, out.result);
+  const MeshFile obj = read_mesh_file(dir_ / "atlas.obj");
+  const ObjExtras &back = obj.document.obj, &in = out.input.document.obj;
+  ASSERT_EQ(obj.mesh.F.rows(), out.input.mesh.F.rows());
+  ASSERT_TRUE(obj.mesh.has_uv());
+  for (int f = 0; f < obj.mesh.F.rows(); ++f) {
+    ASSERT_NE(back.materials.of(f), nullptr) << "face " << f;
+    EXPECT_EQ(*back.materials.of(f), *in.materials.of(f)) << "face " << f;
+    ASSERT_NE(back.objects.of(f), nullptr) << "face " << f;
+    EXPECT_EQ(*back.objects.of(f), *in.objects.of(f)) << "face " << f;
   }
   const MeshData glb = read_mesh(dir_ / "atlas.glb");
-  EXPECT_EQ(glb.F.rows(), out.data.F.rows());
+  EXPECT_EQ(glb.F.rows(), out.input.mesh.F.rows());
 }
 
 // What `intrinsic atlas` does with a file assimp refuses: exit 2, one line
@@ -479,10 +482,10 @@ TEST(AssimpSamples, RealFilesAtlasWithoutFoldsOrOverlaps) {
                            "X/test.x", "LWO/LWO2/hierarchy.lwo", "BLEND/Suzanne_248.blend"}) {
     SCOPED_TRACE(file);
     const AtlasOutcome out = atlas_file(kDir + file, AtlasRequest{});
-    const MeshData& m = out.data;
+    const MeshData& m = out.input.mesh;
     const AtlasResult& r = out.result;
     ASSERT_GT(m.F.rows(), 0);
-    EXPECT_FALSE(m.materials.empty());
+    EXPECT_FALSE(out.input.document.obj.materials.empty());
     ASSERT_EQ(r.FUV.rows(), m.F.rows());
     ASSERT_TRUE(r.UV.allFinite());
     EXPECT_GE(r.UV.minCoeff(), 0.0);

@@ -159,30 +159,32 @@ Label label(const FaceLabels& l, int f) {
   return s ? Label(*s) : none;
 }
 
-// Every face of `got` carries the labels and, corner by corner (matched by
+// Every face of `file` carries the labels and, corner by corner (matched by
 // vertex, so a face written in another corner order still compares), the
 // normal the test wrote.
-void expect_as_written(const ObjFile& o, const MeshData& got, const std::string& what) {
+void expect_as_written(const ObjFile& o, const MeshFile& file, const std::string& what) {
+  const MeshData& got = file.mesh;
+  const ObjExtras& x = file.document.obj;
   ASSERT_EQ(got.F.rows(), static_cast<Eigen::Index>(o.faces.size())) << what;
-  EXPECT_EQ(got.material_libraries, o.libraries) << what;
-  ASSERT_TRUE(got.has_normals()) << what;
+  EXPECT_EQ(x.material_libraries, o.libraries) << what;
+  ASSERT_TRUE(x.has_normals(got.F)) << what;
   int mismatches = 0;
   for (int f = 0; f < got.F.rows() && mismatches < 10; ++f) {
     const ExpectedFace& e = o.faces[static_cast<std::size_t>(f)];
-    const bool same = label(got.materials, f) == e.material && label(got.groups, f) == e.group &&
-                      label(got.objects, f) == e.object && label(got.smoothing, f) == e.smoothing;
+    const bool same = label(x.materials, f) == e.material && label(x.groups, f) == e.group &&
+                      label(x.objects, f) == e.object && label(x.smoothing, f) == e.smoothing;
     if (!same) ++mismatches, ADD_FAILURE() << what << ": face " << f << " has other labels than written";
     for (int c = 0; c < 3; ++c) {
       const int v = got.F(f, c);
       const int k = v == e.v[0] ? 0 : v == e.v[1] ? 1 : v == e.v[2] ? 2 : -1;
       ASSERT_GE(k, 0) << what << ": face " << f << " has vertex " << v << " the test did not write";
-      const int n = got.FN(f, c);
+      const int n = x.FN(f, c);
       if (!e.normal[k]) {
         EXPECT_EQ(n, -1) << what << ": face " << f << " corner " << c;
         continue;
       }
       ASSERT_GE(n, 0) << what << ": face " << f << " corner " << c << " lost its normal";
-      if (Eigen::Vector3d(got.N.row(n)) != *e.normal[k])
+      if (Eigen::Vector3d(x.N.row(n)) != *e.normal[k])
         ++mismatches, ADD_FAILURE() << what << ": face " << f << " corner " << c << " has another normal";
     }
   }
@@ -201,24 +203,36 @@ int count_statements(const std::string& text, const std::string& keyword) {
 
 TEST(ObjRoundTrip, ReaderKeepsWhatTheFileCarried) {
   const ObjFile o = sphere_obj(3);
-  const MeshData m = read_mesh_from_memory(o.text, "sphere.obj");
-  expect_as_written(o, m, "read");
+  const MeshFile file = read_mesh_file_from_memory(o.text, "sphere.obj");
+  const MeshData& m = file.mesh;
+  const ObjExtras& x = file.document.obj;
+  expect_as_written(o, file, "read");
   EXPECT_TRUE(m.has_uv());
   EXPECT_TRUE(m.had_texcoords);
-  EXPECT_TRUE(m.has_obj_extras());
+  EXPECT_FALSE(x.empty());
+  EXPECT_FALSE(file.document.gltf);
   // Three materials, each name once in the table although red is used twice.
-  EXPECT_EQ(m.materials.names, (std::vector<std::string>{"red", "green", "blue"}));
-  EXPECT_EQ(m.groups.names, (std::vector<std::string>{"north cap", "", "belt #2"}));
+  EXPECT_EQ(x.materials.names, (std::vector<std::string>{"red", "green", "blue"}));
+  EXPECT_EQ(x.groups.names, (std::vector<std::string>{"north cap", "", "belt #2"}));
+  // The geometry alone is the same mesh.
+  const MeshData alone = read_mesh_from_memory(o.text, "sphere.obj");
+  EXPECT_EQ(alone.V, m.V);
+  EXPECT_EQ(alone.F, m.F);
+  EXPECT_EQ(alone.TC, m.TC);
+  EXPECT_EQ(alone.FTC, m.FTC);
+  EXPECT_EQ(alone.face_line, m.face_line);
 }
 
 TEST(ObjRoundTrip, LibraryAtlasGivesEverythingBack) {
   const ObjFile o = sphere_obj(4);
   TempDir dir;
-  const MeshData in = read_mesh_from_memory(o.text, dir / "in.obj");
+  const MeshFile in_file = read_mesh_file_from_memory(o.text, dir / "in.obj");
+  const MeshData& in = in_file.mesh;
   const AtlasResult r = atlas(in);
-  write_atlas_obj(dir / "out.obj", in, r);
-  const MeshData back = read_mesh(dir / "out.obj");
-  expect_as_written(o, back, "atlas OBJ");
+  write_atlas_obj(dir / "out.obj", in_file, r);
+  const MeshFile back_file = read_mesh_file(dir / "out.obj");
+  const MeshData& back = back_file.mesh;
+  expect_as_written(o, back_file, "atlas OBJ");
   // Same positions, same faces; the texture coordinates are the atlas's.
   EXPECT_EQ(back.V, in.V);
   EXPECT_EQ(back.F, r.F);
@@ -229,7 +243,7 @@ TEST(ObjRoundTrip, LibraryAtlasGivesEverythingBack) {
   const std::string text = test::slurp(dir / "out.obj");
   const char* keywords[] = {"o", "g", "usemtl", "s"};
   for (int k = 0; k < 4; ++k) EXPECT_EQ(count_statements(text, keywords[k]), o.statements[k]) << keywords[k];
-  EXPECT_EQ(count_statements(text, "vn"), in.N.rows());
+  EXPECT_EQ(count_statements(text, "vn"), in_file.document.obj.N.rows());
   // mtllib lines come first, before any vertex.
   EXPECT_EQ(text.find("mtllib first.mtl\nmtllib second.mtl third.mtl\nv "), text.find('\n') + 1);
 }
@@ -240,10 +254,10 @@ TEST(ObjRoundTrip, CliAtlasGivesEverythingBack) {
   test::write_text(dir / "in.obj", o.text);
   const test::CliResult res = test::run_cli("atlas " + dir / "in.obj" + " -o " + dir / "out.obj" + " --quiet", dir);
   ASSERT_EQ(res.code, 0) << res.err;
-  const MeshData in = read_mesh(dir / "in.obj");
-  const MeshData back = read_mesh(dir / "out.obj");
+  const MeshFile in = read_mesh_file(dir / "in.obj");
+  const MeshFile back = read_mesh_file(dir / "out.obj");
   expect_as_written(o, back, "intrinsic atlas");
-  EXPECT_EQ(back.V, in.V);
+  EXPECT_EQ(back.mesh.V, in.mesh.V);
   // Same bytes as the library's writer.
   write_atlas_obj(dir / "lib.obj", in, atlas(in));
   EXPECT_EQ(test::slurp(dir / "out.obj"), test::slurp(dir / "lib.obj"));
@@ -269,16 +283,18 @@ TEST(ObjRoundTrip, PlainFileGivesTheSameBytesAsBefore) {
   g.rings = 6;
   const MeshData torus = generate_torus(g);
   write_mesh(dir / "torus.obj", torus.V, torus.F, MatrixX2d());
-  const MeshData in = read_mesh(dir / "torus.obj");
+  const MeshFile in_file = read_mesh_file(dir / "torus.obj");
+  const MeshData& in = in_file.mesh;
+  const ObjExtras& x = in_file.document.obj;
   // Nothing beyond positions and faces: nothing allocated for it.
-  EXPECT_FALSE(in.has_obj_extras());
+  EXPECT_TRUE(x.empty());
   EXPECT_FALSE(in.had_texcoords);
-  EXPECT_EQ(in.N.rows(), 0);
-  EXPECT_EQ(in.FN.rows(), 0);
-  EXPECT_TRUE(in.materials.of_face.empty() && in.groups.of_face.empty() && in.objects.of_face.empty() &&
-              in.smoothing.of_face.empty());
+  EXPECT_EQ(x.N.rows(), 0);
+  EXPECT_EQ(x.FN.rows(), 0);
+  EXPECT_TRUE(x.materials.of_face.empty() && x.groups.of_face.empty() && x.objects.of_face.empty() &&
+              x.smoothing.of_face.empty());
   const AtlasResult r = atlas(in);
-  write_atlas_obj(dir / "out.obj", in, r);
+  write_atlas_obj(dir / "out.obj", in_file, r);
   EXPECT_EQ(test::slurp(dir / "out.obj"), plain_atlas_obj(in, r));
 }
 
@@ -314,10 +330,12 @@ TEST(ObjRoundTrip, NormalIndexOutOfRangeNamesFileAndLine) {
 }
 
 TEST(ObjRoundTrip, NormalsMayBeDefinedAfterTheFaces) {
-  const MeshData m = read_mesh_from_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//2 2//2 3//1\nvn 0 0 1\nvn 0 0 -1\n", "late.obj");
-  ASSERT_TRUE(m.has_normals());
-  EXPECT_EQ(m.FN.row(0), Eigen::RowVector3i(1, 1, 0));
-  EXPECT_EQ(m.N(1, 2), -1.0);
+  const MeshFile m =
+      read_mesh_file_from_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//2 2//2 3//1\nvn 0 0 1\nvn 0 0 -1\n", "late.obj");
+  const ObjExtras& x = m.document.obj;
+  ASSERT_TRUE(x.has_normals(m.mesh.F));
+  EXPECT_EQ(x.FN.row(0), Eigen::RowVector3i(1, 1, 0));
+  EXPECT_EQ(x.N(1, 2), -1.0);
 }
 
 TEST(ObjRoundTrip, PolygonTrianglesInheritEverything) {
@@ -330,8 +348,9 @@ TEST(ObjRoundTrip, PolygonTrianglesInheritEverything) {
       "f 1//1 2//2 3//1 4//2 5//1\n"       // a pentagon: three triangles
       "mtllib  lib one.mtl \n"
       "f 1//2 3 4\n";                      // mixed corner forms
-  const MeshData m = read_mesh_from_memory(text, "poly.obj");
-  ASSERT_EQ(m.F.rows(), 5);
+  const MeshFile file = read_mesh_file_from_memory(text, "poly.obj");
+  const ObjExtras& m = file.document.obj;
+  ASSERT_EQ(file.mesh.F.rows(), 5);
   EXPECT_EQ(m.material_libraries, std::vector<std::string>{"lib one.mtl"});
   const Label mat = std::string("Material #25"), grp = std::string("left  right"), sm = std::string("4");
   const Label want_mat[] = {none, mat, mat, mat, mat}, want_grp[] = {none, grp, grp, grp, grp};
@@ -343,7 +362,7 @@ TEST(ObjRoundTrip, PolygonTrianglesInheritEverything) {
     EXPECT_EQ(label(m.objects, f), none) << f;
   }
   EXPECT_TRUE(m.objects.empty());
-  ASSERT_TRUE(m.has_normals());
+  ASSERT_TRUE(m.has_normals(file.mesh.F));
   // Fan (0, k, k+1) of the pentagon's corners 1//1 2//2 3//1 4//2 5//1.
   EXPECT_EQ(m.FN.row(0), Eigen::RowVector3i(-1, -1, -1));
   EXPECT_EQ(m.FN.row(1), Eigen::RowVector3i(0, 1, 0));
@@ -360,37 +379,38 @@ TEST(ObjRoundTrip, ReversedFacesKeepTheirCornersNormals) {
       "vn 1 0 0\nvn 0 1 0\nvn 0 0 1\nvn 1 1 0\nvn 1 0 1\nvn 0 1 1\n"
       "usemtl a\nf 1//1 2//2 3//3\nf 1//4 3//5 4//6\nusemtl b\nf 2//1 3//2 5//3\nf 3//4 5//5 6//6\n";
   TempDir dir;
-  const MeshData in = read_mesh_from_memory(text, "strip.obj");
+  const MeshFile in = read_mesh_file_from_memory(text, "strip.obj");
   const AtlasResult r = atlas(in);
   ASSERT_GE(r.cleaning.reversed_faces, 1);
   write_atlas_obj(dir / "out.obj", in, r);
-  const MeshData back = read_mesh(dir / "out.obj");
-  ASSERT_TRUE(back.has_normals());
+  const MeshFile back = read_mesh_file(dir / "out.obj");
+  const ObjExtras &bx = back.document.obj, &ix = in.document.obj;
+  ASSERT_TRUE(bx.has_normals(back.mesh.F));
   for (int f = 0; f < 4; ++f) {
-    EXPECT_EQ(*back.materials.of(f), f < 2 ? "a" : "b");
+    EXPECT_EQ(*bx.materials.of(f), f < 2 ? "a" : "b");
     for (int c = 0; c < 3; ++c) {
-      const int v = back.F(f, c);
-      const int k = v == in.F(f, 0) ? 0 : v == in.F(f, 1) ? 1 : 2;
-      EXPECT_EQ(Eigen::Vector3d(back.N.row(back.FN(f, c))), Eigen::Vector3d(in.N.row(in.FN(f, k)))) << f << " " << c;
+      const int v = back.mesh.F(f, c);
+      const int k = v == in.mesh.F(f, 0) ? 0 : v == in.mesh.F(f, 1) ? 1 : 2;
+      EXPECT_EQ(Eigen::Vector3d(bx.N.row(bx.FN(f, c))), Eigen::Vector3d(ix.N.row(ix.FN(f, k)))) << f << " " << c;
     }
   }
 }
 
 TEST(ObjRoundTrip, HandMadeInconsistentDataIsRefused) {
   TempDir dir;
-  MeshData m = read_mesh_from_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "t.obj");
+  const MeshFile m = read_mesh_file_from_memory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "t.obj");
   const AtlasResult r = atlas(m);
-  MeshData bad = m;
-  bad.materials.names = {"x"};
-  bad.materials.of_face = {3};
+  MeshFile bad = m;
+  bad.document.obj.materials.names = {"x"};
+  bad.document.obj.materials.of_face = {3};
   EXPECT_THROW(write_atlas_obj(dir / "a.obj", bad, r), Error);
   bad = m;
-  bad.groups.names = {"two\nlines"};
-  bad.groups.of_face = {0};
+  bad.document.obj.groups.names = {"two\nlines"};
+  bad.document.obj.groups.of_face = {0};
   EXPECT_THROW(write_atlas_obj(dir / "b.obj", bad, r), Error);
   bad = m;
-  bad.N = MatrixX3d::Zero(1, 3);
-  bad.FN = MatrixX3i::Constant(1, 3, 1);
+  bad.document.obj.N = MatrixX3d::Zero(1, 3);
+  bad.document.obj.FN = MatrixX3i::Constant(1, 3, 1);
   EXPECT_THROW(write_atlas_obj(dir / "c.obj", bad, r), Error);
   EXPECT_TRUE(dir.files().empty());
 }
@@ -402,34 +422,38 @@ TEST(ObjRoundTripCorpus, AssetsKeepWhatTheyCarried) {
   REQUIRE_SHARED_MESHES();
   TempDir dir;
   {
-    const MeshData in = read_mesh(test::shared_mesh("assets/suzanne.obj"));
-    ASSERT_TRUE(in.has_normals());
+    const MeshFile in_file = read_mesh_file(test::shared_mesh("assets/suzanne.obj"));
+    const MeshData& in = in_file.mesh;
+    const ObjExtras& ix = in_file.document.obj;
+    ASSERT_TRUE(ix.has_normals(in.F));
     const AtlasResult r = atlas(in);
-    write_atlas_obj(dir / "suzanne.obj", in, r);
-    const MeshData back = read_mesh(dir / "suzanne.obj");
-    ASSERT_TRUE(back.has_normals());
+    write_atlas_obj(dir / "suzanne.obj", in_file, r);
+    const MeshFile back_file = read_mesh_file(dir / "suzanne.obj");
+    const MeshData& back = back_file.mesh;
+    const ObjExtras& bx = back_file.document.obj;
+    ASSERT_TRUE(bx.has_normals(back.F));
     ASSERT_EQ(back.F.rows(), in.F.rows());
     EXPECT_EQ(back.V, in.V);
     for (int f = 0; f < in.F.rows(); ++f)
       for (int c = 0; c < 3; ++c) {
         const int v = back.F(f, c);
         const int k = v == in.F(f, 0) ? 0 : v == in.F(f, 1) ? 1 : 2;
-        ASSERT_EQ(Eigen::Vector3d(back.N.row(back.FN(f, c))), Eigen::Vector3d(in.N.row(in.FN(f, k)))) << f;
+        ASSERT_EQ(Eigen::Vector3d(bx.N.row(bx.FN(f, c))), Eigen::Vector3d(ix.N.row(ix.FN(f, k)))) << f;
       }
   }
   {
-    const MeshData in = read_mesh(test::shared_mesh("snail.obj"));
-    ASSERT_FALSE(in.groups.empty());
+    const MeshFile in = read_mesh_file(test::shared_mesh("snail.obj"));
+    ASSERT_FALSE(in.document.obj.groups.empty());
     const AtlasResult r = atlas(in);
     write_atlas_obj(dir / "snail.obj", in, r);
-    const MeshData back = read_mesh(dir / "snail.obj");
-    EXPECT_EQ(back.groups.names, std::vector<std::string>{"object"});
-    EXPECT_EQ(back.groups.of_face, in.groups.of_face);
+    const MeshFile back = read_mesh_file(dir / "snail.obj");
+    EXPECT_EQ(back.document.obj.groups.names, std::vector<std::string>{"object"});
+    EXPECT_EQ(back.document.obj.groups.of_face, in.document.obj.groups.of_face);
   }
   {
-    const MeshData in = read_mesh(test::shared_mesh("assets/spot.obj"));
-    EXPECT_TRUE(in.had_texcoords);
-    EXPECT_FALSE(in.has_obj_extras());
+    const MeshFile in = read_mesh_file(test::shared_mesh("assets/spot.obj"));
+    EXPECT_TRUE(in.mesh.had_texcoords);
+    EXPECT_TRUE(in.document.obj.empty());
   }
 }
 

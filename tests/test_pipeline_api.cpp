@@ -83,7 +83,7 @@ TEST(PipelineApi, AtlasReportEqualsCli) {
   const AtlasOutcome o = atlas_file(in, AtlasRequest());
   EXPECT_EQ(without_timings(nlohmann::json::parse(slurp(report))), without_timings(nlohmann::json::parse(atlas_report(o, out))));
   // Same bytes as the command line's file.
-  write_atlas_file(dir / "lib.obj", o.data, o.result);
+  write_atlas_file(dir / "lib.obj", o.input, o.result);
   EXPECT_EQ(slurp(dir / "lib.obj"), slurp(out));
 }
 

@@ -90,7 +90,7 @@ TEST(SceneOutputs, GlbWrittenElsewhereCarriesTheImageBytes) {
   TempDir dir;
   const AtlasOutcome o = atlas_of(write_scene(dir));
   fs::create_directories(dir.path() / "out");
-  write_atlas_file(dir / "out/scene.glb", o.data, o.result, GltfWriteOptions{});
+  write_atlas_file(dir / "out/scene.glb", o.input, o.result, GltfWriteOptions{});
   const tinygltf::Model m = gltf_test::load(dir / "out/scene.glb");
   ASSERT_EQ(m.images.size(), 1u);
   EXPECT_TRUE(m.images[0].uri.empty());
@@ -106,7 +106,7 @@ TEST(SceneOutputs, GltfWrittenElsewhereHasItsImageBeside) {
   TempDir dir;
   const AtlasOutcome o = atlas_of(write_scene(dir));
   fs::create_directories(dir.path() / "out");
-  const GltfWriteResult w = write_atlas_file(dir / "out/scene.gltf", o.data, o.result, GltfWriteOptions{});
+  const GltfWriteResult w = write_atlas_file(dir / "out/scene.gltf", o.input, o.result, GltfWriteOptions{});
   const json j = json::parse(test::slurp(dir / "out/scene.gltf"));
   const std::string uri = j["images"][0]["uri"];
   EXPECT_EQ(uri, "checker%20one.png");
@@ -114,7 +114,7 @@ TEST(SceneOutputs, GltfWrittenElsewhereHasItsImageBeside) {
   EXPECT_EQ(w.files, (std::vector<std::string>{dir / "out/checker one.png"}));
   gltf_test::expect_valid(dir / "out/scene.gltf");
   // Beside its input, the URI already resolves: kept, nothing copied.
-  const GltfWriteResult same = write_atlas_file(dir / "in/again.gltf", o.data, o.result, GltfWriteOptions{});
+  const GltfWriteResult same = write_atlas_file(dir / "in/again.gltf", o.input, o.result, GltfWriteOptions{});
   EXPECT_TRUE(same.files.empty());
   EXPECT_EQ(json::parse(test::slurp(dir / "in/again.gltf"))["images"][0]["uri"], "tex/checker%20one.png");
 }
@@ -152,23 +152,23 @@ TEST(SceneOutputs, SharedInstancesKeepOneLayoutUniqueOnesGetTheirOwn) {
   const std::string in = write_scene(dir);
   const auto faces = static_cast<std::size_t>(torus().F.rows());
   const AtlasOutcome shared = atlas_of(in);
-  EXPECT_EQ(static_cast<std::size_t>(shared.data.F.rows()), faces);
-  EXPECT_EQ(scene_summary(shared.data).instances, 2);
-  write_atlas_file(dir / "shared.glb", shared.data, shared.result, GltfWriteOptions{});
+  EXPECT_EQ(static_cast<std::size_t>(shared.input.mesh.F.rows()), faces);
+  EXPECT_EQ(scene_summary(shared.input.document).instances, 2);
+  write_atlas_file(dir / "shared.glb", shared.input, shared.result, GltfWriteOptions{});
   const tinygltf::Model s = gltf_test::load(dir / "shared.glb");
   EXPECT_EQ(s.meshes.size(), 1u);
   EXPECT_EQ(drawn_triangles(s), 2 * faces);
 
   const AtlasOutcome unique = atlas_of(in, InstanceMode::Unique);
-  ASSERT_EQ(static_cast<std::size_t>(unique.data.F.rows()), 2 * faces);
+  ASSERT_EQ(static_cast<std::size_t>(unique.input.mesh.F.rows()), 2 * faces);
   // The copy sits where its node puts it: 5 along x.
-  EXPECT_NEAR(unique.data.V.bottomRows(unique.data.V.rows() / 2).col(0).mean() -
-                  unique.data.V.topRows(unique.data.V.rows() / 2).col(0).mean(),
+  EXPECT_NEAR(unique.input.mesh.V.bottomRows(unique.input.mesh.V.rows() / 2).col(0).mean() -
+                  unique.input.mesh.V.topRows(unique.input.mesh.V.rows() / 2).col(0).mean(),
               5.0, 1e-6);
   EXPECT_EQ(unique.result.overlapping, 0);
   for (std::size_t f = 0; f < faces; ++f)  // no chart spans both instances
     EXPECT_NE(unique.result.face_chart[f], unique.result.face_chart[f + faces]);
-  write_atlas_file(dir / "unique.glb", unique.data, unique.result, GltfWriteOptions{});
+  write_atlas_file(dir / "unique.glb", unique.input, unique.result, GltfWriteOptions{});
   const tinygltf::Model u = gltf_test::load(dir / "unique.glb");
   ASSERT_EQ(u.meshes.size(), 2u);
   EXPECT_NE(u.nodes[0].mesh, u.nodes[1].mesh);
@@ -239,7 +239,7 @@ TEST(SceneOutputs, ColladaSceneKeepsInstancesMaterialAndNormals) {
   EXPECT_EQ(o.result.flipped, 0);
   EXPECT_EQ(o.result.overlapping, 0);
   fs::create_directories(dir.path() / "out");
-  write_atlas_file(dir / "out/rings.glb", o.data, o.result, GltfWriteOptions{});
+  write_atlas_file(dir / "out/rings.glb", o.input, o.result, GltfWriteOptions{});
   gltf_test::expect_valid(dir / "out/rings.glb");
   const tinygltf::Model m = gltf_test::load(dir / "out/rings.glb");
   ASSERT_EQ(m.meshes.size(), 1u);
@@ -285,12 +285,13 @@ TEST(SceneOutputs, ColladaToObjWritesMaterialsNormalsAndTheMap) {
   aiColor4D d;
   ASSERT_EQ(ref->mMaterials[ref->mMeshes[0]->mMaterialIndex]->Get(AI_MATKEY_COLOR_DIFFUSE, d), aiReturn_SUCCESS);
   const AtlasOutcome o = atlas_of(dir / "in/rings.dae");
-  const GltfWriteResult w = write_atlas_file(dir / "out/rings.obj", o.data, o.result, GltfWriteOptions{});
-  const MeshData back = read_mesh(dir / "out/rings.obj");
-  ASSERT_EQ(back.F.rows(), o.data.F.rows());
-  ASSERT_EQ(back.material_libraries, std::vector<std::string>{"rings.mtl"});
-  for (int f = 0; f < back.F.rows(); ++f) ASSERT_EQ(*back.materials.of(f), "Painted");
-  EXPECT_TRUE(back.has_normals());
+  const GltfWriteResult w = write_atlas_file(dir / "out/rings.obj", o.input, o.result, GltfWriteOptions{});
+  const MeshFile back = read_mesh_file(dir / "out/rings.obj");
+  const ObjExtras& x = back.document.obj;
+  ASSERT_EQ(back.mesh.F.rows(), o.input.mesh.F.rows());
+  ASSERT_EQ(x.material_libraries, std::vector<std::string>{"rings.mtl"});
+  for (int f = 0; f < back.mesh.F.rows(); ++f) ASSERT_EQ(*x.materials.of(f), "Painted");
+  EXPECT_TRUE(x.has_normals(back.mesh.F));
   const std::string mtl = test::slurp(dir / "out/rings.mtl");
   std::istringstream kd(mtl.substr(mtl.find("newmtl Painted\nKd ") + 18));
   double r = -1, g = -1, b = -1;
@@ -312,7 +313,7 @@ TEST(SceneOutputs, ObjMaterialLibraryAndMapsFollowTheOutput) {
   std::string obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Wood\nf 1 2 3\n";
   test::write_text(dir / "in/tri.obj", obj);
   const AtlasOutcome o = atlas_of(dir / "in/tri.obj");
-  write_atlas_file(dir / "out/tri.obj", o.data, o.result, GltfWriteOptions{});
+  write_atlas_file(dir / "out/tri.obj", o.input, o.result, GltfWriteOptions{});
   EXPECT_EQ(test::slurp(dir / "out/m.mtl"), "newmtl Wood\nKd 1 1 1\nmap_Kd -bm 1 maps/wood.png\n");
   EXPECT_EQ(test::slurp(dir / "out/maps/wood.png"), test::slurp(dir / "in/maps/wood.png"));
   fs::remove(dir.path() / "in/maps/wood.png");
@@ -351,7 +352,7 @@ TEST(SceneOutputs, TextureTransferDropsTheReplacedImage) {
   t.enabled = true;
   t.size = 64;
   fs::create_directories(dir.path() / "out");
-  const TextureTransferReport r = write_atlas_with_textures(dir / "out/baked.gltf", o.data, o.result, w, t);
+  const TextureTransferReport r = write_atlas_with_textures(dir / "out/baked.gltf", o.input, o.result, w, t);
   ASSERT_EQ(r.baked.size(), 1u);
   const json j = json::parse(test::slurp(dir / "out/baked.gltf"));
   ASSERT_EQ(j["images"].size(), 1u);

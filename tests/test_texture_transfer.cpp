@@ -38,7 +38,7 @@ TexturedAssetOptions small_asset() {
 
 // Re-atlases `input` into `output` (set 0 replaced, textures baked).
 TextureTransferReport transfer(const std::string& input, const std::string& output, int size = 512) {
-  const MeshData m = read_mesh(input);
+  const MeshFile m = read_mesh_file(input);
   const AtlasResult r = atlas(m, AtlasOptions{});
   GltfWriteOptions g;
   g.texcoord_set = 0;

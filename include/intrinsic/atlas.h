@@ -18,6 +18,7 @@
 #include "intrinsic/choice.h"
 #include "intrinsic/boundary_optimization.h"
 #include "intrinsic/mesh_data.h"
+#include "intrinsic/mesh_document.h"
 #include "intrinsic/metrics.h"
 #include "intrinsic/optimal_lambda.h"
 #include "intrinsic/parameterize.h"
@@ -168,7 +169,8 @@ struct PackOptions {
 
 // What one atlas covers: the whole input (one texture for everything, e.g. a
 // lightmap), or each mesh of it on its own filling the unit square (a glTF
-// document's meshes, an OBJ file's `o` objects; src/atlas/atlas_per_mesh.cpp).
+// document's meshes, an OBJ file's `o` objects, which the file's document
+// tells: atlas of a MeshFile; src/atlas/atlas_per_mesh.cpp).
 enum class AtlasScope { Whole, PerMesh };
 template <>
 ChoiceTable<AtlasScope> choice_table<AtlasScope>();
@@ -188,7 +190,8 @@ struct AtlasOptions {
   bool pack_only = false;
   bool keep_overlaps = false;
   // PerMesh: one atlas per mesh, each in [0,1]^2 (they overlap each other);
-  // refused with Error(Usage) for an input without meshes to tell apart.
+  // refused with Error(Usage) for an input without meshes to tell apart
+  // (a MeshData alone has none).
   AtlasScope scope = AtlasScope::Whole;
 };
 // The pack stage's options as the one call runs them (pack, with
@@ -358,5 +361,8 @@ AtlasResult pack_charts(const AtlasCharts& charts, const PackOptions& options = 
 // pack_charts(compute_charts(input, chart_options(options)),
 // pack_options(options)), every option checked before any work.
 AtlasResult atlas(const MeshData& input, const AtlasOptions& options = {});
+// The same for a file's mesh; with AtlasScope::PerMesh its meshes are those
+// its document tells apart (a glTF document's meshes, an OBJ's `o` objects).
+AtlasResult atlas(const MeshFile& input, const AtlasOptions& options = {});
 
 }  // namespace intrinsic

@@ -1,6 +1,9 @@
 // The atlas's own files: seams files read (edges to cut), and atlases
 // written: OBJ with its material files, the one-mesh .glb, and a glTF input's
 // own document with the atlas added as a TEXCOORD set (docs/formats.md).
+// The writers take the input as a MeshFile (mesh_document.h): what they give
+// back of it besides the atlas (normals, labels, materials, the glTF
+// document) is its document; a mesh without one is MeshFile{mesh}.
 // Above io (which reads and writes meshes) and the atlas (which computes
 // AtlasResult); implemented in src/atlas/files/.
 #pragma once
@@ -13,6 +16,7 @@
 #include "intrinsic/gltf.h"
 #include "intrinsic/io.h"
 #include "intrinsic/mesh_data.h"
+#include "intrinsic/mesh_document.h"
 
 namespace intrinsic {
 
@@ -23,22 +27,24 @@ namespace intrinsic {
 std::vector<SeamEdge> parse_seams_text(const std::string& text, const std::string& name, const MeshData& mesh);
 std::vector<SeamEdge> read_seams_file(const std::string& path, const MeshData& mesh);
 
-// Atlases (src/atlas/files/atlas_writer.cpp). The OBJ: the input's vertices in input
+// Atlases (src/atlas/files/atlas_files.cpp). The OBJ: the input's vertices in input
 // order, one `vt` per atlas UV, the result's faces (the input's, reoriented
 // ones reversed) `f v/vt` (seams only through the per-corner texture
-// coordinates); atomically, with the material files its mtllib needs beside
-// it (docs/formats.md "OBJ materials travel with the output").
-void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r);
+// coordinates), and what the input's document holds for an OBJ (normals as
+// `f v/vt/vn`, mtllib, usemtl, g, o, s); atomically, with the material files
+// its mtllib needs beside it (docs/formats.md "OBJ materials travel with the
+// output").
+void write_atlas_obj(const std::string& path, const MeshFile& input, const AtlasResult& r);
 // The same OBJ naming exactly `mtllib`, files the caller writes itself.
-void write_atlas_obj_naming(const std::string& path, const MeshData& m, const AtlasResult& r,
+void write_atlas_obj_naming(const std::string& path, const MeshFile& input, const AtlasResult& r,
                             const std::vector<std::string>& mtllib);
 // The atlas in the format the extension names: .obj (write_atlas_obj), or
-// .glb/.gltf: the input's own glTF document with the atlas added when `m` was
-// read from glTF (write_gltf_atlas, intrinsic/gltf.h), else write_glb's
+// .glb/.gltf: the input's own glTF document with the atlas added when the
+// input has one (write_gltf_atlas, intrinsic/gltf.h), else write_glb's
 // one-mesh file (vertices split at seams). check_atlas_output throws
 // Error(Usage) for any other extension, before anything is written.
 void check_atlas_output(const std::string& path);
-void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r);
+void write_atlas_file(const std::string& path, const MeshFile& input, const AtlasResult& r);
 
 struct GltfWriteOptions {
   // The TEXCOORD_n set the atlas goes to: -1 = the next free set of each
@@ -79,21 +85,21 @@ struct GltfWriteResult {
   std::vector<int> image_index;
 };
 
-// Writes `data`'s glTF document back with the atlas `result` (computed on
-// `data`) as a new TEXCOORD set: .glb or .gltf (buffer embedded as a data URI)
+// Writes `input`'s glTF document back with the atlas `result` (computed on
+// input.mesh) as a new TEXCOORD set: .glb or .gltf (buffer embedded as a data URI)
 // by the extension of `path`. Every triangle primitive becomes an indexed
 // TRIANGLES list (faces in order, each with the document's winding even where
 // the atlas reoriented it) whose vertices are split where the atlas has a seam, every
 // other attribute and morph target copied per vertex; all buffers are merged
 // into one. Atomic: nothing is written when anything is refused.
-GltfWriteResult write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& result,
+GltfWriteResult write_gltf_atlas(const std::string& path, const MeshFile& input, const AtlasResult& result,
                                  const GltfWriteOptions& options = {});
 
 // write_atlas_file (io.h) with the choice of UV set for a glTF input
 // (ignored for other inputs and for .obj output) and allow_missing_images
 // (every output). Returns the files written beside the output (images, .mtl)
 // and the images left missing.
-GltfWriteResult write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r,
+GltfWriteResult write_atlas_file(const std::string& path, const MeshFile& input, const AtlasResult& r,
                                  const GltfWriteOptions& gltf_options);
 
 }  // namespace intrinsic

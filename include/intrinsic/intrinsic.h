@@ -29,7 +29,8 @@
 //      // request = intrinsic::atlas_request({{"max_stretch", 1.08}}, intrinsic::OptionSpelling::Keyword);
 //      intrinsic::AtlasOutcome out = intrinsic::atlas_file("scene.glb", request);
 //      // out.result: UV, FUV (per corner), charts, utilization, flipped (0), overlaps (0)
-//      intrinsic::write_atlas_file("scene_atlas.glb", out.data, out.result);
+//      // out.input: the mesh read and, beside it, its document (mesh_document.h)
+//      intrinsic::write_atlas_file("scene_atlas.glb", out.input, out.result);
 //
 // 3. The atlas in stages, to look at or change the charts before packing
 //    (atlas.h):
@@ -39,7 +40,8 @@
 #pragma once
 
 // The entry points; pipeline.h brings the headers of the data they take and
-// give (atlas.h, atlas_files.h, io.h, mesh.h, parameterize.h, error.h).
+// give (atlas.h, atlas_files.h, io.h, mesh_document.h, mesh.h, parameterize.h,
+// error.h).
 #include "intrinsic/atlas_option_table.h"
 #include "intrinsic/param_option_table.h"
 #include "intrinsic/parameterizer.h"

@@ -1,6 +1,6 @@
 // Every file format of the project. Reading and writing meshes: OBJ, OFF, PLY (ASCII and binary, either
-// endianness), STL (read only, ASCII and binary, equal corners welded) and glTF 2.0 (read_mesh of
-// .gltf/.glb: every triangle primitive merged at world scale, the document kept; intrinsic/gltf.h), each
+// endianness), STL (read only, ASCII and binary, equal corners welded) and glTF 2.0 (.gltf/.glb: every
+// triangle primitive merged at world scale, the document kept by read_mesh_file; intrinsic/gltf.h), each
 // optionally gzip-compressed (detected from the bytes, not the name), and
 // every other format assimp imports (FBX, Collada, 3DS, LWO, X, .blend...:
 // supported_formats() lists them). Writers
@@ -19,6 +19,7 @@
 #include "intrinsic/boundary.h"
 #include "intrinsic/constraints.h"
 #include "intrinsic/mesh_data.h"
+#include "intrinsic/mesh_document.h"
 
 namespace intrinsic {
 
@@ -47,11 +48,17 @@ struct ReadOptions {
 // mesh names as per-face labels (materials, objects, groups), points and
 // lines skipped; assimp's refusals become Error(Input) with the file named
 // and assimp's message. An unknown extension is Error(Usage).
+// read_mesh_file gives the geometry and the file's document beside it
+// (intrinsic/mesh_document.h: an OBJ's normals and labels, a glTF document),
+// which the atlas writers give back; read_mesh is its geometry alone.
+MeshFile read_mesh_file(const std::string& path, const ReadOptions& options = {});
 MeshData read_mesh(const std::string& path, const ReadOptions& options = {});
 // Same, from bytes already in memory (used by fuzz targets and tests); the
 // format is taken from `name`'s extension (".obj", ".off", ".ply", ".stl",
 // ".gltf", ".glb", optionally ".gz") and gzip is also recognised from the
 // magic bytes. A glTF document given in memory may not name buffer files.
+MeshFile read_mesh_file_from_memory(const std::string& bytes, const std::string& name,
+                                    const ReadOptions& options = {});
 MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name,
                                const ReadOptions& options = {});
 

@@ -8,7 +8,7 @@
 // docs/formats.md "Report" and docs/cli.md, built from the outcome only.
 // The param job may write its mesh itself (ParamRequest::output), while it
 // measures the map on the other core; otherwise writing stays with the
-// caller: write_mesh / write_atlas_file (io.h).
+// caller: write_mesh (io.h) / write_atlas_file (atlas_files.h).
 #pragma once
 
 #include <optional>
@@ -128,7 +128,9 @@ struct AtlasRequest {
 };
 
 struct AtlasOutcome {
-  MeshData data;  // the input as read or given
+  // The input as read (with its document, which the atlas writers give
+  // back) or given (no document).
+  MeshFile input;
   AtlasOptions options;  // as run (seams included)
   AtlasResult result;
   double read_ms = 0;  // reading the mesh and the seams file
@@ -138,7 +140,7 @@ AtlasOutcome atlas_file(const std::string& path, const AtlasRequest& request);
 AtlasOutcome atlas_data(MeshData data, const AtlasRequest& request);
 
 // The report of `intrinsic atlas --report` (docs/cli.md "intrinsic atlas"):
-// "input" is the data's path and "output" `output` (null when empty);
+// "input" is the input's path and "output" `output` (null when empty);
 // timings_ms holds read, clean, segment, flatten, merge and pack, to which a
 // caller adds its own (write, total).
 // As JSON text.

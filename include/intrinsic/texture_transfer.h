@@ -14,6 +14,7 @@
 #include "intrinsic/atlas_files.h"
 #include "intrinsic/gltf.h"
 #include "intrinsic/mesh_data.h"
+#include "intrinsic/mesh_document.h"
 
 namespace intrinsic {
 
@@ -55,13 +56,13 @@ void check_texture_transfer(const TextureTransferOptions& options);
 void check_texture_transfer_input(const TextureTransferOptions& options, bool gltf_input, const std::string& output,
                                   int texcoord_set);
 
-// write_atlas_file (gltf.h) with the textures following the atlas when
+// write_atlas_file (atlas_files.h) with the textures following the atlas when
 // `textures.enabled`: a glTF input needs gltf.texcoord_set >= 0 (the set the
 // textures read; it is replaced), an OBJ input its mtllib materials' map_Kd
 // (map_Ks, map_Bump too) and an .obj output. An image that cannot be read or
 // decoded, or a sampler it cannot honour, is Error(Input) naming the image and
 // the material; nothing is written then (all files or none).
-TextureTransferReport write_atlas_with_textures(const std::string& path, const MeshData& m, const AtlasResult& r,
+TextureTransferReport write_atlas_with_textures(const std::string& path, const MeshFile& input, const AtlasResult& r,
                                                 const GltfWriteOptions& gltf, const TextureTransferOptions& textures);
 
 

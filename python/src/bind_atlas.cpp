@@ -14,7 +14,7 @@ namespace intrinsic::python {
 namespace {
 
 struct AtlasOutput {
-  MeshData data;
+  MeshFile input;  // with a file's document, which write_atlas gives back
   AtlasResult result;
   py::object uv, uv_index, face_chart, report;
   // How write_atlas writes it: the glTF set (uv_set) and the texture transfer.
@@ -104,7 +104,7 @@ AtlasOutput run_atlas(const py::object& V, const py::object& F, const py::kwargs
   const AtlasTimings& t = o.result.timings;
   report["timings_ms"] = {{"clean", t.clean_ms},     {"segment", t.segment_ms}, {"flatten", t.flatten_ms},
                           {"merge", t.merge_ms},     {"pack", t.pack_ms},       {"total", t.total_ms}};
-  out.data = std::move(o.data);
+  out.input = std::move(o.input);
   out.result = std::move(o.result);
   out.uv = from_UV(out.result.UV);
   out.uv_index = from_F(out.result.FUV);
@@ -127,7 +127,7 @@ void register_atlas(py::module_& m) {
       .def_readonly("uv_index", &AtlasOutput::uv_index)
       .def_readonly("face_chart", &AtlasOutput::face_chart)
       .def_readonly("report", &AtlasOutput::report)
-      .def_property_readonly("V", [](const AtlasOutput& a) { return from_V(a.data.V); })
+      .def_property_readonly("V", [](const AtlasOutput& a) { return from_V(a.input.mesh.V); })
       .def_property_readonly("F", [](const AtlasOutput& a) { return from_F(a.result.F); })
       .def("__repr__", [](const AtlasOutput& a) {
         return "<intrinsic.Atlas " + std::to_string(a.result.charts.size()) + " charts, utilization " +
@@ -154,7 +154,7 @@ void register_atlas(py::module_& m) {
         TextureTransferReport baked;
         {
           py::gil_scoped_release release;
-          baked = write_atlas_with_textures(p, a.data, a.result, a.gltf, a.textures);
+          baked = write_atlas_with_textures(p, a.input, a.result, a.gltf, a.textures);
         }
         if (!a.textures.enabled) return py::none();
         return to_python(nlohmann::json::parse(texture_transfer_report(baked)));

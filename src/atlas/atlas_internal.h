@@ -218,7 +218,8 @@ void place_degenerate_faces(const MatrixX3d& V, const MatrixX3i& F, const std::v
                             MatrixX3i& FUV, int zero_row);
 
 // atlas_per_mesh.cpp: AtlasScope::PerMesh, one atlas per glTF mesh or OBJ
-// object, put side by side in one result.
-AtlasResult atlas_per_mesh(const MeshData& input, const AtlasOptions& options);
+// object of `document` (the one beside `input`), put side by side in one
+// result.
+AtlasResult atlas_per_mesh(const MeshData& input, const MeshDocument& document, const AtlasOptions& options);
 
 }  // namespace intrinsic::detail

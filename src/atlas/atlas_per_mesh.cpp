@@ -16,8 +16,8 @@
 namespace intrinsic::detail {
 namespace {
 
-// Per face, its mesh (0..count-1).
-std::vector<int> face_meshes(const MeshData& input, int& count) {
+// Per face, its mesh (0..count-1), as the document beside `input` tells them.
+std::vector<int> face_meshes(const MeshData& input, const MeshDocument& document, int& count) {
   std::vector<int> group(static_cast<std::size_t>(input.F.rows()), 0);
   std::vector<int> id;  // source mesh or object label -> group
   auto assign = [&](std::size_t f, int key) {
@@ -27,12 +27,12 @@ std::vector<int> face_meshes(const MeshData& input, int& count) {
     group[f] = id[k];
   };
   count = 0;
-  if (input.gltf) {
-    const GltfDocument& doc = *input.gltf;
+  if (document.gltf) {
+    const GltfDocument& doc = *document.gltf;
     for (std::size_t f = 0; f < group.size(); ++f)
       assign(f, doc.primitives[static_cast<std::size_t>(doc.face_primitive[f])].mesh);
-  } else if (!input.objects.empty()) {
-    for (std::size_t f = 0; f < group.size(); ++f) assign(f, input.objects.of_face[f]);
+  } else if (!document.obj.objects.empty()) {
+    for (std::size_t f = 0; f < group.size(); ++f) assign(f, document.obj.objects.of_face[f]);
   } else {
     throw_usage("atlas per mesh: " + input.path +
                 " has no meshes to tell apart (a glTF document's meshes or an OBJ file's `o` objects)");
@@ -114,11 +114,11 @@ void add_stretch(StretchSummary& to, const StretchSummary& s, double area, doubl
 
 }  // namespace
 
-AtlasResult atlas_per_mesh(const MeshData& input, const AtlasOptions& options) {
+AtlasResult atlas_per_mesh(const MeshData& input, const MeshDocument& document, const AtlasOptions& options) {
   const SeamProblem bad = find_seam_problem(input, options.charts.seams);
   if (bad.index >= 0) throw_input("seam edge " + std::to_string(bad.index) + ": " + bad.message);
   int meshes = 0;
-  const std::vector<int> group = face_meshes(input, meshes);
+  const std::vector<int> group = face_meshes(input, document, meshes);
   AtlasOptions each = options;
   each.scope = AtlasScope::Whole;
   AtlasResult out;

@@ -128,7 +128,7 @@ std::int64_t triangle_count(const aiScene& scene) {
 
 }  // namespace
 
-MeshData read_assimp(const std::string& bytes, const std::string& name, const std::string& ext,
+MeshFile read_assimp(const std::string& bytes, const std::string& name, const std::string& ext,
                      const ReadOptions& options, bool from_file) {
   Assimp::Importer importer;
   const aiScene& scene = *import(importer, bytes, name, ext, from_file);

@@ -24,10 +24,11 @@ std::vector<AssimpExtension> assimp_extensions();
 
 // One mesh from the whole asset: triangles of every mesh at world scale,
 // corners at exactly equal world positions welded, material, node and mesh
-// names kept as per-face labels. `from_file`: `name` is a path assimp may
+// names kept as per-face labels, the glTF document assimp's export made kept
+// beside the mesh (MeshDocument). `from_file`: `name` is a path assimp may
 // open itself (and the files it names beside it); otherwise only `bytes` are
 // read, the format taken from `ext`. Throws Error(Input) naming `name`.
-MeshData read_assimp(const std::string& bytes, const std::string& name, const std::string& ext,
+MeshFile read_assimp(const std::string& bytes, const std::string& name, const std::string& ext,
                      const ReadOptions& options, bool from_file);
 
 }  // namespace intrinsic::io

@@ -1,5 +1,5 @@
-// The parsed glTF document that read_gltf keeps with the merged mesh
-// (MeshData::gltf) and write_gltf_atlas writes back: the JSON as it was, the
+// The parsed glTF document that the reader keeps beside the merged mesh
+// (MeshDocument::gltf) and write_gltf_atlas writes back: the JSON as it was, the
 // bytes of every buffer, and where each merged vertex and face came from.
 // Also the pieces the reader and writer share: JSON access that refuses
 // with the JSON path, accessors (validated, densified with sparse values
@@ -115,10 +115,11 @@ std::vector<int> prune_replaced_textures(const nlohmann::json& before, nlohmann:
 namespace io {
 // read_mesh's glTF branch (gltf_reader.cpp): `bytes` of the file `name`;
 // external buffer files are read beside it only when `files_allowed`.
-MeshData read_gltf(const std::string& bytes, const std::string& name, const ReadOptions& options, bool files_allowed);
+MeshFile read_gltf(const std::string& bytes, const std::string& name, const ReadOptions& options, bool files_allowed);
 // A loaded document as one mesh: every triangle primitive at world scale,
 // with per-face material, mesh and node names and per-corner world normals
-// (what an OBJ output gives back); the document rides along in MeshData::gltf.
-MeshData read_gltf_document(GltfDocument doc, const ReadOptions& options);
+// (what an OBJ output gives back, MeshDocument::obj); the document is kept
+// beside the mesh (MeshDocument::gltf).
+MeshFile read_gltf_document(GltfDocument doc, const ReadOptions& options);
 }  // namespace io
 }  // namespace intrinsic

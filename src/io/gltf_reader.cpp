@@ -3,8 +3,8 @@
 // positions (float or KHR_mesh_quantization integers, normalized or not)
 // moved to world space by the mesh's first instance so that charts are sized
 // by the area a viewer sees. Each primitive keeps its own vertices (the
-// atlas welds coincident ones itself); the document and the origin of every
-// vertex and face stay with the MeshData for write_gltf_atlas.
+// atlas welds coincident ones itself); the document, with the origin of every
+// vertex and face, is kept beside the mesh (MeshFile) for write_gltf_atlas.
 #include <array>
 #include <map>
 #include <cmath>
@@ -176,14 +176,15 @@ std::string name_of(const json& array, int i, const char* fallback) {
 
 // What an OBJ output gives back of the document: per face its material's
 // name (usemtl), its mesh's name (g) and the node drawing it (o); per corner
-// the NORMAL attribute in world space (vn).
-void add_obj_extras(MeshData& data, const GltfDocument& doc, const std::vector<gltf::Placement>& placed) {
+// the NORMAL attribute in world space (vn). `data` is the merged mesh.
+ObjExtras obj_extras(const MeshData& data, const GltfDocument& doc, const std::vector<gltf::Placement>& placed) {
   LabelTable materials, groups, objects;
   const json empty = json::array();
   const json& mats = doc.json.contains("materials") ? doc.json["materials"] : empty;
   const json& nodes = doc.json.contains("nodes") ? doc.json["nodes"] : empty;
-  data.N.resize(data.V.rows(), 3);
-  data.FN.resize(data.F.rows(), 3);
+  ObjExtras x;
+  x.N.resize(data.V.rows(), 3);
+  x.FN.resize(data.F.rows(), 3);
   bool any_normal = false;
   for (const GltfDocument::Primitive& p : doc.primitives) {
     const json& mesh = doc.json["meshes"][static_cast<std::size_t>(p.mesh)];
@@ -198,7 +199,7 @@ void add_obj_extras(MeshData& data, const GltfDocument& doc, const std::vector<g
     const bool has = prim["attributes"].contains("NORMAL");
     any_normal = any_normal || has;
     for (int f = p.first_face; f < p.first_face + p.face_count; ++f)
-      for (int c = 0; c < 3; ++c) data.FN(f, c) = has ? data.F(f, c) : -1;
+      for (int c = 0; c < 3; ++c) x.FN(f, c) = has ? data.F(f, c) : -1;
     if (!has) continue;
     const gltf::Accessor n = gltf::read_accessor(doc, prim["attributes"]["NORMAL"].get<int>(), std::int64_t{1} << 40);
     const Eigen::Matrix3d to_world = placed[static_cast<std::size_t>(p.mesh)].world.topLeftCorner<3, 3>().inverse().transpose();
@@ -207,20 +208,21 @@ void add_obj_extras(MeshData& data, const GltfDocument& doc, const std::vector<g
       Eigen::Vector3d w = to_world * Eigen::Vector3d(n.value(src, 0), n.value(src, 1), n.value(src, 2));
       if (w.norm() > 0 && w.allFinite()) w.normalize();
       else w.setZero();
-      data.N.row(p.first_vertex + v) = w.transpose();
+      x.N.row(p.first_vertex + v) = w.transpose();
     }
   }
-  if (!any_normal) data.N.resize(0, 3), data.FN.resize(0, 3);
-  data.materials = materials.take();
-  data.groups = groups.take();
-  data.objects = objects.take();
+  if (!any_normal) x.N.resize(0, 3), x.FN.resize(0, 3);
+  x.materials = materials.take();
+  x.groups = groups.take();
+  x.objects = objects.take();
+  return x;
 }
 
 }  // namespace
 
 namespace io {
 
-MeshData read_gltf_document(GltfDocument doc_in, const ReadOptions& options) {
+MeshFile read_gltf_document(GltfDocument doc_in, const ReadOptions& options) {
   auto doc = std::make_shared<GltfDocument>(std::move(doc_in));
   const std::string& name = doc->name;
   if (options.instances == InstanceMode::Unique) gltf::give_each_instance_its_mesh(doc->json);
@@ -239,15 +241,16 @@ MeshData read_gltf_document(GltfDocument doc_in, const ReadOptions& options) {
     }
   }
   if (out.F.empty()) throw_input(name + ": no triangles (no mesh primitive with mode TRIANGLES, STRIP or FAN)");
-  MeshData data;
+  MeshFile file;
+  MeshData& data = file.mesh;
   data.V.resize(static_cast<Eigen::Index>(out.V.size()), 3);
   for (std::size_t v = 0; v < out.V.size(); ++v) data.V.row(static_cast<Eigen::Index>(v)) = out.V[v];
   data.F.resize(static_cast<Eigen::Index>(out.F.size()), 3);
   for (std::size_t f = 0; f < out.F.size(); ++f) data.F.row(static_cast<Eigen::Index>(f)) = out.F[f];
   data.path = name;
-  add_obj_extras(data, *doc, placed);
-  data.gltf = doc;
-  return data;
+  file.document.obj = obj_extras(data, *doc, placed);
+  file.document.gltf = doc;
+  return file;
 }
 
 }  // namespace io
@@ -265,7 +268,7 @@ namespace io {
 
 // From read_mesh: the bytes of `name` (already un-gzipped), external buffer
 // files beside it when `files_allowed`.
-MeshData read_gltf(const std::string& bytes, const std::string& name, const ReadOptions& options, bool files_allowed) {
+MeshFile read_gltf(const std::string& bytes, const std::string& name, const ReadOptions& options, bool files_allowed) {
   // Every JSON access checks its type first; should one have been missed,
   // the file is refused, not the program ended.
   try {
@@ -277,20 +280,28 @@ MeshData read_gltf(const std::string& bytes, const std::string& name, const Read
 
 }  // namespace io
 
-MeshData read_gltf(const std::string& path, const ReadOptions& options) {
+MeshFile read_gltf_file(const std::string& path, const ReadOptions& options) {
   const std::string ext = mesh_extension(path);
   if (ext != ".gltf" && ext != ".glb") throw_usage("read_gltf: '" + path + "' is not a .gltf or .glb file");
-  return read_mesh(path, options);
+  return read_mesh_file(path, options);
 }
 
-MeshData read_gltf_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+MeshData read_gltf(const std::string& path, const ReadOptions& options) {
+  return read_gltf_file(path, options).mesh;
+}
+
+MeshFile read_gltf_file_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
   return io::read_gltf(bytes, name, options, false);
 }
 
-SceneSummary scene_summary(const MeshData& data) {
+MeshData read_gltf_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+  return read_gltf_file_from_memory(bytes, name, options).mesh;
+}
+
+SceneSummary scene_summary(const MeshDocument& document) {
   SceneSummary s;
-  if (!data.gltf) return s;
-  const json& j = data.gltf->json;
+  if (!document.gltf) return s;
+  const json& j = document.gltf->json;
   auto count = [&j](const char* key) { return j.contains(key) && j[key].is_array() ? static_cast<int>(j[key].size()) : 0; };
   s.meshes = count("meshes");
   s.materials = count("materials");
@@ -309,9 +320,10 @@ SceneSummary scene_summary(const MeshData& data) {
   return s;
 }
 
-void read_gltf_texcoords(MeshData& data, int set) {
-  if (!data.gltf) throw_usage("read_gltf_texcoords: " + data.path + " was not read from a glTF document");
-  const GltfDocument& doc = *data.gltf;
+void read_gltf_texcoords(MeshFile& file, int set) {
+  MeshData& data = file.mesh;
+  if (!file.document.gltf) throw_usage("read_gltf_texcoords: " + data.path + " was not read from a glTF document");
+  const GltfDocument& doc = *file.document.gltf;
   const std::string key = "TEXCOORD_" + std::to_string(set);
   MatrixX2d TC(data.V.rows(), 2);
   for (const GltfDocument::Primitive& p : doc.primitives) {
@@ -330,9 +342,9 @@ void read_gltf_texcoords(MeshData& data, int set) {
   data.had_texcoords = true;
 }
 
-GltfProvenance gltf_provenance(const MeshData& data) {
-  if (!data.gltf) throw_usage("gltf_provenance: " + data.path + " was not read from a glTF document");
-  const GltfDocument& doc = *data.gltf;
+GltfProvenance gltf_provenance(const MeshFile& file) {
+  if (!file.document.gltf) throw_usage("gltf_provenance: " + file.mesh.path + " was not read from a glTF document");
+  const GltfDocument& doc = *file.document.gltf;
   GltfProvenance p;
   for (const GltfDocument::Primitive& r : doc.primitives) {
     for (int v = 0; v < r.vertex_count; ++v) {

@@ -28,7 +28,8 @@ struct MeshBuilder {
 };
 
 // Format readers over a buffer already in memory (decompressed if needed).
-MeshData read_obj(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt);
+// Only an OBJ carries more than geometry (its extras, mesh_document.h).
+MeshFile read_obj(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt);
 MeshData read_off(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt);
 MeshData read_ply(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt);
 MeshData read_stl(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt);

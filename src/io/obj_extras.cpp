@@ -28,7 +28,7 @@ void LabelTrack::set(std::string_view name) {
   current_ = it->second;
 }
 
-void ObjExtras::read_normal(TextScanner& s, std::int64_t limit) {
+void ObjExtrasBuilder::read_normal(TextScanner& s, std::int64_t limit) {
   double c[3];
   for (double& x : c) {
     if (!s.parse_double(x)) s.fail("expected a number after 'vn'");
@@ -39,7 +39,7 @@ void ObjExtras::read_normal(TextScanner& s, std::int64_t limit) {
   normal.insert(normal.end(), c, c + 3);
 }
 
-void ObjExtras::read_statement(std::string_view keyword, TextScanner& s) {
+void ObjExtrasBuilder::read_statement(std::string_view keyword, TextScanner& s) {
   if (keyword == "usemtl") materials.set(rest_of_line(s));
   else if (keyword == "g") groups.set(rest_of_line(s));
   else if (keyword == "o") objects.set(rest_of_line(s));
@@ -47,7 +47,7 @@ void ObjExtras::read_statement(std::string_view keyword, TextScanner& s) {
   else if (keyword == "mtllib") material_libraries.emplace_back(rest_of_line(s));
 }
 
-void ObjExtras::check(const TextScanner& s, const std::vector<int>& line) const {
+void ObjExtrasBuilder::check(const TextScanner& s, const std::vector<int>& line) const {
   const std::int64_t n = normal_count();
   for (std::size_t i = 0; i < tri_n.size(); ++i) {
     if (tri_n[i] >= n) {
@@ -57,18 +57,20 @@ void ObjExtras::check(const TextScanner& s, const std::vector<int>& line) const 
   }
 }
 
-void ObjExtras::move_into(MeshData& m) {
+ObjExtras ObjExtrasBuilder::finish() {
   using RowX3d = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
   using RowX3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  ObjExtras x;
   if (!tri_n.empty()) {
-    m.N = Eigen::Map<const RowX3d>(normal.data(), normal_count(), 3);
-    m.FN = Eigen::Map<const RowX3i>(tri_n.data(), static_cast<Eigen::Index>(tri_n.size() / 3), 3);
+    x.N = Eigen::Map<const RowX3d>(normal.data(), normal_count(), 3);
+    x.FN = Eigen::Map<const RowX3i>(tri_n.data(), static_cast<Eigen::Index>(tri_n.size() / 3), 3);
   }
-  m.material_libraries = std::move(material_libraries);
-  m.materials = materials.take();
-  m.groups = groups.take();
-  m.objects = objects.take();
-  m.smoothing = smoothing.take();
+  x.material_libraries = std::move(material_libraries);
+  x.materials = materials.take();
+  x.groups = groups.take();
+  x.objects = objects.take();
+  x.smoothing = smoothing.take();
+  return x;
 }
 
 }  // namespace intrinsic::io

@@ -1,7 +1,7 @@
 // What an OBJ carries beyond positions, texture coordinates and faces, as the
 // reader collects it (docs/formats.md, "OBJ"): normals with per-corner
 // indices, the mtllib lines, and the state statements usemtl, g, o and s as
-// per-face labels (MeshData, mesh_data.h). Nothing per face is allocated
+// per-face labels (ObjExtras, mesh_document.h). Nothing per face is allocated
 // until the file uses it, so plain meshes pay one branch per face.
 #pragma once
 
@@ -12,7 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "intrinsic/mesh_data.h"
+#include "intrinsic/mesh_document.h"
 #include "io/text_scan.h"
 
 namespace intrinsic::io {
@@ -40,7 +40,7 @@ class LabelTrack {
   int current_ = -1;
 };
 
-struct ObjExtras {
+struct ObjExtrasBuilder {
   std::vector<double> normal;  // 3 per `vn`
   // 3 per triangle, the 0-based normal of each corner or -1; empty until a
   // corner names a normal.
@@ -78,8 +78,9 @@ struct ObjExtras {
   // Range-checks the normal indices once every `vn` is known (positive
   // indices may refer forward), naming the face's line.
   void check(const TextScanner& s, const std::vector<int>& line) const;
-  // Hands everything to the mesh (normals only if a corner uses them).
-  void move_into(MeshData& m);
+  // Everything read, as the file's document keeps it (normals only if a
+  // corner uses them).
+  ObjExtras finish();
 };
 
 }  // namespace intrinsic::io

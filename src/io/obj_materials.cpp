@@ -176,9 +176,9 @@ std::string material_text(const GltfDocument& doc, const json& m, const std::str
 }
 
 // STEM.mtl from the document's materials, one `newmtl` per name the faces use.
-void write_document_library(const MeshData& m, const std::string& stem, Collector& c) {
-  const GltfDocument& doc = *m.gltf;
-  if (m.materials.empty() || !doc.json.contains("materials")) return;
+void write_document_library(const MeshDocument& d, const std::string& stem, Collector& c) {
+  const GltfDocument& doc = *d.gltf;
+  if (d.obj.materials.empty() || !doc.json.contains("materials")) return;
   const json& mats = doc.json["materials"];
   std::map<std::string, std::size_t> index;  // the reader's label of each material
   for (std::size_t i = 0; i < mats.size(); ++i) {
@@ -188,7 +188,7 @@ void write_document_library(const MeshData& m, const std::string& stem, Collecto
     index.emplace(name.empty() ? "material_" + std::to_string(i) : name, i);
   }
   std::string text = "# materials of " + fs::path(doc.name).filename().string() + "\n";
-  for (const std::string& name : m.materials.names) {
+  for (const std::string& name : d.obj.materials.names) {
     const auto it = index.find(name);
     if (it == index.end()) continue;
     text += "\nnewmtl " + name + "\n" + material_text(doc, mats[it->second], stem, c);
@@ -199,25 +199,26 @@ void write_document_library(const MeshData& m, const std::string& stem, Collecto
 
 }  // namespace
 
-ObjSideFiles obj_side_files(const MeshData& m, const std::string& obj_path, bool allow_missing) {
+ObjSideFiles obj_side_files(const MeshFile& input, const std::string& obj_path, bool allow_missing) {
   fs::path out_folder = fs::path(obj_path).parent_path();
   if (out_folder.empty()) out_folder = ".";
   Collector c{out_folder, allow_missing, {}, {}};
   std::string stem = fs::path(obj_path).filename().string();
   if (stem.size() > 3 && stem.compare(stem.size() - 3, 3, ".gz") == 0) stem.resize(stem.size() - 3);
   stem = fs::path(stem).stem().string();
-  if (m.gltf) {
-    write_document_library(m, safe(stem), c);
+  if (input.document.gltf) {
+    write_document_library(input.document, safe(stem), c);
     return std::move(c.out);
   }
-  fs::path in_folder = fs::path(m.path).parent_path();
+  const std::vector<std::string>& libraries = input.document.obj.material_libraries;
+  fs::path in_folder = fs::path(input.mesh.path).parent_path();
   if (in_folder.empty()) in_folder = ".";
   std::error_code ec;
-  if (m.material_libraries.empty() || fs::equivalent(in_folder, out_folder, ec)) {
-    c.out.mtllib = m.material_libraries;  // they resolve from the output as they did from the input
+  if (libraries.empty() || fs::equivalent(in_folder, out_folder, ec)) {
+    c.out.mtllib = libraries;  // they resolve from the output as they did from the input
     return std::move(c.out);
   }
-  for (const std::string& line : m.material_libraries) {
+  for (const std::string& line : libraries) {
     std::istringstream names(line);
     for (std::string name; names >> name;) c.copy_library(name, in_folder);
   }

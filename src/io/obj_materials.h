@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "intrinsic/mesh_data.h"
+#include "intrinsic/mesh_document.h"
 
 namespace intrinsic::io {
 
@@ -17,11 +17,11 @@ struct ObjSideFiles {
   std::vector<std::string> folders;                        // sub-folders of the output's that `files` need
 };
 
-// For the atlas OBJ at `obj_path` of `m`: nothing to write when the input's
+// For the atlas OBJ at `obj_path` of `input`: nothing to write when the input's
 // mtllib names resolve from the output's folder as they are; else copies
 // of the .mtl files and their maps (OBJ input) or a .mtl written from a
 // glTF document's materials with its images. A file that cannot be found is
 // Error(Input) naming it, unless `allow_missing` (then listed in `missing`).
-ObjSideFiles obj_side_files(const MeshData& m, const std::string& obj_path, bool allow_missing);
+ObjSideFiles obj_side_files(const MeshFile& input, const std::string& obj_path, bool allow_missing);
 
 }  // namespace intrinsic::io

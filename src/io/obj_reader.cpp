@@ -49,7 +49,7 @@ struct ObjState {
   std::int64_t n_tc = 0;              // texture coordinates so far
   bool every_face_has_vt = true;
   std::vector<Corner> poly;  // the current face, reused to avoid allocations
-  ObjExtras extras;
+  ObjExtrasBuilder extras;
   // A piece of the file parsed on its own (read_obj_in_pieces): indices that
   // count back from what is defined so far cannot be resolved there.
   bool piece = false;
@@ -390,8 +390,9 @@ std::optional<MeshData> read_obj_in_pieces(const char* data, std::size_t size, c
 
 }  // namespace
 
-MeshData read_obj(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt) {
-  if (std::optional<MeshData> m = read_obj_in_pieces(data, size, name, opt)) return std::move(*m);
+MeshFile read_obj(const char* data, std::size_t size, const std::string& name, const ReadOptions& opt) {
+  // Pieces hold only v, vt and f lines: there are no extras to keep.
+  if (std::optional<MeshData> m = read_obj_in_pieces(data, size, name, opt)) return {std::move(*m), {}};
   TextScanner s(data, data + size, name);
   ObjState st;
   st.max_v = vertex_limit(opt);
@@ -402,9 +403,10 @@ MeshData read_obj(const char* data, std::size_t size, const std::string& name, c
   st.b.had_texcoords = st.n_tc > 0;
   check_face_indices(s, st);
   st.extras.check(s, st.b.line);
-  MeshData m = st.b.finish(name);
-  st.extras.move_into(m);
-  return m;
+  MeshFile file;
+  file.mesh = st.b.finish(name);
+  file.document.obj = st.extras.finish();
+  return file;
 }
 
 }  // namespace intrinsic::io

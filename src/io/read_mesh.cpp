@@ -2,6 +2,7 @@
 // say so, and hand the buffer to the reader chosen by the file extension:
 // ours for OBJ, OFF, PLY, STL and glTF, assimp for any other extension it
 // imports; a name whose extension says nothing gets the format its bytes show.
+// Every reader gives a MeshFile; read_mesh keeps its geometry.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -88,7 +89,7 @@ std::string sniff_format(const std::string& b) {
 
 // `files_allowed`: a glTF document may read buffer files beside `name`
 // (only when `name` is a file that was read, not bytes handed over).
-MeshData read_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options,
+MeshFile read_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options,
                     bool files_allowed) {
   std::string ext = format_of(name);
   const bool known = is_ours(ext) || io::assimp_reads(ext);
@@ -123,18 +124,23 @@ MeshData read_bytes(const std::string& bytes, const std::string& name, const Rea
     size -= 3;
   }
   if (ext == ".obj") return io::read_obj(begin, size, name, options);
-  if (ext == ".off") return io::read_off(begin, size, name, options);
-  if (ext == ".stl") return io::read_stl(begin, size, name, options);
-  return io::read_ply(data->data(), data->size(), name, options);
+  // OFF, STL and PLY carry nothing the writers give back.
+  if (ext == ".off") return {io::read_off(begin, size, name, options), {}};
+  if (ext == ".stl") return {io::read_stl(begin, size, name, options), {}};
+  return {io::read_ply(data->data(), data->size(), name, options), {}};
 }
 
 }  // namespace
 
-MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+MeshFile read_mesh_file_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
   return read_bytes(bytes, name, options, false);
 }
 
-MeshData read_mesh(const std::string& path, const ReadOptions& options) {
+MeshData read_mesh_from_memory(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+  return read_mesh_file_from_memory(bytes, name, options).mesh;
+}
+
+MeshFile read_mesh_file(const std::string& path, const ReadOptions& options) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
     const int err = errno;  // before anything else can change it
@@ -184,6 +190,10 @@ MeshData read_mesh(const std::string& path, const ReadOptions& options) {
   }
   ::close(fd);
   return read_bytes(bytes, path, options, true);
+}
+
+MeshData read_mesh(const std::string& path, const ReadOptions& options) {
+  return read_mesh_file(path, options).mesh;
 }
 
 // How the command line, Python and the reports spell these (intrinsic/choice.h).

@@ -80,10 +80,10 @@ std::string atlas_report(const AtlasOutcome& o, const std::string& output) {
   const AtlasOptions& opt = o.options;
   const AtlasResult& r = o.result;
   nlohmann::json j;
-  j["input"] = path_or_null(o.data.path);
+  j["input"] = path_or_null(o.input.mesh.path);
   j["output"] = path_or_null(output);
-  j["vertices"] = o.data.V.rows();
-  j["faces"] = o.data.F.rows();
+  j["vertices"] = o.input.mesh.V.rows();
+  j["faces"] = o.input.mesh.F.rows();
   j["components"] = r.components;
   j["charts"] = r.charts.size();
   j["splits"] = r.splits;
@@ -115,9 +115,9 @@ std::string atlas_report(const AtlasOutcome& o, const std::string& output) {
   j["seam_edges"] = opt.charts.seams.size();
   // The input's own texture coordinates, if it had any, are not in the
   // output: the atlas takes their place.
-  j["replaced_texcoords"] = o.data.had_texcoords;
-  if (o.data.gltf) {
-    const SceneSummary sc = scene_summary(o.data);
+  j["replaced_texcoords"] = o.input.mesh.had_texcoords;
+  if (o.input.document.gltf) {
+    const SceneSummary sc = scene_summary(o.input.document);
     j["scene"] = {{"meshes", sc.meshes},     {"instances", sc.instances}, {"materials", sc.materials},
                   {"images", sc.images},     {"cameras", sc.cameras},     {"lights", sc.lights},
                   {"skipped_primitives", sc.skipped_primitives}};

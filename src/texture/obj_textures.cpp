@@ -54,18 +54,18 @@ std::string lower(std::string s) {
   return s;
 }
 
-// The .mtl files of `m` (each mtllib line may name several), their lines in
-// one list, the map lines found in them, and each file's folder per map line.
+// The .mtl files of `input` (each mtllib line may name several), their lines
+// in one list, the map lines found in them, and each file's folder per map line.
 struct Library {
   std::vector<std::string> lines;
   std::vector<MapLine> maps;
   std::vector<std::string> folder;  // per map
 };
 
-Library read_libraries(const MeshData& m) {
+Library read_libraries(const MeshFile& input) {
   Library lib;
-  const fs::path folder = fs::path(m.path).parent_path();
-  for (const std::string& names : m.material_libraries) {
+  const fs::path folder = fs::path(input.mesh.path).parent_path();
+  for (const std::string& names : input.document.obj.material_libraries) {
     std::istringstream words(names);
     for (std::string name; words >> name;) {
       const fs::path file = folder / name;
@@ -98,10 +98,11 @@ std::string file_safe(const std::string& s) {
 
 // The faces of `material` through both layouts (v down), corners in the
 // result's order (a face the atlas reoriented lists its input corners 0, 2, 1).
-TransferMesh material_mesh(const MeshData& m, const AtlasResult& r, const std::string& material) {
+TransferMesh material_mesh(const MeshFile& input, const AtlasResult& r, const std::string& material) {
+  const MeshData& m = input.mesh;
   std::vector<int> faces;
   for (int f = 0; f < r.F.rows(); ++f)
-    if (const std::string* name = m.materials.of(f); name && *name == material) faces.push_back(f);
+    if (const std::string* name = input.document.obj.materials.of(f); name && *name == material) faces.push_back(f);
   TransferMesh tm;
   tm.old_uv.resize(static_cast<Eigen::Index>(3 * faces.size()), 2);
   tm.new_uv.resize(tm.old_uv.rows(), 2);
@@ -118,16 +119,16 @@ TransferMesh material_mesh(const MeshData& m, const AtlasResult& r, const std::s
 
 }  // namespace
 
-TextureTransferReport write_obj_with_textures(const std::string& path, const MeshData& m, const AtlasResult& r,
+TextureTransferReport write_obj_with_textures(const std::string& path, const MeshFile& input, const AtlasResult& r,
                                               const TextureTransferOptions& options) {
   TextureTransferReport report;
-  Library lib = read_libraries(m);
+  Library lib = read_libraries(input);
   const fs::path out(path);
   const std::string stem = out.stem().string(), mtl_name = stem + ".mtl";
   std::vector<std::pair<std::string, std::string>> files;
   for (std::size_t i = 0; i < lib.maps.size(); ++i) {
     MapLine& map = lib.maps[i];
-    const TransferMesh tm = material_mesh(m, r, map.material);
+    const TransferMesh tm = material_mesh(input, r, map.material);
     if (tm.old_uv.rows() == 0) {
       report.notes.push_back(map.where + ": material '" + map.material + "' is used by no face: map left as it was");
       continue;
@@ -171,7 +172,7 @@ TextureTransferReport write_obj_with_textures(const std::string& path, const Mes
       write_file_atomically(file, bytes);
       written.push_back(file);
     }
-    write_atlas_obj_naming(path, m, r, {mtl_name});
+    write_atlas_obj_naming(path, input, r, {mtl_name});
   } catch (...) {
     std::error_code ec;
     for (const std::string& f : written) fs::remove(f, ec);

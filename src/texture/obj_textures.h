@@ -9,7 +9,7 @@ namespace intrinsic {
 // map_Bump) baked into PNGs beside it (STEM_<material>_Kd.png), a new
 // STEM.mtl pointing at them, and the OBJ's mtllib pointing at that; all files
 // or none.
-TextureTransferReport write_obj_with_textures(const std::string& path, const MeshData& m, const AtlasResult& r,
+TextureTransferReport write_obj_with_textures(const std::string& path, const MeshFile& input, const AtlasResult& r,
                                               const TextureTransferOptions& options);
 
 }  // namespace intrinsic

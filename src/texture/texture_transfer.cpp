@@ -31,7 +31,7 @@ void check_texture_transfer_input(const TextureTransferOptions& o, bool gltf_inp
                 " N (usually 0)");
 }
 
-TextureTransferReport write_atlas_with_textures(const std::string& path, const MeshData& m, const AtlasResult& r,
+TextureTransferReport write_atlas_with_textures(const std::string& path, const MeshFile& input, const AtlasResult& r,
                                                 const GltfWriteOptions& gltf, const TextureTransferOptions& textures) {
   TextureTransferReport report;
   auto keep = [&report](const GltfWriteResult& w) {
@@ -45,26 +45,27 @@ TextureTransferReport write_atlas_with_textures(const std::string& path, const M
       }
   };
   if (!textures.enabled) {
-    keep(write_atlas_file(path, m, r, gltf));
+    keep(write_atlas_file(path, input, r, gltf));
     return report;
   }
   check_texture_transfer(textures);
   check_atlas_output(path);
   const std::string ext = mesh_extension(path);
   const auto label = [&](std::string_view key) { return option_label(key, textures.spelling); };
-  if (m.gltf) {
+  if (const GltfDocument* doc = input.document.gltf.get()) {
     check_texture_transfer_input(textures, true, path, gltf.texcoord_set);
     GltfWriteOptions o = gltf;
     o.replace_used_set = true;
-    keep(write_gltf_atlas_hooked(path, m, r, o, gltf_textures::texture_hook(*m.gltf, r, textures, report)));
+    keep(write_gltf_atlas_hooked(path, input, r, o, gltf_textures::texture_hook(*doc, r, textures, report)));
     return report;
   }
-  if (ext != ".obj" || m.material_libraries.empty())
+  if (ext != ".obj" || input.document.obj.material_libraries.empty())
     throw_usage(label("transfer_textures") +
                 " needs a glTF input, or an OBJ input with mtllib materials written as .obj");
-  if (!m.has_uv())
-    throw_usage(label("transfer_textures") + ": " + m.path + " has no texture coordinates on every face to bake from");
-  return write_obj_with_textures(path, m, r, textures);
+  if (!input.mesh.has_uv())
+    throw_usage(label("transfer_textures") + ": " + input.mesh.path +
+                " has no texture coordinates on every face to bake from");
+  return write_obj_with_textures(path, input, r, textures);
 }
 
 }  // namespace intrinsic

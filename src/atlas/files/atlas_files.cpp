@@ -1,9 +1,9 @@
-// Writing an atlas (io.h "Atlases"): the OBJ with one texture coordinate per
-// corner and what the input carried besides (normals, materials, groups,
-// objects, smoothing groups; docs/formats.md "OBJ"), its material files
-// beside it (obj_materials.cpp), or the .glb/.gltf
-// through write_glb, chosen by the output's extension; a mesh read from glTF
-// goes back into its document (gltf.h).
+// Writing an atlas (atlas_files.h "Atlases"): the OBJ with one texture
+// coordinate per corner and what the input's document carried besides
+// (normals, materials, groups, objects, smoothing groups; docs/formats.md
+// "OBJ"), its material files beside it (obj_materials.cpp), or the
+// .glb/.gltf through write_glb, chosen by the output's extension; a mesh
+// read from glTF goes back into its document (gltf.h).
 #include <charconv>
 #include <filesystem>
 
@@ -28,22 +28,22 @@ void put(std::string& s, long x) {
 }
 
 // What the input OBJ carried that the atlas OBJ gives back, checked against
-// the result before anything is written (a MeshData built by hand may be
-// inconsistent; one read from a file never is).
-void check_obj_extras(const std::string& path, const MeshData& m, const AtlasResult& r) {
+// the result before anything is written (extras built by hand may be
+// inconsistent; those read from a file never are).
+void check_obj_extras(const std::string& path, const MeshData& m, const ObjExtras& x, const AtlasResult& r) {
   auto fail = [&](const std::string& what) { throw_output("cannot write " + path + ": " + what); };
   const Eigen::Index nf = r.F.rows();
-  if (m.FN.rows() > 0) {
-    if (m.FN.rows() != nf || m.F.rows() != nf) fail("the normal indices do not cover the faces");
-    if (m.FN.minCoeff() < -1 || m.FN.maxCoeff() >= m.N.rows()) fail("a normal index is out of range");
-    if (!m.N.allFinite()) fail("the normals are not all finite");
+  if (x.FN.rows() > 0) {
+    if (x.FN.rows() != nf || m.F.rows() != nf) fail("the normal indices do not cover the faces");
+    if (x.FN.minCoeff() < -1 || x.FN.maxCoeff() >= x.N.rows()) fail("a normal index is out of range");
+    if (!x.N.allFinite()) fail("the normals are not all finite");
   }
   auto check_names = [&](const std::vector<std::string>& names, const char* what) {
     for (const std::string& n : names)
       if (n.find_first_of("\r\n") != std::string::npos) fail(std::string(what) + " '" + n + "' holds a line break");
   };
-  check_names(m.material_libraries, "the material library");
-  for (const FaceLabels* l : {&m.materials, &m.groups, &m.objects, &m.smoothing}) {
+  check_names(x.material_libraries, "the material library");
+  for (const FaceLabels* l : {&x.materials, &x.groups, &x.objects, &x.smoothing}) {
     if (l->empty()) continue;
     if (static_cast<Eigen::Index>(l->of_face.size()) != nf) fail("a per-face label list does not cover the faces");
     for (int i : l->of_face)
@@ -55,9 +55,9 @@ void check_obj_extras(const std::string& path, const MeshData& m, const AtlasRes
 // Emits the state statements whose label changes at face f, in the order
 // o, g, usemtl, s. A face without a label after one with a label gets no
 // statement: OBJ has no way to say "none" again.
-void put_statements(std::string& s, const MeshData& m, int f) {
+void put_statements(std::string& s, const ObjExtras& x, int f) {
   static constexpr const char* kKeyword[] = {"o", "g", "usemtl", "s"};
-  const FaceLabels* labels[] = {&m.objects, &m.groups, &m.materials, &m.smoothing};
+  const FaceLabels* labels[] = {&x.objects, &x.groups, &x.materials, &x.smoothing};
   for (int k = 0; k < 4; ++k) {
     const FaceLabels& l = *labels[k];
     if (l.empty()) continue;
@@ -81,10 +81,12 @@ int input_corner(const MeshData& m, const AtlasResult& r, int f, int c) {
 // The OBJ, streamed in blocks of lines: mtllib lines, v, vt (the atlas), vn
 // (the input's), then the faces in input order with the input's state
 // statements where they change and `f v/vt/vn` where the corner had a normal.
-void write_obj_lines(const std::string& path, const MeshData& m, const AtlasResult& r,
+void write_obj_lines(const std::string& path, const MeshFile& input, const AtlasResult& r,
                      const std::vector<std::string>& mtllib) {
-  check_obj_extras(path, m, r);
-  const bool normals = m.FN.rows() > 0;
+  const MeshData& m = input.mesh;
+  const ObjExtras& x = input.document.obj;
+  check_obj_extras(path, m, x, r);
+  const bool normals = x.FN.rows() > 0;
   write_file_atomically(path, [&](const ByteSink& sink) {
     std::string s = "# intrinsic atlas: " + std::to_string(r.charts.size()) + " charts\n";
     auto flush = [&](bool force) {
@@ -101,16 +103,16 @@ void write_obj_lines(const std::string& path, const MeshData& m, const AtlasResu
     };
     put_rows("v", m.V);
     put_rows("vt", r.UV);
-    if (normals) put_rows("vn", m.N);
+    if (normals) put_rows("vn", x.N);
     for (int f = 0; f < r.F.rows(); ++f) {
-      put_statements(s, m, f);
+      put_statements(s, x, f);
       s += "f";
       for (int c = 0; c < 3; ++c) {
         s += ' ';
         put(s, static_cast<long>(r.F(f, c)) + 1);
         s += '/';
         put(s, static_cast<long>(r.FUV(f, c)) + 1);
-        const int n = normals ? m.FN(f, input_corner(m, r, f, c)) : -1;
+        const int n = normals ? x.FN(f, input_corner(m, r, f, c)) : -1;
         if (n >= 0) s += '/', put(s, static_cast<long>(n) + 1);
       }
       s += '\n';
@@ -121,9 +123,9 @@ void write_obj_lines(const std::string& path, const MeshData& m, const AtlasResu
 }
 
 // The OBJ and the material files it names, all or none.
-GltfWriteResult write_obj_with_materials(const std::string& path, const MeshData& m, const AtlasResult& r,
+GltfWriteResult write_obj_with_materials(const std::string& path, const MeshFile& input, const AtlasResult& r,
                                          bool allow_missing) {
-  io::ObjSideFiles side = io::obj_side_files(m, path, allow_missing);
+  io::ObjSideFiles side = io::obj_side_files(input, path, allow_missing);
   GltfWriteResult out;
   out.missing_images = side.missing;
   for (const auto& [file, bytes] : side.files) out.files.push_back(file);
@@ -134,7 +136,7 @@ GltfWriteResult write_obj_with_materials(const std::string& path, const MeshData
   }
   write_all(side.files);
   try {
-    write_obj_lines(path, m, r, side.mtllib);
+    write_obj_lines(path, input, r, side.mtllib);
   } catch (...) {
     std::error_code ec;
     for (const std::string& f : out.files) std::filesystem::remove(f, ec);
@@ -145,13 +147,13 @@ GltfWriteResult write_obj_with_materials(const std::string& path, const MeshData
 
 }  // namespace
 
-void write_atlas_obj(const std::string& path, const MeshData& m, const AtlasResult& r) {
-  write_obj_with_materials(path, m, r, false);
+void write_atlas_obj(const std::string& path, const MeshFile& input, const AtlasResult& r) {
+  write_obj_with_materials(path, input, r, false);
 }
 
-void write_atlas_obj_naming(const std::string& path, const MeshData& m, const AtlasResult& r,
+void write_atlas_obj_naming(const std::string& path, const MeshFile& input, const AtlasResult& r,
                             const std::vector<std::string>& mtllib) {
-  write_obj_lines(path, m, r, mtllib);
+  write_obj_lines(path, input, r, mtllib);
 }
 
 void check_atlas_output(const std::string& path) {
@@ -162,18 +164,18 @@ void check_atlas_output(const std::string& path) {
     throw_usage("output '" + path + "': " + ext + " is written uncompressed (drop the .gz)");
 }
 
-void write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r) {
-  write_atlas_file(path, m, r, GltfWriteOptions{});
+void write_atlas_file(const std::string& path, const MeshFile& input, const AtlasResult& r) {
+  write_atlas_file(path, input, r, GltfWriteOptions{});
 }
 
-GltfWriteResult write_atlas_file(const std::string& path, const MeshData& m, const AtlasResult& r,
+GltfWriteResult write_atlas_file(const std::string& path, const MeshFile& input, const AtlasResult& r,
                                  const GltfWriteOptions& gltf_options) {
   check_atlas_output(path);
   const std::string ext = mesh_extension(path);
   // A glTF input is written back as the same document with the atlas added.
-  if (ext != ".obj" && m.gltf) return write_gltf_atlas(path, m, r, gltf_options);
-  if (ext == ".obj") return write_obj_with_materials(path, m, r, gltf_options.allow_missing_images);
-  write_glb(path, m.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
+  if (ext != ".obj" && input.document.gltf) return write_gltf_atlas(path, input, r, gltf_options);
+  if (ext == ".obj") return write_obj_with_materials(path, input, r, gltf_options.allow_missing_images);
+  write_glb(path, input.mesh.V, r.F, r.UV, r.FUV);  // the faces as written (reorient)
   return {};
 }
 

@@ -274,12 +274,13 @@ std::string glb_bytes(const json& j, const std::string& bin) {
   return out;
 }
 
-GltfWriteResult write_document(const std::string& path, const MeshData& data, const AtlasResult& r,
+GltfWriteResult write_document(const std::string& path, const MeshFile& input, const AtlasResult& r,
                                const GltfWriteOptions& o, const GltfWriteHook& hook) {
+  const MeshData& data = input.mesh;
   const std::string ext = mesh_extension(path);
   if (ext != ".glb" && ext != ".gltf") throw_usage("output '" + path + "': a glTF document is written as .glb or .gltf");
-  if (!data.gltf) throw_usage("output '" + path + "': " + data.path + " was not read from a glTF document");
-  const GltfDocument& doc = *data.gltf;
+  if (!input.document.gltf) throw_usage("output '" + path + "': " + data.path + " was not read from a glTF document");
+  const GltfDocument& doc = *input.document.gltf;
   if (r.F.rows() != static_cast<Eigen::Index>(doc.face_primitive.size()) || r.FUV.rows() != r.F.rows() ||
       data.F.rows() != r.F.rows() ||
       data.V.rows() != static_cast<Eigen::Index>(doc.vertex_source.size()))
@@ -335,19 +336,20 @@ GltfWriteResult write_document(const std::string& path, const MeshData& data, co
 
 }  // namespace
 
-GltfWriteResult write_gltf_atlas(const std::string& path, const MeshData& data, const AtlasResult& r,
+GltfWriteResult write_gltf_atlas(const std::string& path, const MeshFile& input, const AtlasResult& r,
                                  const GltfWriteOptions& o) {
-  return write_gltf_atlas_hooked(path, data, r, o, {});
+  return write_gltf_atlas_hooked(path, input, r, o, {});
 }
 
-GltfWriteResult write_gltf_atlas_hooked(const std::string& path, const MeshData& data, const AtlasResult& r,
+GltfWriteResult write_gltf_atlas_hooked(const std::string& path, const MeshFile& input, const AtlasResult& r,
                                         const GltfWriteOptions& o, const GltfWriteHook& hook) {
   // Every JSON access above checks its type first; should one have been
   // missed, the document is refused, not the program ended.
   try {
-    return write_document(path, data, r, o, hook);
+    return write_document(path, input, r, o, hook);
   } catch (const nlohmann::json::exception& e) {
-    throw_input((data.gltf ? data.gltf->name : path) + ": unexpected JSON in the document: " + e.what());
+    const GltfDocument* doc = input.document.gltf.get();
+    throw_input((doc ? doc->name : path) + ": unexpected JSON in the document: " + e.what());
   }
 }
 

@@ -30,7 +30,7 @@ using GltfWriteHook =
     std::function<void(nlohmann::json& out, std::string& bin, const std::vector<GltfWrittenPrimitive>& written)>;
 
 // write_gltf_atlas with `hook` called before the document is serialized.
-GltfWriteResult write_gltf_atlas_hooked(const std::string& path, const MeshData& data, const AtlasResult& result,
-                             const GltfWriteOptions& options, const GltfWriteHook& hook);
+GltfWriteResult write_gltf_atlas_hooked(const std::string& path, const MeshFile& input, const AtlasResult& result,
+                                        const GltfWriteOptions& options, const GltfWriteHook& hook);
 
 }  // namespace intrinsic
