@@ -62,11 +62,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   return fuzz::expect_only_error([&] {
     const MeshData m = read_mesh_from_memory(text, kNames[opt & 3], fuzz::small_limits());
     AtlasOptions o;
-    o.segmentation = (opt & 4) ? Segmentation::Components : Segmentation::NormalCones;
-    o.weld = (opt & 8) ? 1e-3 : 0;
-    o.min_chart_faces = kMinFaces[(opt >> 4) & 3];
-    o.padding = (opt & 64) ? 0 : 2;
-    o.resolution = (opt & 128) ? 64 : 1024;
-    check(m, atlas(m, o), o.padding > 0);
+    o.charts.segmentation = (opt & 4) ? Segmentation::Components : Segmentation::NormalCones;
+    o.charts.weld = (opt & 8) ? 1e-3 : 0;
+    o.charts.min_chart_faces = kMinFaces[(opt >> 4) & 3];
+    o.pack.padding = (opt & 64) ? 0 : 2;
+    o.pack.resolution = (opt & 128) ? 64 : 1024;
+    check(m, atlas(m, o), o.pack.padding > 0);
   });
 }

@@ -20,9 +20,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }();
   return fuzz::expect_only_error([&] {
     AtlasOptions o;
-    o.seams = parse_seams_text(std::string(reinterpret_cast<const char*>(data), size), "fuzz.txt", grid);
-    o.resolution = 64;
-    o.max_charts = static_cast<int>(size % 4);
+    o.charts.seams = parse_seams_text(std::string(reinterpret_cast<const char*>(data), size), "fuzz.txt", grid);
+    o.pack.resolution = 64;
+    o.charts.max_charts = static_cast<int>(size % 4);
     atlas(grid, o);
   });
 }
