@@ -297,10 +297,10 @@ rounding of the input alone moves the map, the most any double-precision
 pipeline can promise. The scaling exponent is the least-squares slope of
 log(total) against log(V) over the generated disks.
 
-Sizes beyond this run's, e.g. 10M vertices (about 11 GB conformal and 17 GB
-natural at peak):
-`build/intrinsic generate wave --rings 1826 -o wave10m.obj`, then
-`/usr/bin/time -v build/intrinsic param wave10m.obj --boundary natural -o out.obj --report r.json`.
+Larger sizes are left out of the run for its time and memory; 10M vertices,
+for example, run as `build/intrinsic generate wave --rings 1826 -o
+wave10m.obj`, then `/usr/bin/time -v build/intrinsic param wave10m.obj
+--boundary natural -o out.obj --report r.json`.
 """)
 class Param:
     @staticmethod
@@ -495,7 +495,9 @@ class Ordering:
     @staticmethod
     def render(raw):
         def name(w):
-            return f"generated disk {int(w) // 1000}k" if w.isdigit() else os.path.basename(w).split(".")[0] + " (scan)"
+            if w.isdigit():
+                return f"generated disk {int(w) // 1000}k" if int(w) < 10 ** 6 else f"generated disk {int(w) / 1e6:g}M"
+            return os.path.basename(w).split(".")[0] + " (scan)"
 
         out = []
         rows = []
@@ -946,6 +948,9 @@ class Atlas:
                           else ", and no mirrored chart") + ". "
                        + ("Ours had no flipped, mirrored or overlapping triangle on any mesh." if not ours_bad else
                           "Ours had flipped, mirrored or overlapping triangles on: " + ", ".join(ours_bad) + "."))
+        failed_ours = {m: data[m]["intrinsic"].get("skipped", "") for m in names if not ok(m, "intrinsic")}
+        if failed_ours:
+            out.append("\n**Ours failed on**: " + "; ".join(f"{m} ({why})" for m, why in failed_ours.items()) + ".")
         if skipped_x:
             out.append("\nNot given to xatlas: " + "; ".join(f"{m} ({why})" for m, why in skipped_x.items()) + ".")
         if not raw.get("xatlas"):
@@ -1075,9 +1080,8 @@ class AtlasLarge:
         p95 = r.get("stretch", {}).get("face_stretch_p95")
         return (f"{r['vertices']:,} vertices, {r['faces']:,} faces: **{rec['wall_s']:.1f} s wall**, "
                 f"{rec['cpu_s']:.1f} s CPU, peak {rec['maxrss_mb'] / 1024:.2f} GB; {r['charts']} charts, utilization "
-                f"{r['utilization']:.1%}" + (f", p95 face stretch {p95:.3f}" if p95 else "") + ".\n\n"
-                + table(stages + ["write (rest)"], [[f"{t[k] / 1000:.2f}" for k in stages] + [f"{write:.2f}"]])
-                + "\n\n(seconds)")
+                f"{r['utilization']:.1%}" + (f", p95 face stretch {p95:.3f}" if p95 else "") + ". Stages, seconds:\n\n"
+                + table(stages + ["write (rest)"], [[f"{t[k] / 1000:.2f}" for k in stages] + [f"{write:.2f}"]]))
 
 
 @section("texture", "Texture transfer", """
@@ -1188,9 +1192,11 @@ class Scenes:
         def refused(ls):
             out = []
             for l in ls:
-                if l.startswith("refused"):
-                    name, why = l.split(None, 1)[1].split(": ", 1) if ": " in l else (l, "")
-                    out.append(f"{name.split(' (in:')[0]}: {why.strip()}")
+                m = re.match(r"refused\s+(\S+)(?: \(in: (\S+) errors\))?: (.*)", l)
+                if m:
+                    why = re.sub(r"^intrinsic: error: \S+?: ", "", m.group(3))  # the CLI's prefix and the path
+                    why = re.sub(r" \(looked from.*$", "", why.replace(ASSIMP_MODELS + "/", ""))
+                    out.append((m.group(1), m.group(2), why[:150] + ("..." if len(why) > 150 else "")))
             return out
 
         def bad(ls):
@@ -1208,7 +1214,8 @@ class Scenes:
             r = refused(ls)
             if r:
                 out.append(f"\nRefused ({label}), with the message:\n")
-                out += [f"- `{x.split(':', 1)[0]}`:{x.split(':', 1)[1][:160]}" for x in r]
+                out += [f"- `{name}`" + ("" if n is None else " (a valid input)" if n == "0" else
+                                          f" (the input has {n} validator errors)") + f": {why}" for name, n, why in r]
         return "\n".join(out)
 
 
@@ -1509,7 +1516,7 @@ def readme_table(meta, raws):
     m = meta["machine"]
     head = (f"{README_BEGIN}\nOne run of `scripts/benchmarks.py` ({meta['start_utc'][:10]}, commit "
             f"{meta['commit'].split()[0]}, {m['nproc']} cores, {m['cpu']}, load average {meta['load_start'].split()[0]}"
-            f" at the start); every figure, the commands and the machine are in "
+            f" at the start and {meta['load_end'].split()[0]} at the end); every figure, the commands and the machine are in "
             f"[docs/benchmarks.md](docs/benchmarks.md):\n\n")
     return head + table(["job", "figure"], rows) + "\n" + README_END
 
