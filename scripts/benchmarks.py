@@ -217,6 +217,11 @@ def fnum(x, digits=3):
     return f"{x:,.{d}f}"
 
 
+def fval(x):
+    """A measure as read: counts as integers, other figures to 3 significant digits."""
+    return str(int(x)) if isinstance(x, int) or (isinstance(x, float) and x.is_integer()) else fnum(x)
+
+
 def ms(x):
     """Milliseconds as a person reads them: 3 significant digits, seconds from 1000 ms."""
     return f"{fnum(x / 1000)} s" if x >= 1000 else f"{x:.3g} ms"
@@ -674,9 +679,8 @@ answer (split into request to headers and body) and the frame callback (of
 which buffer uploads), for the 3D and 2D views together and for the 2D view
 alone; medians over the moves (in parentheses after the mouse-to-frame time:
 the mouse event to the request being sent, the page's input delivery). The
-mouse-to-frame time closes on the frame
-after the one that drew the answer, so it cannot be under about 17 ms plus
-the answer.
+mouse-to-frame time closes on the frame after the one that drew the answer,
+so it cannot be under about 17 ms plus the answer.
 """)
 class Drag:
     @staticmethod
@@ -926,7 +930,7 @@ class Atlas:
                 keys = [(d, k) for d, test, k in DOMINANCE if not test(o, x)]
                 if keys:
                     notes.append(f"{m} (" + ", ".join(
-                        f"{d} {fnum(o[k])} / {fnum(x[k])}" if k != "utilization" else
+                        f"{d} {fval(o[k])} / {fval(x[k])}" if k != "utilization" else
                         f"{d} {o[k]:.1%} / {x[k]:.1%}" for d, k in keys) + ")")
             if notes:
                 out.append("\nWhere ours is not at least as good (ours / xatlas): " + "; ".join(notes) + ".")
@@ -944,10 +948,13 @@ class Atlas:
             out.append(f"\nxatlas's layouts have overlapping triangles on {len(ov)} of {len(both)} meshes"
                        + (f" ({', '.join(ov)})" if ov else "") + f", folded or collapsed triangles on {len(fl)}"
                        + (f" ({', '.join(fl)})" if fl else "")
-                       + (f", and {min(mir):.0%}-{max(mir):.0%} of their charts mirrored" if mir and max(mir) > 0
-                          else ", and no mirrored chart") + ". "
+                       + (f", and lay out {median(mir):.0%} of their charts mirrored (median over the meshes)"
+                          if mir and max(mir) > 0 else ", and no mirrored chart") + ". "
                        + ("Ours had no flipped, mirrored or overlapping triangle on any mesh." if not ours_bad else
-                          "Ours had flipped, mirrored or overlapping triangles on: " + ", ".join(ours_bad) + "."))
+                          "Ours had flipped, mirrored or overlapping triangles (by `metrics`' independent count) on: "
+                          + ", ".join(f"{m} (" + ", ".join(f"{data[m]['intrinsic'][k]} {k.replace('_', ' ')}"
+                                                           for k in ("flipped", "mirrored_charts", "overlapping")
+                                                           if data[m]["intrinsic"][k]) + ")" for m in ours_bad) + "."))
         failed_ours = {m: data[m]["intrinsic"].get("skipped", "") for m in names if not ok(m, "intrinsic")}
         if failed_ours:
             out.append("\n**Ours failed on**: " + "; ".join(f"{m} ({why})" for m, why in failed_ours.items()) + ".")
@@ -1559,6 +1566,8 @@ def main():
         page = render_page(saved["meta"], saved["sections"])
         open(out, "w").write(page)
         log(f"wrote {out}")
+        if is_page and not saved["meta"].get("quick"):
+            update_readme(saved["meta"], saved["sections"])
         return 0
 
     keys = [c.key for c in SECTIONS]
