@@ -5,7 +5,8 @@
 #include "option_rows.h"
 
 namespace intrinsic {
-namespace {
+// Named, not anonymous: the unity build compiles both tables in one unit.
+namespace atlas_rows {
 
 using option_rows::kNoLimit;
 using option_rows::spec;
@@ -208,17 +209,17 @@ void finish_chart_map(Draft& d, const std::vector<std::string>& keys, OptionSpel
   }
 }
 
-}  // namespace
+}  // namespace atlas_rows
 
 const std::vector<OptionSpec>& atlas_option_table() {
-  static const std::vector<OptionSpec> specs = option_rows::specs_of(rows());
+  static const std::vector<OptionSpec> specs = option_rows::specs_of(atlas_rows::rows());
   return specs;
 }
 
 AtlasRequest atlas_request(const GivenOptions& given, OptionSpelling spelling) {
-  Draft d;
-  const std::vector<std::string> keys = option_rows::apply_given(rows(), given, spelling, d);
-  finish_chart_map(d, keys, spelling);
+  atlas_rows::Draft d;
+  const std::vector<std::string> keys = option_rows::apply_given(atlas_rows::rows(), given, spelling, d);
+  atlas_rows::finish_chart_map(d, keys, spelling);
   d.request.read.max_faces = faces_for_vertices(d.request.read.max_vertices);
   d.request.textures.spelling = spelling;
   d.request.gltf.spelling = spelling;

@@ -5,7 +5,8 @@
 #include "option_rows.h"
 
 namespace intrinsic {
-namespace {
+// Named, not anonymous: the unity build compiles both tables in one unit.
+namespace param_rows {
 
 using option_rows::spec;
 
@@ -140,20 +141,20 @@ void finish_optimizer(Draft& d, const std::vector<std::string>& keys, OptionSpel
   r.optimal_lambda.hi = d.lambda_range[1];
 }
 
-}  // namespace
+}  // namespace param_rows
 
 const std::vector<OptionSpec>& param_option_table() {
-  static const std::vector<OptionSpec> specs = option_rows::specs_of(rows());
+  static const std::vector<OptionSpec> specs = option_rows::specs_of(param_rows::rows());
   return specs;
 }
 
 ParamRequest param_request(const GivenOptions& given, OptionSpelling spelling) {
-  Draft d;
-  const std::vector<std::string> keys = option_rows::apply_given(rows(), given, spelling, d);
+  param_rows::Draft d;
+  const std::vector<std::string> keys = option_rows::apply_given(param_rows::rows(), given, spelling, d);
   ParamRequest& r = d.request;
   r.spelling = spelling;
   for (const std::string& p : d.pins) r.options.pins.push_back(parse_pin(p, spelling));
-  finish_optimizer(d, keys, spelling);
+  param_rows::finish_optimizer(d, keys, spelling);
   r.options.weights = weight_options(d.method, d.lambda, d.mu, spelling);
   if (is_choice<BoundaryShape>(d.boundary)) {
     r.options.boundary = parse_choice<BoundaryShape>(d.boundary, "");
